@@ -1,0 +1,788 @@
+//! Typed pipeline configuration: TOML files with includes and `--set` overrides.
+//!
+//! Every error names the key and where it was written (file and line, or the
+//! override), whether it comes from the pipeline's own keys or a plugin's parameters.
+
+use crate::error::{ConfigError, Origin};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::de::{DeTable, DeValue};
+
+/// A stage's config section: `type = "plugin-name"` and the plugin's `params` table.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PluginSection {
+    /// The plugin's registered name.
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// The plugin's parameters (checked by the plugin's typed params struct).
+    #[serde(default)]
+    pub params: toml::Table,
+    /// Where the section sits in the config, e.g. `planner`.
+    #[serde(skip)]
+    pub key: String,
+}
+
+impl PluginSection {
+    /// A section for plugin `kind` at config key `key` with no parameters.
+    pub fn new(key: &str, kind: &str) -> Self {
+        Self {
+            kind: kind.to_string(),
+            params: toml::Table::new(),
+            key: key.to_string(),
+        }
+    }
+}
+
+/// The robot's base as a box, and its height above the terrain.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RobotConfig {
+    /// Box length along the heading, metres.
+    pub length: f64,
+    /// Box width, metres.
+    pub width: f64,
+    /// Box height, metres.
+    pub height: f64,
+    /// Height of the box centre above the terrain, metres.
+    pub base_height: f64,
+}
+
+impl Default for RobotConfig {
+    /// ANYmal's torso (the paper's robot): 1.07 × 0.55 × 0.3 m.
+    fn default() -> Self {
+        Self {
+            length: 1.07,
+            width: 0.55,
+            height: 0.3,
+            base_height: 0.5,
+        }
+    }
+}
+
+impl RobotConfig {
+    /// The first field with a bad value and why.
+    fn invalid_field(&self) -> Option<(&'static str, String)> {
+        let fields = [
+            ("length", self.length),
+            ("width", self.width),
+            ("height", self.height),
+        ];
+        if let Some((name, v)) = fields.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
+            return Some((name, format!("must be a finite length > 0, got {v}")));
+        }
+        (!self.base_height.is_finite()).then(|| {
+            (
+                "base_height",
+                format!("must be finite, got {}", self.base_height),
+            )
+        })
+    }
+}
+
+/// What `smug plan` writes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputConfig {
+    /// Output directory (the `--out` flag overrides it).
+    pub dir: Option<PathBuf>,
+    /// Write `plan.json`.
+    pub json: bool,
+    /// Write `plan.csv`.
+    pub csv: bool,
+    /// Write `plan.svg`.
+    pub svg: bool,
+}
+
+impl Default for OutputConfig {
+    fn default() -> Self {
+        Self {
+            dir: None,
+            json: true,
+            csv: true,
+            svg: true,
+        }
+    }
+}
+
+/// A whole pipeline: one section per stage. Stages a command does not need may be absent.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PipelineConfig {
+    /// Seed of every random choice; the same seed gives bit-identical runs.
+    #[serde(default)]
+    pub seed: u64,
+    /// Where the maps and the mission come from.
+    pub world: Option<PluginSection>,
+    /// The robot's base box.
+    #[serde(default)]
+    pub robot: RobotConfig,
+    /// Path cost metric (default `se2`).
+    pub cost: Option<PluginSection>,
+    /// Traversability estimator (absent: keep the world's own layer, if any).
+    pub traversability: Option<PluginSection>,
+    /// State validity checker.
+    pub validity: Option<PluginSection>,
+    /// Motion validator.
+    pub motion: Option<PluginSection>,
+    /// Sampler used by the planner.
+    pub sampler: Option<PluginSection>,
+    /// Point-to-point planner.
+    pub planner: Option<PluginSection>,
+    /// TSP solver for the visiting order.
+    pub sequencer: Option<PluginSection>,
+    /// PoI selector.
+    pub selector: Option<PluginSection>,
+    /// Output files.
+    #[serde(default)]
+    pub output: OutputConfig,
+}
+
+impl PipelineConfig {
+    /// The plugin sections present, in pipeline order, with their keys.
+    pub fn sections(&self) -> Vec<&PluginSection> {
+        [
+            &self.world,
+            &self.traversability,
+            &self.cost,
+            &self.validity,
+            &self.motion,
+            &self.sampler,
+            &self.planner,
+            &self.sequencer,
+            &self.selector,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
+    fn assign_section_keys(&mut self) {
+        let slots = [
+            ("world", &mut self.world),
+            ("traversability", &mut self.traversability),
+            ("cost", &mut self.cost),
+            ("validity", &mut self.validity),
+            ("motion", &mut self.motion),
+            ("sampler", &mut self.sampler),
+            ("planner", &mut self.planner),
+            ("sequencer", &mut self.sequencer),
+            ("selector", &mut self.selector),
+        ];
+        for (key, slot) in slots {
+            if let Some(section) = slot {
+                section.key = key.to_string();
+            }
+        }
+    }
+}
+
+/// One step of a key path: a table key or an array index.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum KeySegment {
+    /// A table key.
+    Key(String),
+    /// An array index.
+    Index(usize),
+}
+
+/// A dotted key path such as `planner.params.max_stall` or `targets[2].id`.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct KeyPath(pub Vec<KeySegment>);
+
+impl KeyPath {
+    /// A path from a dotted string (no array indices).
+    pub fn dotted(path: &str) -> Self {
+        KeyPath(
+            path.split('.')
+                .filter(|s| !s.is_empty())
+                .map(|s| KeySegment::Key(s.to_string()))
+                .collect(),
+        )
+    }
+
+    /// This path extended by a key.
+    pub fn join(&self, key: &str) -> Self {
+        let mut segments = self.0.clone();
+        segments.push(KeySegment::Key(key.to_string()));
+        KeyPath(segments)
+    }
+
+    fn starts_with(&self, prefix: &KeyPath) -> bool {
+        self.0.len() >= prefix.0.len() && self.0[..prefix.0.len()] == prefix.0[..]
+    }
+}
+
+impl fmt::Display for KeyPath {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, segment) in self.0.iter().enumerate() {
+            match segment {
+                KeySegment::Key(k) if i == 0 => write!(f, "{k}")?,
+                KeySegment::Key(k) => write!(f, ".{k}")?,
+                KeySegment::Index(n) => write!(f, "[{n}]")?,
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The texts a config was assembled from, to say where a key was written.
+#[derive(Clone, Debug, Default)]
+pub struct SourceMap {
+    /// Files, highest precedence first (the main file, then its includes).
+    files: Vec<SourceFile>,
+    /// `--set` overrides in the order given.
+    overrides: Vec<(KeyPath, String)>,
+}
+
+#[derive(Clone, Debug)]
+struct SourceFile {
+    path: String,
+    text: String,
+}
+
+impl SourceMap {
+    /// Where `key` was written: the override that set it, or the line in the file of
+    /// highest precedence that holds the longest prefix of it.
+    pub fn locate(&self, key: &KeyPath) -> Origin {
+        if let Some((_, text)) = self
+            .overrides
+            .iter()
+            .rev()
+            .find(|(k, _)| key.starts_with(k))
+        {
+            return Origin::CommandLine { text: text.clone() };
+        }
+        let mut best: Option<(usize, Origin)> = None;
+        for file in &self.files {
+            let Ok(root) = DeTable::parse(&file.text) else {
+                continue;
+            };
+            let (depth, span) = deepest_span(root.get_ref(), &key.0);
+            if let Some(span) = span {
+                if best.as_ref().is_none_or(|(d, _)| depth > *d) {
+                    let line = line_of(&file.text, span.start);
+                    best = Some((
+                        depth,
+                        Origin::File {
+                            path: file.path.clone(),
+                            line,
+                        },
+                    ));
+                }
+            }
+        }
+        best.map(|(_, origin)| origin)
+            .unwrap_or_else(|| Origin::Unlocated {
+                path: self
+                    .files
+                    .first()
+                    .map_or("<config>".into(), |f| f.path.clone()),
+            })
+    }
+
+    /// Deserialises `value`, found at `prefix`, into `T`; errors name the offending
+    /// key and where it was written.
+    pub fn deserialize<T: DeserializeOwned>(
+        &self,
+        prefix: &KeyPath,
+        value: toml::Value,
+    ) -> Result<T, ConfigError> {
+        serde_path_to_error::deserialize(value).map_err(|err| {
+            let mut key = prefix.clone();
+            for segment in err.path().iter() {
+                match segment {
+                    serde_path_to_error::Segment::Map { key: k } => {
+                        key.0.push(KeySegment::Key(k.clone()))
+                    }
+                    serde_path_to_error::Segment::Seq { index } => {
+                        key.0.push(KeySegment::Index(*index))
+                    }
+                    _ => {}
+                }
+            }
+            let message = err.inner().message().trim().to_string();
+            if let Some(field) = unknown_field_name(&message) {
+                if key.0.last() != Some(&KeySegment::Key(field.to_string())) {
+                    key = key.join(field);
+                }
+            }
+            ConfigError::Key {
+                origin: self.locate(&key),
+                key: key.to_string(),
+                message,
+            }
+        })
+    }
+
+    /// An error about `key` with `message`, located.
+    pub fn key_error(&self, key: &KeyPath, message: impl Into<String>) -> ConfigError {
+        ConfigError::Key {
+            key: key.to_string(),
+            origin: self.locate(key),
+            message: message.into(),
+        }
+    }
+}
+
+/// The field name in serde's "unknown field `x`, expected …" message.
+fn unknown_field_name(message: &str) -> Option<&str> {
+    let rest = message.strip_prefix("unknown field `")?;
+    rest.split('`').next()
+}
+
+/// The span of the deepest key of `path` present in `table`, and how deep it is.
+fn deepest_span(
+    table: &DeTable<'_>,
+    path: &[KeySegment],
+) -> (usize, Option<std::ops::Range<usize>>) {
+    let mut span = None;
+    let mut depth = 0;
+    let mut current: Option<&DeValue<'_>> = None;
+    for segment in path {
+        let next = match (segment, current) {
+            (KeySegment::Key(k), None) => find_key(table, k),
+            (KeySegment::Key(k), Some(DeValue::Table(t))) => find_key(t, k),
+            (KeySegment::Index(i), Some(DeValue::Array(a))) => {
+                a.get(*i).map(|v| (v.span(), v.get_ref()))
+            }
+            _ => None,
+        };
+        let Some((next_span, value)) = next else {
+            break;
+        };
+        span = Some(next_span);
+        depth += 1;
+        current = Some(value);
+    }
+    (depth, span)
+}
+
+fn find_key<'a, 'i>(
+    table: &'a DeTable<'i>,
+    key: &str,
+) -> Option<(std::ops::Range<usize>, &'a DeValue<'i>)> {
+    table
+        .iter()
+        .find(|(k, _)| k.get_ref().as_ref() == key)
+        .map(|(k, v)| (k.span(), v.get_ref()))
+}
+
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
+}
+
+fn column_of(text: &str, offset: usize) -> usize {
+    let before = &text[..offset.min(text.len())];
+    before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1
+}
+
+/// A loaded, merged, overridden and typed config with the sources it came from.
+#[derive(Clone, Debug)]
+pub struct LoadedConfig {
+    /// The typed config.
+    pub config: PipelineConfig,
+    /// The merged TOML (after includes and overrides).
+    pub table: toml::Table,
+    /// Where each key was written, for error messages.
+    pub sources: Arc<SourceMap>,
+}
+
+/// How deep includes may nest.
+const MAX_INCLUDE_DEPTH: usize = 8;
+
+impl LoadedConfig {
+    /// Loads `path` (with its includes) and applies `overrides` (`key=value` each).
+    pub fn from_file(path: &Path, overrides: &[String]) -> Result<Self, ConfigError> {
+        let mut files = Vec::new();
+        let table = read_layered(path, &mut Vec::new(), &mut files)?;
+        files.reverse();
+        Self::finish(table, files, overrides)
+    }
+
+    /// Loads a config from text; includes resolve against `base_dir`.
+    pub fn from_text(
+        text: &str,
+        name: &str,
+        base_dir: &Path,
+        overrides: &[String],
+    ) -> Result<Self, ConfigError> {
+        let mut files = Vec::new();
+        let table = layer_text(text, name, base_dir, &mut Vec::new(), &mut files)?;
+        files.reverse();
+        Self::finish(table, files, overrides)
+    }
+
+    fn finish(
+        mut table: toml::Table,
+        files: Vec<SourceFile>,
+        overrides: &[String],
+    ) -> Result<Self, ConfigError> {
+        let mut sources = SourceMap {
+            files,
+            overrides: Vec::new(),
+        };
+        for text in overrides {
+            let key = apply_override(&mut table, text)?;
+            sources.overrides.push((key, text.clone()));
+        }
+        let mut config: PipelineConfig =
+            sources.deserialize(&KeyPath::default(), toml::Value::Table(table.clone()))?;
+        config.assign_section_keys();
+        if let Some((field, message)) = config.robot.invalid_field() {
+            return Err(sources.key_error(&KeyPath::dotted("robot").join(field), message));
+        }
+        Ok(Self {
+            config,
+            table,
+            sources: Arc::new(sources),
+        })
+    }
+}
+
+fn read_layered(
+    path: &Path,
+    stack: &mut Vec<PathBuf>,
+    files: &mut Vec<SourceFile>,
+) -> Result<toml::Table, ConfigError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let canonical = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+    if stack.contains(&canonical) {
+        return Err(ConfigError::Include {
+            path: path.display().to_string(),
+            message: "includes itself (include cycle)".into(),
+        });
+    }
+    stack.push(canonical);
+    let base_dir = path.parent().unwrap_or(Path::new("."));
+    let table = layer_text(&text, &path.display().to_string(), base_dir, stack, files);
+    stack.pop();
+    table
+}
+
+/// Parses `text`, merges its includes beneath it and records the files.
+fn layer_text(
+    text: &str,
+    name: &str,
+    base_dir: &Path,
+    stack: &mut Vec<PathBuf>,
+    files: &mut Vec<SourceFile>,
+) -> Result<toml::Table, ConfigError> {
+    let mut own = parse_table(text, name)?;
+    let includes = take_includes(&mut own, text, name)?;
+    if !includes.is_empty() && stack.len() >= MAX_INCLUDE_DEPTH {
+        return Err(ConfigError::Include {
+            path: name.to_string(),
+            message: format!("includes nest deeper than {MAX_INCLUDE_DEPTH} levels"),
+        });
+    }
+    let mut merged = toml::Table::new();
+    for include in includes {
+        let layer = read_layered(&base_dir.join(include), stack, files)?;
+        merge_tables(&mut merged, layer);
+    }
+    merge_tables(&mut merged, own);
+    files.push(SourceFile {
+        path: name.to_string(),
+        text: text.to_string(),
+    });
+    Ok(merged)
+}
+
+fn parse_table(text: &str, name: &str) -> Result<toml::Table, ConfigError> {
+    text.parse::<toml::Table>().map_err(|err| {
+        let offset = err.span().map_or(0, |s| s.start);
+        ConfigError::Syntax {
+            path: name.to_string(),
+            line: line_of(text, offset),
+            column: column_of(text, offset),
+            message: err.message().trim().to_string(),
+        }
+    })
+}
+
+/// Removes the top-level `include` key (a path or a list of paths).
+fn take_includes(
+    table: &mut toml::Table,
+    text: &str,
+    name: &str,
+) -> Result<Vec<String>, ConfigError> {
+    let bad = |message: &str| {
+        let sources = SourceMap {
+            files: vec![SourceFile {
+                path: name.to_string(),
+                text: text.to_string(),
+            }],
+            overrides: Vec::new(),
+        };
+        sources.key_error(&KeyPath::dotted("include"), message)
+    };
+    match table.remove("include") {
+        None => Ok(Vec::new()),
+        Some(toml::Value::String(path)) => Ok(vec![path]),
+        Some(toml::Value::Array(items)) => items
+            .into_iter()
+            .map(|item| match item {
+                toml::Value::String(path) => Ok(path),
+                _ => Err(bad("include must be a path or a list of paths")),
+            })
+            .collect(),
+        Some(_) => Err(bad("include must be a path or a list of paths")),
+    }
+}
+
+/// Deep-merges `top` over `base`. A plugin section whose `type` changes is replaced
+/// whole, so one plugin's parameters never leak into another's.
+fn merge_tables(base: &mut toml::Table, top: toml::Table) {
+    for (key, value) in top {
+        match (base.get_mut(&key), value) {
+            (Some(toml::Value::Table(old)), toml::Value::Table(new))
+                if old.get("type").is_none()
+                    || new.get("type").is_none()
+                    || old.get("type") == new.get("type") =>
+            {
+                merge_tables(old, new);
+            }
+            (_, value) => {
+                base.insert(key, value);
+            }
+        }
+    }
+}
+
+/// Applies `key.path=value` to `table`; the value is TOML, or a bare word taken as a string.
+pub fn apply_override(table: &mut toml::Table, text: &str) -> Result<KeyPath, ConfigError> {
+    let bad = |message: String| ConfigError::Override {
+        text: text.to_string(),
+        message,
+    };
+    let (key, value) = text
+        .split_once('=')
+        .ok_or_else(|| bad("expected KEY=VALUE, e.g. planner.params.max_stall=5".into()))?;
+    let segments: Vec<&str> = key.trim().split('.').map(str::trim).collect();
+    if segments.iter().any(|s| s.is_empty()) {
+        return Err(bad(format!("`{}` is not a dotted key", key.trim())));
+    }
+    let value = parse_override_value(value.trim()).map_err(bad)?;
+    let (leaf, parents) = segments.split_last().expect("split yields one segment");
+    let mut current = table;
+    for (depth, segment) in parents.iter().enumerate() {
+        let entry = current
+            .entry(segment.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        current = match entry {
+            toml::Value::Table(t) => t,
+            _ => {
+                return Err(bad(format!(
+                    "`{}` is not a table",
+                    segments[..=depth].join(".")
+                )))
+            }
+        };
+    }
+    current.insert(leaf.to_string(), value);
+    Ok(KeyPath::dotted(&segments.join(".")))
+}
+
+fn parse_override_value(text: &str) -> Result<toml::Value, String> {
+    if let Ok(mut doc) = format!("v = {text}").parse::<toml::Table>() {
+        if let Some(value) = doc.remove("v") {
+            return Ok(value);
+        }
+    }
+    let is_bare_word = !text.is_empty()
+        && text
+            .chars()
+            .all(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | '.' | '/' | ':' | '+'));
+    if is_bare_word {
+        Ok(toml::Value::String(text.to_string()))
+    } else {
+        Err(format!("`{text}` is neither a TOML value nor a bare word"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CONFIG: &str = r#"seed = 3
+
+[robot]
+length = 1.0
+
+[planner]
+type = "lazy-prm-star"
+
+[planner.params]
+max_stall = 3
+"#;
+
+    fn load(text: &str, overrides: &[&str]) -> Result<LoadedConfig, ConfigError> {
+        let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        LoadedConfig::from_text(text, "test.toml", Path::new("."), &overrides)
+    }
+
+    #[test]
+    fn loads_sections_and_defaults() {
+        let loaded = load(CONFIG, &[]).unwrap();
+        let c = &loaded.config;
+        assert_eq!(c.seed, 3);
+        assert_eq!(c.robot.length, 1.0);
+        assert_eq!(c.robot.width, RobotConfig::default().width);
+        let planner = c.planner.as_ref().unwrap();
+        assert_eq!(planner.key, "planner");
+        assert_eq!(planner.params["max_stall"].as_integer(), Some(3));
+        assert!(c.sampler.is_none());
+    }
+
+    #[test]
+    fn misspelt_top_level_key_names_key_and_line() {
+        let text = format!("{CONFIG}\n[samplr]\ntype = \"uniform\"\n");
+        let err = load(&text, &[]).unwrap_err().to_string();
+        assert!(
+            err.starts_with("test.toml:12: `samplr`: unknown field `samplr`"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn wrong_type_names_key_and_line() {
+        let err = load(&CONFIG.replace("length = 1.0", "length = \"long\""), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("test.toml:4: `robot.length`: invalid type"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn bad_robot_value_is_located() {
+        let err = load(&CONFIG.replace("length = 1.0", "length = -1.0"), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("test.toml:4: `robot.length`: must be"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn syntax_errors_have_line_and_column() {
+        let err = load("seed = 3\n[robot\n", &[]).unwrap_err();
+        assert!(matches!(err, ConfigError::Syntax { line: 2, .. }), "{err}");
+    }
+
+    #[test]
+    fn overrides_set_values_and_bare_words() {
+        let loaded = load(
+            CONFIG,
+            &["planner.params.max_stall=5", "selector.type=dp", "seed = 9"],
+        )
+        .unwrap();
+        let c = &loaded.config;
+        assert_eq!(c.seed, 9);
+        assert_eq!(c.selector.as_ref().unwrap().kind, "dp");
+        assert_eq!(
+            c.planner.as_ref().unwrap().params["max_stall"].as_integer(),
+            Some(5)
+        );
+        let quoted = load(CONFIG, &["selector.type=\"idp\""]).unwrap();
+        assert_eq!(quoted.config.selector.unwrap().kind, "idp");
+    }
+
+    #[test]
+    fn override_of_unknown_key_is_an_error_naming_it() {
+        let err = load(CONFIG, &["robot.lenght=2"]).unwrap_err().to_string();
+        assert!(
+            err.starts_with("--set robot.lenght=2: `robot.lenght`: unknown field"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn malformed_overrides_are_rejected() {
+        assert!(matches!(
+            load(CONFIG, &["seed"]),
+            Err(ConfigError::Override { .. })
+        ));
+        assert!(matches!(
+            load(CONFIG, &["seed.x=1"]),
+            Err(ConfigError::Override { .. })
+        ));
+        assert!(matches!(
+            load(CONFIG, &["a..b=1"]),
+            Err(ConfigError::Override { .. })
+        ));
+        assert!(matches!(
+            load(CONFIG, &["seed=[1,"]),
+            Err(ConfigError::Override { .. })
+        ));
+    }
+
+    #[test]
+    fn locates_plugin_params() {
+        let loaded = load(CONFIG, &[]).unwrap();
+        let origin = loaded
+            .sources
+            .locate(&KeyPath::dotted("planner.params.max_stall"));
+        assert_eq!(
+            origin,
+            Origin::File {
+                path: "test.toml".into(),
+                line: 10
+            }
+        );
+        let origin = loaded
+            .sources
+            .locate(&KeyPath::dotted("planner.params.missing"));
+        assert_eq!(
+            origin,
+            Origin::File {
+                path: "test.toml".into(),
+                line: 9
+            }
+        );
+    }
+
+    #[test]
+    fn includes_merge_beneath_and_replace_sections_of_another_type() {
+        let dir = std::env::temp_dir().join(format!("smug-config-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("robot.toml"),
+            "[robot]\nlength = 2.0\nwidth = 0.7\n[planner]\ntype = \"other\"\nparams = { x = 1 }\n",
+        )
+        .unwrap();
+        std::fs::write(
+            dir.join("main.toml"),
+            format!("include = \"robot.toml\"\n{CONFIG}"),
+        )
+        .unwrap();
+        let loaded = LoadedConfig::from_file(&dir.join("main.toml"), &[]).unwrap();
+        let c = &loaded.config;
+        assert_eq!(c.robot.length, 1.0, "the including file wins");
+        assert_eq!(c.robot.width, 0.7, "included keys fill in");
+        let planner = c.planner.as_ref().unwrap();
+        assert!(
+            planner.params.get("x").is_none(),
+            "params of another plugin type leak"
+        );
+        let origin = loaded.sources.locate(&KeyPath::dotted("robot.width"));
+        assert!(
+            matches!(origin, Origin::File { ref path, line: 3 } if path.ends_with("robot.toml")),
+            "{origin:?}"
+        );
+
+        std::fs::write(dir.join("loop.toml"), "include = \"loop.toml\"\n").unwrap();
+        let err = LoadedConfig::from_file(&dir.join("loop.toml"), &[]).unwrap_err();
+        assert!(matches!(err, ConfigError::Include { .. }), "{err}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

@@ -1,0 +1,46 @@
+//! SMUG core: the value types, stage traits, path oracle, plugin registry and TOML
+//! pipelines that every other SMUG crate builds on.
+//!
+//! A pipeline is assembled from a TOML config: each stage (`world`, `traversability`,
+//! `cost`, `validity`, `motion`, `sampler`, `planner`, `sequencer`, `selector`) names a
+//! registered plugin with `type = "…"` and gives its parameters in `params`.
+//! Plugins register themselves with [`register_plugin!`].
+
+#![warn(missing_docs)]
+
+pub mod config;
+pub mod error;
+pub mod grid;
+pub mod metric;
+pub mod mission;
+pub mod oracle;
+pub mod path;
+pub mod pipeline;
+pub mod plan;
+pub mod pose;
+pub mod registry;
+pub mod rng;
+pub mod stages;
+pub mod termination;
+#[cfg(feature = "testing")]
+pub mod testing;
+pub mod world;
+
+pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
+pub use error::{ConfigError, Error, Origin, RegistryError, Result};
+pub use grid::{GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};
+pub use metric::{CostMetric, Se2Metric};
+pub use mission::{Mission, Target};
+pub use oracle::{PathOracle, PlannedPath};
+pub use path::Path;
+pub use pipeline::{BuildContext, Pipeline};
+pub use plan::{Plan, PlanStats, TimeBreakdown};
+pub use pose::{Bounds2, Point3, Pose2, Waypoint};
+pub use stages::*;
+pub use termination::Termination;
+pub use world::World;
+
+#[doc(hidden)]
+pub use inventory;
+#[doc(hidden)]
+pub use toml;

@@ -1,0 +1,270 @@
+//! The path oracle: lower bounds and lazily planned, cached paths between poses.
+//!
+//! Sequencing and PoI selection only talk to the oracle. It owns the point-to-point
+//! planner, so every query of a mission shares one roadmap.
+
+use crate::error::Result;
+use crate::metric::CostMetric;
+use crate::path::Path;
+use crate::pose::Pose2;
+use crate::stages::{PlannerOutcome, PointToPointPlanner};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// The oracle's answer for a pair of poses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannedPath {
+    /// What the planner returned (paths oriented from the asked `i` to `j`).
+    pub outcome: PlannerOutcome,
+    /// The exact path's cost, `INFINITY` when there is none.
+    pub cost: f64,
+}
+
+impl PlannedPath {
+    /// The exact path, if the pair is connected.
+    pub fn path(&self) -> Option<&Path> {
+        self.outcome.exact_path()
+    }
+
+    fn reversed(&self) -> Self {
+        let outcome = match &self.outcome {
+            PlannerOutcome::Exact(path) => PlannerOutcome::Exact(path.reversed()),
+            // An approximate path ends short of the goal: it does not reverse into one
+            // from the other end, and it is not a path between the pair anyway.
+            PlannerOutcome::Approximate { .. } => PlannerOutcome::NoPath,
+            PlannerOutcome::InvalidStart => PlannerOutcome::InvalidGoal,
+            PlannerOutcome::InvalidGoal => PlannerOutcome::InvalidStart,
+            PlannerOutcome::NoPath => PlannerOutcome::NoPath,
+        };
+        Self {
+            outcome,
+            cost: self.cost,
+        }
+    }
+}
+
+/// Oracle counters.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct OracleStats {
+    /// Calls to the point-to-point planner.
+    pub paths_planned: u64,
+    /// Answers served from the cache.
+    pub cache_hits: u64,
+}
+
+/// Lower bounds and lazily planned paths between registered poses.
+pub struct PathOracle {
+    poses: Vec<Pose2>,
+    metric: Arc<dyn CostMetric>,
+    planner: Box<dyn PointToPointPlanner>,
+    cache: HashMap<(usize, usize), Arc<PlannedPath>>,
+    symmetric: bool,
+    stats: OracleStats,
+}
+
+impl PathOracle {
+    /// An oracle over `planner` (symmetric: a path i→j reversed serves j→i).
+    pub fn new(metric: Arc<dyn CostMetric>, planner: Box<dyn PointToPointPlanner>) -> Self {
+        Self {
+            poses: Vec::new(),
+            metric,
+            planner,
+            cache: HashMap::new(),
+            symmetric: true,
+            stats: OracleStats::default(),
+        }
+    }
+
+    /// Whether a path i→j reversed may serve j→i (true for undirected roadmaps and
+    /// symmetric metrics, the default).
+    pub fn with_symmetry(mut self, symmetric: bool) -> Self {
+        self.symmetric = symmetric;
+        self
+    }
+
+    /// Registers a pose; returns its index.
+    pub fn add_pose(&mut self, pose: Pose2) -> usize {
+        self.poses.push(pose);
+        self.poses.len() - 1
+    }
+
+    /// The pose at index `i`.
+    pub fn pose(&self, i: usize) -> &Pose2 {
+        &self.poses[i]
+    }
+
+    /// Number of registered poses.
+    pub fn len(&self) -> usize {
+        self.poses.len()
+    }
+
+    /// True when no pose is registered.
+    pub fn is_empty(&self) -> bool {
+        self.poses.is_empty()
+    }
+
+    /// The metric.
+    pub fn metric(&self) -> &dyn CostMetric {
+        self.metric.as_ref()
+    }
+
+    /// Straight-line cost from `i` to `j`: a lower bound of any path's cost.
+    pub fn lower_bound(&self, i: usize, j: usize) -> f64 {
+        self.metric.distance(&self.poses[i], &self.poses[j])
+    }
+
+    /// True when the pair has been planned (in either direction if symmetric).
+    pub fn is_planned(&self, i: usize, j: usize) -> bool {
+        i == j || self.cache.contains_key(&(i, j))
+    }
+
+    /// The planned cost if the pair has been planned (`INFINITY` for no path).
+    pub fn planned_cost(&self, i: usize, j: usize) -> Option<f64> {
+        if i == j {
+            return Some(0.0);
+        }
+        self.cache.get(&(i, j)).map(|p| p.cost)
+    }
+
+    /// The planned cost if planned, else the lower bound.
+    pub fn cost_or_bound(&self, i: usize, j: usize) -> f64 {
+        self.planned_cost(i, j)
+            .unwrap_or_else(|| self.lower_bound(i, j))
+    }
+
+    /// The path from `i` to `j`, planned on first request and cached.
+    pub fn path(&mut self, i: usize, j: usize) -> Result<Arc<PlannedPath>> {
+        if let Some(hit) = self.cache.get(&(i, j)) {
+            self.stats.cache_hits += 1;
+            return Ok(hit.clone());
+        }
+        let planned = Arc::new(if i == j {
+            PlannedPath {
+                outcome: PlannerOutcome::Exact(Path {
+                    states: vec![self.poses[i]],
+                    cost: 0.0,
+                }),
+                cost: 0.0,
+            }
+        } else {
+            self.plan_pair(i, j)?
+        });
+        if self.symmetric && i != j {
+            self.cache.insert((j, i), Arc::new(planned.reversed()));
+        }
+        self.cache.insert((i, j), planned.clone());
+        Ok(planned)
+    }
+
+    /// The planned cost from `i` to `j` (`INFINITY` when unreachable).
+    pub fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
+        Ok(self.path(i, j)?.cost)
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> OracleStats {
+        self.stats
+    }
+
+    /// The planner (for its statistics).
+    pub fn planner(&self) -> &dyn PointToPointPlanner {
+        self.planner.as_ref()
+    }
+
+    fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
+        self.stats.paths_planned += 1;
+        let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
+        let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
+        Ok(PlannedPath { outcome, cost })
+    }
+}
+
+impl std::fmt::Debug for PathOracle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PathOracle")
+            .field("poses", &self.poses.len())
+            .field("cached", &self.cache.len())
+            .field("symmetric", &self.symmetric)
+            .field("stats", &self.stats)
+            .finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metric::Se2Metric;
+    use crate::stages::PlannerStats;
+
+    /// Connects everything with the straight line, except into pose index 2's position.
+    struct StraightLine {
+        metric: Se2Metric,
+        calls: u64,
+    }
+
+    impl PointToPointPlanner for StraightLine {
+        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+            self.calls += 1;
+            if goal.x == 9.0 || start.x == 9.0 {
+                return Ok(PlannerOutcome::NoPath);
+            }
+            Ok(PlannerOutcome::Exact(Path::new(
+                vec![*start, *goal],
+                &self.metric,
+            )))
+        }
+
+        fn stats(&self) -> PlannerStats {
+            PlannerStats {
+                queries: self.calls,
+                ..Default::default()
+            }
+        }
+    }
+
+    fn oracle() -> PathOracle {
+        let metric = Se2Metric::default();
+        let mut oracle = PathOracle::new(
+            Arc::new(metric),
+            Box::new(StraightLine { metric, calls: 0 }),
+        );
+        oracle.add_pose(Pose2::new(0.0, 0.0, 0.0));
+        oracle.add_pose(Pose2::new(3.0, 4.0, 1.0));
+        oracle.add_pose(Pose2::new(9.0, 0.0, 0.0));
+        oracle
+    }
+
+    #[test]
+    fn plans_once_and_reuses_reversed_paths() {
+        let mut o = oracle();
+        assert!(!o.is_planned(0, 1));
+        let lb = o.lower_bound(0, 1);
+        assert_eq!(o.cost(0, 1).unwrap(), lb);
+        assert!(o.is_planned(1, 0));
+        let back = o.path(1, 0).unwrap();
+        assert_eq!(back.path().unwrap().states[0], *o.pose(1));
+        assert_eq!(o.stats().paths_planned, 1);
+        assert_eq!(o.stats().cache_hits, 1);
+        assert_eq!(o.planner().stats().queries, 1);
+    }
+
+    #[test]
+    fn unreachable_pairs_cost_infinity_and_self_pairs_are_free() {
+        let mut o = oracle();
+        assert_eq!(o.cost(0, 2).unwrap(), f64::INFINITY);
+        assert_eq!(o.planned_cost(2, 0), Some(f64::INFINITY));
+        assert_eq!(o.cost(1, 1).unwrap(), 0.0);
+        assert_eq!(o.stats().paths_planned, 1);
+        assert_eq!(o.cost_or_bound(0, 1), o.lower_bound(0, 1));
+    }
+
+    #[test]
+    fn asymmetric_oracle_plans_both_directions() {
+        let mut o = oracle().with_symmetry(false);
+        o.cost(0, 1).unwrap();
+        assert!(!o.is_planned(1, 0));
+        o.cost(1, 0).unwrap();
+        assert_eq!(o.stats().paths_planned, 2);
+    }
+}

@@ -1,0 +1,358 @@
+//! Assembling a pipeline from config: each stage is built by its registered plugin,
+//! in dependency order, through a [`BuildContext`] that hands out what earlier stages built.
+
+use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
+use crate::error::{Error, Result};
+use crate::metric::{CostMetric, Se2Metric};
+use crate::registry::{
+    Built, CostStage, MotionStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
+    Stage, TraversabilityStage, ValidityStage, WorldStage,
+};
+use crate::rng::{stage_rng, StageRng};
+use crate::stages::{
+    MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
+};
+use crate::world::World;
+use serde::de::DeserializeOwned;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// What a plugin's builder may use: the seed, the robot, and the stages built before it.
+#[derive(Clone)]
+pub struct BuildContext {
+    seed: u64,
+    robot: RobotConfig,
+    sources: Arc<SourceMap>,
+    metric: Arc<dyn CostMetric>,
+    world: Option<Arc<World>>,
+    state_validity: Option<Arc<dyn StateValidityChecker>>,
+    motion_validator: Option<Arc<dyn MotionValidator>>,
+    sampler: Option<PluginSection>,
+    building: String,
+}
+
+impl BuildContext {
+    /// A context with the default metric and nothing else built (for tests and
+    /// programmatic assembly; add stages with the `with_*` methods).
+    pub fn new(seed: u64, robot: RobotConfig) -> Self {
+        Self {
+            seed,
+            robot,
+            sources: Arc::new(SourceMap::default()),
+            metric: Arc::new(Se2Metric::default()),
+            world: None,
+            state_validity: None,
+            motion_validator: None,
+            sampler: None,
+            building: String::new(),
+        }
+    }
+
+    /// Sets the cost metric.
+    pub fn with_metric(mut self, metric: Arc<dyn CostMetric>) -> Self {
+        self.metric = metric;
+        self
+    }
+
+    /// Sets the world.
+    pub fn with_world(mut self, world: Arc<World>) -> Self {
+        self.world = Some(world);
+        self
+    }
+
+    /// Sets the state validity checker.
+    pub fn with_state_validity(mut self, checker: Arc<dyn StateValidityChecker>) -> Self {
+        self.state_validity = Some(checker);
+        self
+    }
+
+    /// Sets the motion validator.
+    pub fn with_motion_validator(mut self, validator: Arc<dyn MotionValidator>) -> Self {
+        self.motion_validator = Some(validator);
+        self
+    }
+
+    /// Sets the sampler section planners build their samplers from.
+    pub fn with_sampler(mut self, section: PluginSection) -> Self {
+        self.sampler = Some(section);
+        self
+    }
+
+    /// The run's seed.
+    pub fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// The robot's base box.
+    pub fn robot(&self) -> &RobotConfig {
+        &self.robot
+    }
+
+    /// A reproducible RNG for `stream`, derived from the seed.
+    pub fn rng(&self, stream: &str) -> StageRng {
+        stage_rng(self.seed, stream)
+    }
+
+    /// The cost metric.
+    pub fn metric(&self) -> Arc<dyn CostMetric> {
+        self.metric.clone()
+    }
+
+    /// The world, or an error naming the stage that needs it.
+    pub fn world(&self) -> Result<Arc<World>> {
+        self.world.clone().ok_or_else(|| self.missing("world"))
+    }
+
+    /// The state validity checker, or an error naming the stage that needs it.
+    pub fn state_validity(&self) -> Result<Arc<dyn StateValidityChecker>> {
+        self.state_validity
+            .clone()
+            .ok_or_else(|| self.missing("validity"))
+    }
+
+    /// The motion validator, or an error naming the stage that needs it.
+    pub fn motion_validator(&self) -> Result<Arc<dyn MotionValidator>> {
+        self.motion_validator
+            .clone()
+            .ok_or_else(|| self.missing("motion"))
+    }
+
+    /// A new sampler built from the config's `[sampler]` section.
+    pub fn new_sampler(&self) -> Result<Box<dyn Sampler>> {
+        let section = self
+            .sampler
+            .as_ref()
+            .ok_or_else(|| self.missing("sampler"))?;
+        Ok(self.build::<SamplerStage>(section)?.object)
+    }
+
+    /// The typed parameters of `section`; errors name the key and its line.
+    pub fn params<P: DeserializeOwned>(&self, section: &PluginSection) -> Result<P> {
+        let prefix = KeyPath::dotted(&section.key).join("params");
+        Ok(self
+            .sources
+            .deserialize(&prefix, toml::Value::Table(section.params.clone()))?)
+    }
+
+    /// Builds `section` with the plugin it names; an unknown name is an error that
+    /// lists the known ones and points at the `type` line.
+    pub fn build<S: Stage>(&self, section: &PluginSection) -> Result<Built<S>> {
+        let plugin = S::registry()?.get(&section.kind).map_err(|err| {
+            let key = KeyPath::dotted(&section.key).join("type");
+            self.sources.key_error(&key, err.to_string())
+        })?;
+        let mut ctx = self.clone();
+        ctx.building = section.key.clone();
+        (plugin.build)(section, &ctx)
+    }
+
+    fn missing(&self, needed: &'static str) -> Error {
+        Error::MissingStage {
+            stage: if self.building.is_empty() {
+                "this command".into()
+            } else {
+                format!("[{}]", self.building)
+            },
+            needed,
+        }
+    }
+}
+
+/// One assembled stage: which plugin, with which resolved parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResolvedStage {
+    /// Config section.
+    pub key: String,
+    /// Plugin name.
+    pub plugin: String,
+    /// Parameters with defaults filled in.
+    pub params: toml::Table,
+}
+
+/// Every stage the config names, built and wired together.
+pub struct Pipeline {
+    /// The config it was built from.
+    pub config: PipelineConfig,
+    /// The world (with its traversability layer), if configured.
+    pub world: Option<Arc<World>>,
+    /// The cost metric.
+    pub metric: Arc<dyn CostMetric>,
+    /// The state validity checker, if configured.
+    pub state_validity: Option<Arc<dyn StateValidityChecker>>,
+    /// The motion validator, if configured.
+    pub motion_validator: Option<Arc<dyn MotionValidator>>,
+    /// The point-to-point planner, if configured.
+    pub planner: Option<Box<dyn PointToPointPlanner>>,
+    /// The sequencer, if configured.
+    pub sequencer: Option<Box<dyn Sequencer>>,
+    /// The PoI selector, if configured.
+    pub selector: Option<Box<dyn PoiSelector>>,
+    /// Each stage's plugin and resolved parameters, in build order.
+    pub resolved: Vec<ResolvedStage>,
+    /// Build time per stage, seconds.
+    pub build_times_s: BTreeMap<String, f64>,
+    context: BuildContext,
+}
+
+impl Pipeline {
+    /// Builds every stage the config names.
+    pub fn assemble(loaded: &LoadedConfig) -> Result<Self> {
+        Self::assemble_inner(loaded, None)
+    }
+
+    /// Builds every stage, using `world` instead of the config's `[world]` section.
+    pub fn assemble_with_world(loaded: &LoadedConfig, world: World) -> Result<Self> {
+        Self::assemble_inner(loaded, Some(world))
+    }
+
+    fn assemble_inner(loaded: &LoadedConfig, given_world: Option<World>) -> Result<Self> {
+        let config = loaded.config.clone();
+        let mut ctx = BuildContext::new(config.seed, config.robot);
+        ctx.sources = loaded.sources.clone();
+        let mut pipeline = Pipeline {
+            config: config.clone(),
+            world: None,
+            metric: ctx.metric(),
+            state_validity: None,
+            motion_validator: None,
+            planner: None,
+            sequencer: None,
+            selector: None,
+            resolved: Vec::new(),
+            build_times_s: BTreeMap::new(),
+            context: ctx.clone(),
+        };
+        let cost = config
+            .cost
+            .clone()
+            .unwrap_or_else(|| PluginSection::new("cost", "se2"));
+        let metric: Arc<dyn CostMetric> = pipeline.build_stage::<CostStage>(&ctx, &cost)?.into();
+        ctx = ctx.with_metric(metric.clone());
+        pipeline.metric = metric;
+
+        let world = match (given_world, &config.world) {
+            (Some(world), _) => Some(world),
+            (None, Some(section)) => Some(*pipeline.build_stage::<WorldStage>(&ctx, section)?),
+            (None, None) => None,
+        };
+        if let Some(mut world) = world {
+            world.mission.validate()?;
+            if let Some(section) = &config.traversability {
+                let estimator = pipeline.build_stage::<TraversabilityStage>(&ctx, section)?;
+                let started = Instant::now();
+                world.traversability = Some(check_layer_fits(
+                    estimator.estimate(&world)?,
+                    &world,
+                    section,
+                )?);
+                pipeline.add_time(&section.key, started);
+            }
+            let world = Arc::new(world);
+            ctx = ctx.with_world(world.clone());
+            pipeline.world = Some(world);
+        }
+        if let Some(section) = &config.validity {
+            let checker: Arc<dyn StateValidityChecker> =
+                pipeline.build_stage::<ValidityStage>(&ctx, section)?.into();
+            ctx = ctx.with_state_validity(checker.clone());
+            pipeline.state_validity = Some(checker);
+        }
+        if let Some(section) = &config.motion {
+            let validator: Arc<dyn MotionValidator> =
+                pipeline.build_stage::<MotionStage>(&ctx, section)?.into();
+            ctx = ctx.with_motion_validator(validator.clone());
+            pipeline.motion_validator = Some(validator);
+        }
+        if let Some(section) = &config.sampler {
+            // Built once here to check it and record its parameters; planners build their own.
+            pipeline.build_stage::<SamplerStage>(&ctx, section)?;
+            ctx = ctx.with_sampler(section.clone());
+        }
+        if let Some(section) = &config.planner {
+            pipeline.planner = Some(pipeline.build_stage::<PlannerStage>(&ctx, section)?);
+        }
+        if let Some(section) = &config.sequencer {
+            pipeline.sequencer = Some(pipeline.build_stage::<SequencerStage>(&ctx, section)?);
+        }
+        if let Some(section) = &config.selector {
+            pipeline.selector = Some(pipeline.build_stage::<SelectorStage>(&ctx, section)?);
+        }
+        pipeline.context = ctx;
+        Ok(pipeline)
+    }
+
+    fn build_stage<S: Stage>(
+        &mut self,
+        ctx: &BuildContext,
+        section: &PluginSection,
+    ) -> Result<Box<S::Object>> {
+        let started = Instant::now();
+        let built = ctx.build::<S>(section)?;
+        self.add_time(&section.key, started);
+        self.resolved.push(ResolvedStage {
+            key: section.key.clone(),
+            plugin: section.kind.clone(),
+            params: built.params,
+        });
+        Ok(built.object)
+    }
+
+    fn add_time(&mut self, key: &str, started: Instant) {
+        *self.build_times_s.entry(key.to_string()).or_default() += started.elapsed().as_secs_f64();
+    }
+
+    /// The context the stages were built with (to build more, e.g. a fresh planner).
+    pub fn context(&self) -> &BuildContext {
+        &self.context
+    }
+
+    /// The resolved pipeline as TOML: seed, robot, every stage with its parameters.
+    pub fn resolved_toml(&self) -> String {
+        let mut table = toml::Table::new();
+        table.insert("seed".into(), toml::Value::Integer(self.config.seed as i64));
+        table.insert(
+            "robot".into(),
+            toml::Value::Table(crate::registry::params_table(&self.config.robot)),
+        );
+        for stage in &self.resolved {
+            let mut section = toml::Table::new();
+            section.insert("type".into(), toml::Value::String(stage.plugin.clone()));
+            section.insert("params".into(), toml::Value::Table(stage.params.clone()));
+            table.insert(stage.key.clone(), toml::Value::Table(section));
+        }
+        toml::to_string_pretty(&table).unwrap_or_default()
+    }
+}
+
+fn check_layer_fits(
+    layer: crate::grid::GridLayer,
+    world: &World,
+    section: &PluginSection,
+) -> Result<crate::grid::GridLayer> {
+    let (got, want) = (layer.geometry, world.elevation.geometry);
+    let same = got.size == want.size
+        && (got.resolution - want.resolution).abs() <= 1e-9 * want.resolution
+        && (got.origin[0] - want.origin[0]).abs() <= 1e-6
+        && (got.origin[1] - want.origin[1]).abs() <= 1e-6;
+    if same && layer.data.len() == want.len() {
+        Ok(layer)
+    } else {
+        Err(Error::invalid_param(
+            &section.key,
+            format!(
+                "plugin `{}` returned a layer of {}×{} cells at {} m from {:?}; the world's \
+                 elevation is {}×{} at {} m from {:?}",
+                section.kind,
+                got.size[0],
+                got.size[1],
+                got.resolution,
+                got.origin,
+                want.size[0],
+                want.size[1],
+                want.resolution,
+                want.origin
+            ),
+        ))
+    }
+}

@@ -1,0 +1,94 @@
+//! The output of a planning run: order, chosen PoIs, segments, waypoints, statistics.
+
+use crate::path::Path;
+use crate::pose::{Pose2, Waypoint};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Where the point-to-point planning time went (the paper's Table III columns), seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TimeBreakdown {
+    /// Graph search.
+    pub astar_s: f64,
+    /// Drawing samples and connecting them into the roadmap.
+    pub sampling_s: f64,
+    /// Lazy edge (motion) validation.
+    pub edge_checking_s: f64,
+    /// Lazy vertex (state) validation.
+    pub vertex_checking_s: f64,
+    /// Everything else inside the planner.
+    pub misc_s: f64,
+}
+
+impl TimeBreakdown {
+    /// Sum of all parts.
+    pub fn total_s(&self) -> f64 {
+        self.astar_s + self.sampling_s + self.edge_checking_s + self.vertex_checking_s + self.misc_s
+    }
+
+    /// Component-wise sum.
+    pub fn add(&mut self, other: &TimeBreakdown) {
+        self.astar_s += other.astar_s;
+        self.sampling_s += other.sampling_s;
+        self.edge_checking_s += other.edge_checking_s;
+        self.vertex_checking_s += other.vertex_checking_s;
+        self.misc_s += other.misc_s;
+    }
+}
+
+/// Counters and timings of a planning run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlanStats {
+    /// Point-to-point paths planned (cache misses of the path oracle).
+    pub paths_planned: u64,
+    /// State validity queries.
+    pub validity_queries: u64,
+    /// Wall time per pipeline stage (world, sequencing, selection, …), seconds.
+    pub stage_times_s: BTreeMap<String, f64>,
+    /// The point-to-point planner's time breakdown.
+    pub breakdown: TimeBreakdown,
+    /// Any other counters a stage reports.
+    pub counters: BTreeMap<String, u64>,
+}
+
+/// The PoI chosen for one target.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ChosenPoi {
+    /// Target id.
+    pub target: String,
+    /// Index of the PoI in the target's list.
+    pub index: usize,
+    /// The PoI itself.
+    pub pose: Pose2,
+}
+
+/// One collision-free leg of the plan.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Segment {
+    /// Where it starts: `"start"` or a target id.
+    pub from: String,
+    /// Where it ends: a target id, `"start"` or `"end"`.
+    pub to: String,
+    /// The path.
+    pub path: Path,
+}
+
+/// A safe multi-goal plan.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// Target ids in visiting order.
+    pub sequence: Vec<String>,
+    /// The chosen PoI per target, in visiting order.
+    pub pois: Vec<ChosenPoi>,
+    /// The legs start → first PoI → … → end.
+    pub segments: Vec<Segment>,
+    /// `[x, y, z, yaw]` from start to end, for a local planner.
+    pub waypoints: Vec<Waypoint>,
+    /// Total cost under the planning metric.
+    pub cost: f64,
+    /// Targets left out (unreachable, with `skip_unreachable = true`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub skipped: Vec<String>,
+    /// Counters and timings.
+    pub stats: PlanStats,
+}

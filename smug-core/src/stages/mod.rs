@@ -1,0 +1,17 @@
+//! The stage traits: one per pipeline stage.
+
+mod motion;
+mod planner;
+mod sampler;
+mod selector;
+mod sequencer;
+mod traversability;
+mod validity;
+
+pub use motion::{MotionCheck, MotionValidator};
+pub use planner::{PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use sampler::{InformedSet, Sampler};
+pub use selector::{PoiSelector, Selection, SelectionProblem};
+pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
+pub use traversability::TraversabilityEstimator;
+pub use validity::{Counters, StateValidityChecker};

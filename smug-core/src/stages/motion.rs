@@ -1,0 +1,34 @@
+//! Motion validity stage: is the straight motion between two poses safe?
+
+use crate::pose::Pose2;
+
+/// Result of a motion check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MotionCheck {
+    /// The whole motion is valid.
+    Valid,
+    /// The motion is invalid; `last_valid` is the last valid state before the first
+    /// invalid one and its fraction along the motion, when known.
+    Invalid {
+        /// Last valid state and its fraction in `[0, 1)`.
+        last_valid: Option<(Pose2, f64)>,
+    },
+}
+
+impl MotionCheck {
+    /// True for [`MotionCheck::Valid`].
+    pub fn is_valid(&self) -> bool {
+        matches!(self, MotionCheck::Valid)
+    }
+}
+
+/// Decides whether the robot may move straight from one pose to another.
+pub trait MotionValidator: Send + Sync {
+    /// Checks the motion `a → b` (both endpoints included).
+    fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck;
+
+    /// Counters accumulated so far.
+    fn counters(&self) -> super::Counters {
+        super::Counters::new()
+    }
+}

@@ -1,0 +1,74 @@
+//! Point-to-point planner stage (multi-query: keeps its roadmap between queries).
+
+use crate::error::Result;
+use crate::path::Path;
+use crate::plan::TimeBreakdown;
+use crate::pose::Pose2;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// How a query ended. Errors (bad input, bad config) are `Err`, not outcomes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PlannerOutcome {
+    /// A valid path from start to goal.
+    Exact(Path),
+    /// A valid path that ends `goal_distance` (metric) short of the goal.
+    Approximate {
+        /// The path.
+        path: Path,
+        /// Metric distance from its end to the goal.
+        goal_distance: f64,
+    },
+    /// The budget ran out without a path.
+    NoPath,
+    /// The start state is invalid.
+    InvalidStart,
+    /// The goal state is invalid.
+    InvalidGoal,
+}
+
+impl PlannerOutcome {
+    /// The exact path, if any.
+    pub fn exact_path(&self) -> Option<&Path> {
+        match self {
+            PlannerOutcome::Exact(path) => Some(path),
+            _ => None,
+        }
+    }
+
+    /// Short machine-readable status: `exact`, `approximate`, `no_path`, `invalid_start`, `invalid_goal`.
+    pub fn status(&self) -> &'static str {
+        match self {
+            PlannerOutcome::Exact(_) => "exact",
+            PlannerOutcome::Approximate { .. } => "approximate",
+            PlannerOutcome::NoPath => "no_path",
+            PlannerOutcome::InvalidStart => "invalid_start",
+            PlannerOutcome::InvalidGoal => "invalid_goal",
+        }
+    }
+}
+
+/// A planner's cumulative statistics over all its queries.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlannerStats {
+    /// Queries answered.
+    pub queries: u64,
+    /// Roadmap vertices.
+    pub vertices: u64,
+    /// Roadmap edges.
+    pub edges: u64,
+    /// Where the time went.
+    pub breakdown: TimeBreakdown,
+    /// Other counters (state checks, edge checks, samples, …).
+    pub counters: BTreeMap<String, u64>,
+}
+
+/// Plans collision-free paths between two poses; successive queries share the
+/// planner's data structures (roadmap), which is what makes multi-goal planning fast.
+pub trait PointToPointPlanner: Send + Sync {
+    /// Plans from `start` to `goal` within the planner's configured budget.
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome>;
+
+    /// Statistics accumulated over all queries so far.
+    fn stats(&self) -> PlannerStats;
+}

@@ -1,0 +1,154 @@
+//! Sequencer stage: the visiting order of the targets (a TSP over a cost matrix).
+
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// A dense `n × n` matrix of travel costs, possibly asymmetric; `INFINITY` = no path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CostMatrix {
+    n: usize,
+    data: Vec<f64>,
+}
+
+impl CostMatrix {
+    /// A matrix from row-major data of length `n²`; entries must not be NaN or negative.
+    pub fn from_rows(n: usize, data: Vec<f64>) -> Result<Self> {
+        if data.len() != n * n {
+            return Err(Error::InvalidInput(format!(
+                "cost matrix of size {n} needs {} entries, got {}",
+                n * n,
+                data.len()
+            )));
+        }
+        if let Some(k) = data.iter().position(|c| c.is_nan() || *c < 0.0) {
+            return Err(Error::InvalidInput(format!(
+                "cost matrix entry ({}, {}) is {}; costs must be ≥ 0 (INFINITY for no path)",
+                k / n,
+                k % n,
+                data[k]
+            )));
+        }
+        Ok(Self { n, data })
+    }
+
+    /// A matrix with entries `cost(i, j)`.
+    pub fn from_fn(n: usize, mut cost: impl FnMut(usize, usize) -> f64) -> Result<Self> {
+        let data = (0..n * n).map(|k| cost(k / n, k % n)).collect();
+        Self::from_rows(n, data)
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+
+    /// True when there are no nodes.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+
+    /// Cost from `i` to `j`.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        self.data[i * self.n + j]
+    }
+
+    /// True when `get(i, j) == get(j, i)` for all pairs (within `tolerance`).
+    pub fn is_symmetric(&self, tolerance: f64) -> bool {
+        (0..self.n).all(|i| {
+            (i + 1..self.n).all(|j| {
+                let (a, b) = (self.get(i, j), self.get(j, i));
+                a == b || (a - b).abs() <= tolerance
+            })
+        })
+    }
+
+    /// Cost of visiting `order` (which starts at node 0) as a tour of kind `kind`.
+    pub fn tour_cost(&self, order: &[usize], kind: TourKind) -> f64 {
+        let legs: f64 = order.windows(2).map(|w| self.get(w[0], w[1])).sum();
+        match (kind, order.first(), order.last()) {
+            (TourKind::Closed, Some(&first), Some(&last)) if order.len() > 1 => {
+                legs + self.get(last, first)
+            }
+            _ => legs,
+        }
+    }
+}
+
+/// Whether the tour returns to node 0 or ends at a given node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum TourKind {
+    /// 0 → … → 0.
+    Closed,
+    /// 0 → … → `end` (an open path; `end` ≠ 0 is visited last).
+    OpenTo(usize),
+}
+
+/// A visiting order and its cost.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Tour {
+    /// Every node exactly once, starting with 0 (and ending with the end node of an
+    /// open path); a closed tour's return to 0 is implied.
+    pub order: Vec<usize>,
+    /// Total cost, including the return leg of a closed tour.
+    pub cost: f64,
+}
+
+impl Tour {
+    /// True when `order` is a permutation of `0..n` starting at 0 (and ending at the
+    /// end node of an open path).
+    pub fn is_valid_for(&self, n: usize, kind: TourKind) -> bool {
+        let mut seen = vec![false; n];
+        let is_permutation = self.order.len() == n
+            && self
+                .order
+                .iter()
+                .all(|&v| v < n && !std::mem::replace(&mut seen[v], true));
+        let ends_right = match kind {
+            TourKind::Closed => true,
+            TourKind::OpenTo(end) => self.order.last() == Some(&end) || n <= 1,
+        };
+        is_permutation && self.order.first() == Some(&0) && ends_right
+    }
+}
+
+/// Orders the nodes of a cost matrix: a TSP solver.
+pub trait Sequencer: Send + Sync {
+    /// The best order it finds within its budget, starting at node 0.
+    fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tour_cost_and_validity() {
+        let m = CostMatrix::from_fn(3, |i, j| (10 * i + j) as f64).unwrap();
+        assert_eq!(m.tour_cost(&[0, 1, 2], TourKind::Closed), 1.0 + 12.0 + 20.0);
+        assert_eq!(m.tour_cost(&[0, 1, 2], TourKind::OpenTo(2)), 13.0);
+        assert!(!m.is_symmetric(0.0));
+        let tour = Tour {
+            order: vec![0, 2, 1],
+            cost: 0.0,
+        };
+        assert!(tour.is_valid_for(3, TourKind::Closed));
+        assert!(!tour.is_valid_for(3, TourKind::OpenTo(2)));
+        assert!(!Tour {
+            order: vec![0, 1, 1],
+            cost: 0.0
+        }
+        .is_valid_for(3, TourKind::Closed));
+        assert!(!Tour {
+            order: vec![1, 0, 2],
+            cost: 0.0
+        }
+        .is_valid_for(3, TourKind::Closed));
+    }
+
+    #[test]
+    fn rejects_nan_and_wrong_sizes() {
+        assert!(CostMatrix::from_rows(2, vec![0.0; 3]).is_err());
+        assert!(CostMatrix::from_rows(1, vec![f64::NAN]).is_err());
+        assert!(CostMatrix::from_rows(1, vec![f64::INFINITY]).is_ok());
+    }
+}

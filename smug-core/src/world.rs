@@ -1,0 +1,50 @@
+//! A world: terrain layers, volumetric maps and the mission to plan.
+
+use crate::grid::{GridLayer, VoxelGrid};
+use crate::mission::Mission;
+use crate::pose::Bounds2;
+use serde::{Deserialize, Serialize};
+
+/// Everything a pipeline plans in.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct World {
+    /// Name for reports.
+    pub name: String,
+    /// Terrain height (2.5D), metres; NaN = no data. Defines the planning bounds.
+    pub elevation: GridLayer,
+    /// Traversability in `[0, 1]`, NaN = no data; filled by a traversability estimator.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub traversability: Option<GridLayer>,
+    /// Occupancy voxels (ground and everything below it occupied).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub occupancy: Option<VoxelGrid<bool>>,
+    /// Euclidean signed distance field of `occupancy`, metres (negative inside).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub esdf: Option<VoxelGrid<f32>>,
+    /// The task.
+    pub mission: Mission,
+}
+
+impl World {
+    /// A world with only an elevation layer and a mission.
+    pub fn new(name: impl Into<String>, elevation: GridLayer, mission: Mission) -> Self {
+        Self {
+            name: name.into(),
+            elevation,
+            traversability: None,
+            occupancy: None,
+            esdf: None,
+            mission,
+        }
+    }
+
+    /// The planning bounds (the elevation layer's extent).
+    pub fn bounds(&self) -> Bounds2 {
+        self.elevation.geometry.bounds()
+    }
+
+    /// Terrain height at `(x, y)`, bilinear; `None` outside or where unknown.
+    pub fn height_at(&self, x: f64, y: f64) -> Option<f64> {
+        self.elevation.bilinear(x, y)
+    }
+}

@@ -1,0 +1,2 @@
+//! SMUG point-to-point planners (LazyPRM*).
+#![warn(missing_docs)]

@@ -1,0 +1,2 @@
+//! SMUG samplers: uniform and informed SE(2) sampling.
+#![warn(missing_docs)]

@@ -1,0 +1,2 @@
+//! SMUG sequencing: TSP solvers (Held-Karp, local search) and a TSPLIB reader.
+#![warn(missing_docs)]

@@ -1,0 +1,2 @@
+//! SMUG worlds: procedural lunar and indoor worlds, map import and export.
+#![warn(missing_docs)]
