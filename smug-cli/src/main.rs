@@ -1,1 +1,76 @@
-fn main() {}
+//! `smug`: safe multi-goal planning from the command line.
+//!
+//! Exit codes: 0 solved / ok, 1 no solution, 2 bad input or error (one line on stderr).
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+// Name every plugin crate so that its `inventory` registrations are linked in.
+use smug_planners as _;
+use smug_samplers as _;
+use smug_selection as _;
+use smug_sequencing as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+mod bench;
+mod check;
+mod plugins;
+mod tsp;
+
+/// What a command reports besides errors.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Solved / ok (exit 0).
+    Ok,
+    /// Ran fine but found no solution (exit 1).
+    NoSolution,
+}
+
+/// Safe multi-goal planning for mobile robots.
+#[derive(Parser, Debug)]
+#[command(name = "smug", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List every registered plugin by stage, with its parameters and defaults.
+    Plugins(plugins::PluginsArgs),
+    /// Load and validate a config, assemble its pipeline and print it resolved.
+    Check(check::CheckArgs),
+    /// Plan a safe multi-goal mission from a config.
+    Plan(check::PlanArgs),
+    /// Plan point-to-point queries on one shared roadmap.
+    P2p(check::P2pArgs),
+    /// Solve a TSPLIB instance.
+    Tsp(tsp::TspArgs),
+    /// Run benchmarks.
+    Bench(bench::BenchArgs),
+}
+
+fn run(cli: Cli) -> anyhow::Result<Outcome> {
+    match cli.command {
+        Command::Plugins(args) => plugins::run(args),
+        Command::Check(args) => check::run_check(args),
+        Command::Plan(args) => check::run_plan(args),
+        Command::P2p(args) => check::run_p2p(args),
+        Command::Tsp(args) => tsp::run(args),
+        Command::Bench(args) => bench::run(args),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(Outcome::Ok) => ExitCode::SUCCESS,
+        Ok(Outcome::NoSolution) => ExitCode::from(1),
+        Err(err) => {
+            let message = format!("{err:#}").replace('\n', " ");
+            eprintln!("smug: error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,24 @@
+//! `smug bench`: benchmarks, each a subcommand with Markdown/JSON reports.
+
+use crate::Outcome;
+use clap::Subcommand;
+
+/// Arguments of `smug bench`.
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    which: BenchCommand,
+}
+
+#[derive(Subcommand, Debug)]
+enum BenchCommand {
+    /// TSP solvers on the TSPLIB instances: gap to the optimum and time.
+    Tsp(crate::tsp::BenchTspArgs),
+}
+
+/// Runs `smug bench`.
+pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
+    match args.which {
+        BenchCommand::Tsp(args) => crate::tsp::run_bench(args),
+    }
+}

@@ -1,0 +1,112 @@
+//! `smug check`, and the pipeline-based commands `plan` and `p2p`.
+
+use crate::Outcome;
+use smug_core::{LoadedConfig, Pipeline};
+use std::path::PathBuf;
+
+/// Arguments of `smug check`.
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// The pipeline config (TOML).
+    config: PathBuf,
+    /// Override a config key, e.g. `--set planner.params.max_stall=5` or
+    /// `--set 'selector.type="dp"'` (a bare word is taken as a string).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+}
+
+/// Arguments of `smug plan`.
+#[derive(clap::Args, Debug)]
+pub struct PlanArgs {
+    /// The pipeline config (TOML).
+    config: PathBuf,
+    /// Override a config key (see `smug check --help`).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Output directory for plan.json, plan.csv and plan.svg.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print plan.json to stdout instead of a summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `smug p2p`.
+#[derive(clap::Args, Debug)]
+pub struct P2pArgs {
+    /// The map (ROS map_server-style YAML).
+    #[arg(long)]
+    map: PathBuf,
+    /// Queries, one `sx,sy,syaw,gx,gy,gyaw` per row.
+    #[arg(long)]
+    queries: PathBuf,
+    /// Pipeline config for the planner and validity checker.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Where to write results.json.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+fn load(config: &PathBuf, set: &[String]) -> anyhow::Result<Pipeline> {
+    let loaded = LoadedConfig::from_file(config, set)?;
+    Ok(Pipeline::assemble(&loaded)?)
+}
+
+/// Runs `smug check`: load, validate, assemble, print the resolved pipeline.
+pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
+    let pipeline = load(&args.config, &args.set)?;
+    println!("# {}: configuration is valid", args.config.display());
+    if let Some(world) = &pipeline.world {
+        let m = &world.mission;
+        let g = world.elevation.geometry;
+        println!(
+            "# world `{}`: {}×{} cells at {} m, {} targets, {} poses of interest",
+            world.name,
+            g.size[0],
+            g.size[1],
+            g.resolution,
+            m.targets.len(),
+            m.poi_count()
+        );
+    }
+    let missing: Vec<&str> = [
+        ("world", pipeline.world.is_some()),
+        ("validity", pipeline.state_validity.is_some()),
+        ("motion", pipeline.motion_validator.is_some()),
+        ("planner", pipeline.planner.is_some()),
+        ("sequencer", pipeline.sequencer.is_some()),
+        ("selector", pipeline.selector.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, present)| (!present).then_some(name))
+    .collect();
+    if !missing.is_empty() {
+        println!(
+            "# not configured (needed by `smug plan`): {}",
+            missing.join(", ")
+        );
+    }
+    println!();
+    print!("{}", pipeline.resolved_toml());
+    Ok(Outcome::Ok)
+}
+
+/// Runs `smug plan`.
+pub fn run_plan(args: PlanArgs) -> anyhow::Result<Outcome> {
+    let _pipeline = load(&args.config, &args.set)?;
+    let _ = (&args.out, args.json);
+    anyhow::bail!(
+        "{}: `smug plan` is not available in this version yet",
+        args.config.display()
+    )
+}
+
+/// Runs `smug p2p`.
+pub fn run_p2p(args: P2pArgs) -> anyhow::Result<Outcome> {
+    let _ = (&args.queries, &args.config, &args.out);
+    anyhow::bail!(
+        "{}: `smug p2p` is not available in this version yet",
+        args.map.display()
+    )
+}
