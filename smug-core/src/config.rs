@@ -236,6 +236,8 @@ pub struct SourceMap {
     files: Vec<SourceFile>,
     /// `--set` overrides in the order given.
     overrides: Vec<(KeyPath, String)>,
+    /// Directory of the main config file: relative paths in parameters resolve here.
+    base_dir: PathBuf,
 }
 
 #[derive(Clone, Debug)]
@@ -245,6 +247,11 @@ struct SourceFile {
 }
 
 impl SourceMap {
+    /// Directory relative paths in the config resolve against.
+    pub fn base_dir(&self) -> &Path {
+        &self.base_dir
+    }
+
     /// Where `key` was written: the override that set it, or the line in the file of
     /// highest precedence that holds the longest prefix of it.
     pub fn locate(&self, key: &KeyPath) -> Origin {
@@ -400,7 +407,8 @@ impl LoadedConfig {
         let mut files = Vec::new();
         let table = read_layered(path, &mut Vec::new(), &mut files)?;
         files.reverse();
-        Self::finish(table, files, overrides)
+        let base_dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        Self::finish(table, files, base_dir, overrides)
     }
 
     /// Loads a config from text; includes resolve against `base_dir`.
@@ -413,17 +421,19 @@ impl LoadedConfig {
         let mut files = Vec::new();
         let table = layer_text(text, name, base_dir, &mut Vec::new(), &mut files)?;
         files.reverse();
-        Self::finish(table, files, overrides)
+        Self::finish(table, files, base_dir.to_path_buf(), overrides)
     }
 
     fn finish(
         mut table: toml::Table,
         files: Vec<SourceFile>,
+        base_dir: PathBuf,
         overrides: &[String],
     ) -> Result<Self, ConfigError> {
         let mut sources = SourceMap {
             files,
             overrides: Vec::new(),
+            base_dir,
         };
         for text in overrides {
             let key = apply_override(&mut table, text)?;
@@ -520,6 +530,7 @@ fn take_includes(
                 text: text.to_string(),
             }],
             overrides: Vec::new(),
+            base_dir: PathBuf::new(),
         };
         sources.key_error(&KeyPath::dotted("include"), message)
     };

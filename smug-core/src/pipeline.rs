@@ -89,6 +89,11 @@ impl BuildContext {
         &self.robot
     }
 
+    /// `path` resolved against the main config file's directory (absolute paths stay).
+    pub fn resolve_path(&self, path: &std::path::Path) -> std::path::PathBuf {
+        self.sources.base_dir().join(path)
+    }
+
     /// A reproducible RNG for `stream`, derived from the seed.
     pub fn rng(&self, stream: &str) -> StageRng {
         stage_rng(self.seed, stream)

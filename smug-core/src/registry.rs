@@ -230,11 +230,11 @@ pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
 macro_rules! register_plugin {
     ($stage:ty, name = $name:expr, summary = $summary:expr, params = $params:ty, build = $build:expr $(,)?) => {
         const _: () = {
-            fn default_params() -> $crate::toml::Table {
+            fn __smug_default_params() -> $crate::toml::Table {
                 $crate::registry::params_table(&<$params as ::core::default::Default>::default())
             }
 
-            fn build(
+            fn __smug_build(
                 section: &$crate::config::PluginSection,
                 ctx: &$crate::pipeline::BuildContext,
             ) -> $crate::Result<$crate::registry::Built<$stage>> {
@@ -256,8 +256,8 @@ macro_rules! register_plugin {
                 $crate::registry::Plugin::<$stage> {
                     name: $name,
                     summary: $summary,
-                    default_params,
-                    build,
+                    default_params: __smug_default_params,
+                    build: __smug_build,
                 }
             }
         };

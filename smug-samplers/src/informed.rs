@@ -26,7 +26,9 @@ pub struct InformedParams {
 
 impl Default for InformedParams {
     fn default() -> Self {
-        Self { max_attempts: 10_000 }
+        Self {
+            max_attempts: 10_000,
+        }
     }
 }
 
@@ -55,9 +57,14 @@ impl InformedEllipse {
             return None;
         }
         let semi_major = transverse / 2.0;
-        let semi_minor = (semi_major * semi_major - focal * focal / 4.0).max(0.0).sqrt();
+        let semi_minor = (semi_major * semi_major - focal * focal / 4.0)
+            .max(0.0)
+            .sqrt();
         Some(Self {
-            center: [(set.start.x + set.goal.x) / 2.0, (set.start.y + set.goal.y) / 2.0],
+            center: [
+                (set.start.x + set.goal.x) / 2.0,
+                (set.start.y + set.goal.y) / 2.0,
+            ],
             angle: (set.goal.y - set.start.y).atan2(set.goal.x - set.start.x),
             semi_major,
             semi_minor,
@@ -91,14 +98,20 @@ impl InformedEllipse {
     pub fn from_unit_disc(&self, u: [f64; 2]) -> [f64; 2] {
         let (s, c) = self.angle.sin_cos();
         let (a, b) = (u[0] * self.semi_major, u[1] * self.semi_minor);
-        [self.center[0] + c * a - s * b, self.center[1] + s * a + c * b]
+        [
+            self.center[0] + c * a - s * b,
+            self.center[1] + s * a + c * b,
+        ]
     }
 
     /// Maps a point of the ellipse back into the unit disc.
     pub fn to_unit_disc(&self, p: [f64; 2]) -> [f64; 2] {
         let (s, c) = self.angle.sin_cos();
         let (dx, dy) = (p[0] - self.center[0], p[1] - self.center[1]);
-        [(c * dx + s * dy) / self.semi_major, (-s * dx + c * dy) / self.semi_minor]
+        [
+            (c * dx + s * dy) / self.semi_major,
+            (-s * dx + c * dy) / self.semi_minor,
+        ]
     }
 }
 
@@ -130,8 +143,14 @@ impl InformedSampler {
     fn sample_xy(&mut self, ellipse: &InformedEllipse, bounds: &Bounds2) -> Option<[f64; 2]> {
         let bbox = ellipse.bounding_box();
         let clipped = Bounds2 {
-            min: [bbox.min[0].max(bounds.min[0]), bbox.min[1].max(bounds.min[1])],
-            max: [bbox.max[0].min(bounds.max[0]), bbox.max[1].min(bounds.max[1])],
+            min: [
+                bbox.min[0].max(bounds.min[0]),
+                bbox.min[1].max(bounds.min[1]),
+            ],
+            max: [
+                bbox.max[0].min(bounds.max[0]),
+                bbox.max[1].min(bounds.max[1]),
+            ],
         };
         let [w, h] = clipped.extent();
         if w < 0.0 || h < 0.0 {
@@ -171,7 +190,11 @@ smug_core::register_plugin!(
     name = "informed",
     summary = "uniform in the query's informed ellipse ∩ map bounds once a path is known",
     params = InformedParams,
-    build = |params, ctx| Ok(Box::new(InformedSampler::new(params, ctx.metric(), ctx.rng("sampler")))),
+    build = |params, ctx| Ok(Box::new(InformedSampler::new(
+        params,
+        ctx.metric(),
+        ctx.rng("sampler")
+    ))),
 );
 
 #[cfg(test)]
@@ -183,10 +206,17 @@ mod tests {
 
     fn sampler(w_t: f64, w_r: f64, seed: u64) -> InformedSampler {
         let metric = Arc::new(Se2Metric::new(w_t, w_r).unwrap());
-        InformedSampler::new(InformedParams::default(), metric, stage_rng(seed, "sampler"))
+        InformedSampler::new(
+            InformedParams::default(),
+            metric,
+            stage_rng(seed, "sampler"),
+        )
     }
 
-    const BIG: Bounds2 = Bounds2 { min: [-100.0, -100.0], max: [100.0, 100.0] };
+    const BIG: Bounds2 = Bounds2 {
+        min: [-100.0, -100.0],
+        max: [100.0, 100.0],
+    };
 
     proptest! {
         #[test]
@@ -217,7 +247,11 @@ mod tests {
     fn empty_informed_set_gives_no_sample() {
         let (start, goal) = (Pose2::new(0.0, 0.0, 0.0), Pose2::new(4.0, 0.0, PI / 2.0));
         // Exactly the straight-line cost: nothing can improve on it.
-        let set = InformedSet { start, goal, best_cost: 4.0 + 0.5 * PI / 2.0 };
+        let set = InformedSet {
+            start,
+            goal,
+            best_cost: 4.0 + 0.5 * PI / 2.0,
+        };
         assert_eq!(sampler(1.0, 0.5, 1).sample(&BIG, Some(&set)), None);
     }
 
@@ -225,17 +259,27 @@ mod tests {
     fn the_rotational_bound_shrinks_the_ellipse_correctly() {
         // Reference-code bug 2: the yaw term must be subtracted from the budget.
         let (start, goal) = (Pose2::new(0.0, 0.0, 0.0), Pose2::new(4.0, 0.0, PI));
-        let set = InformedSet { start, goal, best_cost: 6.0 + 0.5 * PI };
+        let set = InformedSet {
+            start,
+            goal,
+            best_cost: 6.0 + 0.5 * PI,
+        };
         let e = InformedEllipse::new(&set, 1.0, 0.5).unwrap();
         assert!((e.semi_major - 3.0).abs() < 1e-12);
-        assert!((e.semi_minor - 5f64.sqrt()).abs() < 1e-12, "second axis must differ from the first");
+        assert!(
+            (e.semi_minor - 5f64.sqrt()).abs() < 1e-12,
+            "second axis must differ from the first"
+        );
     }
 
     /// Chi-square statistic of counts against equal expected frequencies.
     fn chi_square(counts: &[u32]) -> f64 {
         let total: u32 = counts.iter().sum();
         let expected = total as f64 / counts.len() as f64;
-        counts.iter().map(|&c| (c as f64 - expected).powi(2) / expected).sum()
+        counts
+            .iter()
+            .map(|&c| (c as f64 - expected).powi(2) / expected)
+            .sum()
     }
 
     #[test]
@@ -244,7 +288,11 @@ mod tests {
         // uniform and independent. 10×8 bins, 40 000 samples, fixed seed.
         let (start, goal) = (Pose2::new(-3.0, 1.0, 0.3), Pose2::new(5.0, 4.0, -2.0));
         let metric = Se2Metric::default();
-        let set = InformedSet { start, goal, best_cost: metric.distance(&start, &goal) * 1.3 };
+        let set = InformedSet {
+            start,
+            goal,
+            best_cost: metric.distance(&start, &goal) * 1.3,
+        };
         let ellipse = InformedEllipse::new(&set, 1.0, 0.5).unwrap();
         let mut s = sampler(1.0, 0.5, 42);
         let mut bins = vec![0u32; 80];
@@ -260,7 +308,10 @@ mod tests {
         }
         // 79 degrees of freedom: the 99.9% quantile is about 124.
         let chi2 = chi_square(&bins);
-        assert!(chi2 < 124.0, "chi² = {chi2}: samples are not uniform in the ellipse");
+        assert!(
+            chi2 < 124.0,
+            "chi² = {chi2}: samples are not uniform in the ellipse"
+        );
         // 7 degrees of freedom: the 99.9% quantile is about 24.3.
         let chi2 = chi_square(&yaw_bins);
         assert!(chi2 < 24.3, "chi² = {chi2}: yaw is not uniform");
@@ -271,14 +322,25 @@ mod tests {
         // Half of the ellipse lies outside the bounds: samples must fill the other half
         // uniformly (compare left and right quarters of the kept half).
         let (start, goal) = (Pose2::new(-4.0, 0.0, 0.0), Pose2::new(4.0, 0.0, 0.0));
-        let set = InformedSet { start, goal, best_cost: 10.0 };
-        let bounds = Bounds2 { min: [-100.0, 0.0], max: [100.0, 100.0] };
+        let set = InformedSet {
+            start,
+            goal,
+            best_cost: 10.0,
+        };
+        let bounds = Bounds2 {
+            min: [-100.0, 0.0],
+            max: [100.0, 100.0],
+        };
         let mut s = sampler(1.0, 0.5, 7);
         let (mut left, mut right) = (0u32, 0u32);
         for _ in 0..20_000 {
             let p = s.sample(&bounds, Some(&set)).unwrap();
             assert!(p.y >= 0.0);
-            if p.x < 0.0 { left += 1 } else { right += 1 }
+            if p.x < 0.0 {
+                left += 1
+            } else {
+                right += 1
+            }
         }
         assert!(chi_square(&[left, right]) < 10.8, "{left} vs {right}");
     }
@@ -286,7 +348,10 @@ mod tests {
     #[test]
     fn without_a_solution_samples_the_whole_bounds() {
         let mut s = sampler(1.0, 0.5, 3);
-        let bounds = Bounds2 { min: [0.0, 0.0], max: [2.0, 1.0] };
+        let bounds = Bounds2 {
+            min: [0.0, 0.0],
+            max: [2.0, 1.0],
+        };
         let infinite = InformedSet {
             start: Pose2::new(0.0, 0.0, 0.0),
             goal: Pose2::new(1.0, 0.0, 0.0),

@@ -59,7 +59,10 @@ mod tests {
 
     #[test]
     fn samples_stay_in_bounds_and_are_reproducible() {
-        let bounds = Bounds2 { min: [-2.0, 1.0], max: [3.0, 4.0] };
+        let bounds = Bounds2 {
+            min: [-2.0, 1.0],
+            max: [3.0, 4.0],
+        };
         let mut a = UniformSampler::new(stage_rng(1, "sampler"));
         let mut b = UniformSampler::new(stage_rng(1, "sampler"));
         for _ in 0..1000 {

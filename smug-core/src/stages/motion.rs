@@ -24,7 +24,12 @@ impl MotionCheck {
 
 /// Decides whether the robot may move straight from one pose to another.
 pub trait MotionValidator: Send + Sync {
-    /// Checks the motion `a → b` (both endpoints included).
+    /// True when the motion `a → b` is valid (both endpoints included). Fast: checks
+    /// in whatever order finds collisions soonest.
+    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool;
+
+    /// Checks the motion `a → b` in order from `a`, reporting the last valid state
+    /// before the first invalid one.
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck;
 
     /// Counters accumulated so far.
