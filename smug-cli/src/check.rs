@@ -48,7 +48,7 @@ pub struct P2pArgs {
     out: Option<PathBuf>,
 }
 
-fn load(config: &PathBuf, set: &[String]) -> anyhow::Result<Pipeline> {
+fn load(config: &std::path::Path, set: &[String]) -> anyhow::Result<Pipeline> {
     let loaded = LoadedConfig::from_file(config, set)?;
     Ok(Pipeline::assemble(&loaded)?)
 }

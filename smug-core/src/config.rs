@@ -252,16 +252,18 @@ impl SourceMap {
         &self.base_dir
     }
 
-    /// Where `key` was written: the override that set it, or the line in the file of
-    /// highest precedence that holds the longest prefix of it.
+    /// Where `key` was written: the override that set it (or created its table), or
+    /// the line in the file of highest precedence that holds the longest prefix of it.
     pub fn locate(&self, key: &KeyPath) -> Origin {
-        if let Some((_, text)) = self
-            .overrides
-            .iter()
-            .rev()
-            .find(|(k, _)| key.starts_with(k))
-        {
-            return Origin::CommandLine { text: text.clone() };
+        let set_by = |matches: &dyn Fn(&KeyPath) -> bool| {
+            self.overrides
+                .iter()
+                .rev()
+                .find(|(k, _)| matches(k))
+                .map(|(_, text)| Origin::CommandLine { text: text.clone() })
+        };
+        if let Some(origin) = set_by(&|k| key.starts_with(k)) {
+            return origin;
         }
         let mut best: Option<(usize, Origin)> = None;
         for file in &self.files {
@@ -282,13 +284,17 @@ impl SourceMap {
                 }
             }
         }
-        best.map(|(_, origin)| origin)
-            .unwrap_or_else(|| Origin::Unlocated {
-                path: self
-                    .files
-                    .first()
-                    .map_or("<config>".into(), |f| f.path.clone()),
-            })
+        match best {
+            Some((depth, origin)) if depth == key.0.len() => origin,
+            best => set_by(&|k| k.starts_with(key))
+                .or(best.map(|(_, origin)| origin))
+                .unwrap_or_else(|| Origin::Unlocated {
+                    path: self
+                        .files
+                        .first()
+                        .map_or("<config>".into(), |f| f.path.clone()),
+                }),
+        }
     }
 
     /// Deserialises `value`, found at `prefix`, into `T`; errors name the offending

@@ -216,7 +216,7 @@ impl VoxelGeometry {
         let mut cell = [0usize; 3];
         for axis in 0..3 {
             let f = (p[axis] - self.origin[axis]) / self.resolution;
-            if !(f >= 0.0) || f as usize >= self.size[axis] {
+            if f.is_nan() || f < 0.0 || f as usize >= self.size[axis] {
                 return None;
             }
             cell[axis] = f as usize;

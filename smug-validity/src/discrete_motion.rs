@@ -59,7 +59,7 @@ impl DiscreteMotionValidator {
             ));
         }
         if let Some((_, limit)) = &terrain {
-            if !(*limit >= 0.0) {
+            if limit.is_nan() || *limit < 0.0 {
                 return Err(Error::invalid_param(
                     "motion",
                     format!("max_inclination must be ≥ 0, got {limit}"),

@@ -1,0 +1,264 @@
+//! End-to-end tests of the `smug` binary: exit codes and error messages.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn smug(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(args)
+        .current_dir(workspace())
+        .output()
+        .expect("the smug binary runs")
+}
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn stdout(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Writes `text` as a config next to the shipped ones (so includes resolve) and
+/// returns its path relative to the workspace.
+fn temp_config(name: &str, text: &str) -> String {
+    let dir = workspace().join("target").join("cli-test-configs");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(
+        workspace().join("configs/anymal.toml"),
+        dir.join("anymal.toml"),
+    )
+    .unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+fn demo_config() -> String {
+    std::fs::read_to_string(workspace().join("configs/flat-demo.toml")).unwrap()
+}
+
+/// Asserts exit code 2 with one clear line on stderr containing every `needle`.
+fn assert_bad_input(out: &Output, needles: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "one line expected: {err}"
+    );
+    for needle in needles {
+        assert!(err.contains(needle), "`{needle}` missing from: {err}");
+    }
+}
+
+#[test]
+fn plugins_lists_every_stage_and_the_builtin_plugins() {
+    let out = smug(&["plugins"]);
+    assert_eq!(out.status.code(), Some(0));
+    let text = stdout(&out);
+    for needle in [
+        "[world]",
+        "[planner]",
+        "[selector]",
+        "se2",
+        "flat",
+        "informed",
+        "uniform",
+        "discrete",
+        "brute-force",
+        "rotation_weight = 0.5",
+    ] {
+        assert!(text.contains(needle), "`{needle}` missing from:\n{text}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_slice(&smug(&["plugins", "--json"]).stdout).unwrap();
+    assert_eq!(json.as_array().unwrap().len(), 9);
+}
+
+#[test]
+fn every_shipped_pipeline_config_checks() {
+    for entry in std::fs::read_dir(workspace().join("configs")).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        if !text.contains("[world]") {
+            continue; // a fragment such as a robot profile
+        }
+        let out = smug(&["check", path.to_str().unwrap()]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}: {}",
+            path.display(),
+            stderr(&out)
+        );
+    }
+}
+
+#[test]
+fn check_prints_the_resolved_pipeline_with_defaults() {
+    let out = smug(&["check", "configs/flat-demo.toml"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("world `flat-demo`: 120×80 cells"), "{text}");
+    assert!(
+        text.contains("max_attempts = 10000"),
+        "sampler defaults missing: {text}"
+    );
+    assert!(
+        text.contains("length = 1.07"),
+        "included robot profile missing: {text}"
+    );
+}
+
+#[test]
+fn misspelt_key_names_the_key_and_its_line() {
+    let config = temp_config(
+        "misspelt.toml",
+        &demo_config().replace("[sampler]", "[samplr]"),
+    );
+    let line = demo_config()
+        .lines()
+        .position(|l| l == "[sampler]")
+        .unwrap()
+        + 1;
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &[
+            "`samplr`",
+            "unknown field",
+            &format!("misspelt.toml:{line}"),
+        ],
+    );
+}
+
+#[test]
+fn misspelt_plugin_parameter_names_the_key_and_its_line() {
+    let text = demo_config().replace(
+        "type = \"informed\"",
+        "type = \"informed\"\nparams = { max_atempts = 3 }",
+    );
+    let config = temp_config("param.toml", &text);
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &[
+            "`sampler.params.max_atempts`",
+            "param.toml:",
+            "max_attempts",
+        ],
+    );
+}
+
+#[test]
+fn unknown_plugin_lists_the_known_names() {
+    let config = temp_config(
+        "unknown.toml",
+        &demo_config().replace("type = \"informed\"", "type = \"informd\""),
+    );
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &[
+            "`sampler.type`",
+            "unknown sampler plugin `informd`",
+            "known sampler plugins: informed, uniform",
+        ],
+    );
+}
+
+#[test]
+fn wrong_type_names_the_key() {
+    let config = temp_config(
+        "type.toml",
+        &demo_config().replace("seed = 1", "seed = \"one\""),
+    );
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &["`seed`", "invalid type", "type.toml:"],
+    );
+}
+
+#[test]
+fn overrides_change_values_and_reject_unknown_keys() {
+    let out = smug(&[
+        "check",
+        "configs/flat-demo.toml",
+        "--set",
+        "sampler.type=uniform",
+        "--set",
+        "cost.params.rotation_weight=0",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(stdout(&out).contains("type = \"uniform\""));
+    assert!(stdout(&out).contains("rotation_weight = 0"));
+    assert_bad_input(
+        &smug(&[
+            "check",
+            "configs/flat-demo.toml",
+            "--set",
+            "planner.params.max_stal=5",
+        ]),
+        &[
+            "--set planner.params.max_stal=5",
+            "`planner`: missing field `type`",
+        ],
+    );
+    assert_bad_input(
+        &smug(&[
+            "check",
+            "configs/flat-demo.toml",
+            "--set",
+            "sampler.params.max_atempts=5",
+        ]),
+        &[
+            "--set sampler.params.max_atempts=5",
+            "`sampler.params.max_atempts`: unknown field",
+        ],
+    );
+    assert_bad_input(
+        &smug(&["check", "configs/flat-demo.toml", "--set", "robot.lenght=1"]),
+        &["`robot.lenght`", "unknown field"],
+    );
+}
+
+#[test]
+fn bad_values_and_missing_files_are_errors_not_panics() {
+    assert_bad_input(
+        &smug(&["check", "configs/does-not-exist.toml"]),
+        &["does-not-exist.toml", "cannot read"],
+    );
+    let config = temp_config(
+        "weights.toml",
+        &demo_config().replace("translation_weight = 1.0", "translation_weight = -1.0"),
+    );
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &["translation_weight must be finite and > 0"],
+    );
+    let config = temp_config("syntax.toml", "seed = \n");
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &["syntax.toml:1", "TOML syntax error"],
+    );
+    let config = temp_config(
+        "outside.toml",
+        &demo_config().replace("x = 10.5, y = 5.0", "x = 30.0, y = 5.0"),
+    );
+    assert_bad_input(
+        &smug(&["check", &config]),
+        &["PoI 0 of target `valve-c`", "outside the map"],
+    );
+}
+
+#[test]
+fn usage_errors_exit_with_2() {
+    assert_eq!(smug(&["frobnicate"]).status.code(), Some(2));
+    assert_eq!(smug(&["check"]).status.code(), Some(2));
+}
