@@ -17,6 +17,7 @@ mod bench;
 mod check;
 mod plugins;
 mod tsp;
+mod worlds;
 
 /// What a command reports besides errors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,6 +50,8 @@ enum Command {
     Tsp(tsp::TspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
+    /// Look at, convert and export worlds.
+    Worlds(worlds::WorldsArgs),
 }
 
 fn run(cli: Cli) -> anyhow::Result<Outcome> {
@@ -59,6 +62,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::P2p(args) => check::run_p2p(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Worlds(args) => worlds::run(args),
     }
 }
 
