@@ -1,10 +1,19 @@
 //! SMUG worlds: where the maps and the mission come from.
 //!
-//! Plugins: `flat` (a flat floor with box obstacles and a mission written in the config).
+//! Plugins: `flat` (a flat floor with box obstacles and a mission written in the
+//! config), `lunar` and `indoor` (procedural, seeded), `map` (ROS map_server-style
+//! YAML + images and a mission file). Also MovingAI map conversion, world export and
+//! SVG rendering.
 
 #![warn(missing_docs)]
 
+pub mod export;
 pub mod flat;
+pub mod indoor;
+pub mod lunar;
+pub mod map_file;
 pub mod mission_file;
+pub mod movingai;
+pub mod render;
 
 pub use mission_file::{load_mission, MissionFileError};

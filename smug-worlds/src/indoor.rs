@@ -1,0 +1,1 @@
+//! Procedural indoor world (in progress).

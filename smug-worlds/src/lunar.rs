@@ -1,0 +1,1 @@
+//! Procedural lunar world (in progress).
