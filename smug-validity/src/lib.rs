@@ -1,10 +1,28 @@
 //! SMUG validity: traversability estimators, state validity checkers and motion validators.
 //!
-//! Plugins: motion validator `discrete` (states at a fixed resolution in bisection
-//! order plus a terrain inclination limit).
+//! Plugins: state validity `volumetric` (box vs ESDF by sphere subdivision), `exact`
+//! (box vs voxel cubes with parry3d); motion validator `discrete` (states at a fixed
+//! resolution in bisection order plus a terrain inclination limit).
 
 #![warn(missing_docs)]
 
 pub mod discrete_motion;
+pub mod edt;
+pub mod exact;
+pub mod robot_box;
+pub mod volumes;
+pub mod volumetric;
 
 pub use discrete_motion::DiscreteMotionValidator;
+pub use exact::ExactChecker;
+pub use robot_box::RobotBox;
+pub use volumes::Volumes;
+pub use volumetric::VolumetricChecker;
+
+/// Errors of the validity crate.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidityError {
+    /// The world's maps cannot support the check.
+    #[error("{0}")]
+    Map(String),
+}

@@ -7,6 +7,7 @@
 
 #![warn(missing_docs)]
 
+mod canvas;
 pub mod export;
 pub mod flat;
 pub mod indoor;
@@ -16,4 +17,8 @@ pub mod mission_file;
 pub mod movingai;
 pub mod render;
 
+pub use export::{export_world, export_world_with, ExportError, ExportOptions};
+pub use map_file::{load_map, MapFileError, MapLayers, MapParams, MapYaml};
 pub use mission_file::{load_mission, MissionFileError};
+pub use movingai::{convert_movingai, scenario_to_world, MovingAiError};
+pub use render::{render_svg, RenderOptions};

@@ -1,0 +1,122 @@
+//! The volumetric checker against the exact reference on the procedural worlds.
+
+use proptest::prelude::*;
+use rand::SeedableRng;
+use smug_core::rng::StageRng;
+use smug_core::{Pose2, RobotConfig, StateValidityChecker, World};
+use smug_validity::volumetric::VolumetricParams;
+use smug_validity::{ExactChecker, RobotBox, Volumes, VolumetricChecker};
+use smug_worlds::lunar::{lunar_world, LunarParams};
+use std::sync::{Arc, OnceLock};
+
+struct Checkers {
+    world: Arc<World>,
+    volumetric: VolumetricChecker,
+    exact: ExactChecker,
+}
+
+fn checkers_for(world: World) -> Checkers {
+    let world = Arc::new(world);
+    let robot = RobotBox::from_robot(&RobotConfig::default());
+    let volumes = Arc::new(Volumes::from_world(&world, robot.headroom()).unwrap());
+    Checkers {
+        volumetric: VolumetricChecker::new(
+            world.clone(),
+            volumes.clone(),
+            robot,
+            VolumetricParams::default(),
+        )
+        .unwrap(),
+        exact: ExactChecker::new(world.clone(), volumes, robot),
+        world,
+    }
+}
+
+fn lunar() -> &'static Checkers {
+    static LUNAR: OnceLock<Checkers> = OnceLock::new();
+    LUNAR.get_or_init(|| {
+        checkers_for(
+            lunar_world(&LunarParams::default(), &mut StageRng::seed_from_u64(11)).unwrap(),
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #[test]
+    fn volumetric_never_calls_free_what_exact_finds_in_collision(
+        fx in 0.0f64..1.0, fy in 0.0f64..1.0, yaw in -3.14159f64..3.14159,
+    ) {
+        let c = lunar();
+        let b = c.world.bounds();
+        let state = Pose2::new(b.min[0] + fx * (b.max[0] - b.min[0]), b.min[1] + fy * (b.max[1] - b.min[1]), yaw);
+        if c.volumetric.is_valid(&state) {
+            prop_assert!(c.exact.is_valid(&state), "volumetric calls {state:?} free, exact finds a collision");
+        }
+    }
+}
+
+/// Classifies `n` seeded random states by both checkers:
+/// `[both valid, only exact valid, both invalid, only volumetric valid]`.
+fn agreement(c: &Checkers, n: usize, seed: u64) -> [usize; 4] {
+    use rand::Rng;
+    let mut rng = StageRng::seed_from_u64(seed);
+    let b = c.world.bounds();
+    let mut counts = [0; 4];
+    for _ in 0..n {
+        let state = Pose2::new(
+            rng.random_range(b.min[0]..b.max[0]),
+            rng.random_range(b.min[1]..b.max[1]),
+            rng.random_range(-3.14159..3.14159),
+        );
+        let k = match (c.volumetric.is_valid(&state), c.exact.is_valid(&state)) {
+            (true, true) => 0,
+            (false, true) => 1,
+            (false, false) => 2,
+            (true, false) => 3,
+        };
+        counts[k] += 1;
+    }
+    counts
+}
+
+#[test]
+fn volumetric_is_safe_and_not_much_more_conservative_than_exact() {
+    let c = lunar();
+    let [both_valid, only_exact, both_invalid, only_volumetric] = agreement(c, 4000, 5);
+    println!("lunar: both valid {both_valid}, only exact {only_exact}, both invalid {both_invalid}, unsafe {only_volumetric}");
+    assert_eq!(
+        only_volumetric, 0,
+        "the volumetric checker called colliding states free"
+    );
+    assert!(
+        both_invalid >= 40,
+        "too few colliding states sampled ({both_invalid}): the test would be vacuous"
+    );
+    assert!(
+        only_exact * 10 <= both_valid + only_exact,
+        "volumetric rejects {only_exact} of {} free states",
+        both_valid + only_exact
+    );
+}
+
+#[test]
+fn the_start_and_most_pois_of_the_lunar_world_are_valid() {
+    let c = lunar();
+    let mission = &c.world.mission;
+    let valid_pois = mission
+        .targets
+        .iter()
+        .flat_map(|t| &t.pois)
+        .filter(|p| c.volumetric.is_valid(p))
+        .count();
+    assert!(
+        c.volumetric.is_valid(&mission.start),
+        "the start must be valid"
+    );
+    assert!(
+        valid_pois * 10 >= mission.poi_count() * 6,
+        "only {valid_pois} of {} PoIs are valid",
+        mission.poi_count()
+    );
+}
