@@ -6,6 +6,7 @@ use smug_core::rng::StageRng;
 use smug_core::{Pose2, RobotConfig, StateValidityChecker, World};
 use smug_validity::volumetric::VolumetricParams;
 use smug_validity::{ExactChecker, RobotBox, Volumes, VolumetricChecker};
+use smug_worlds::indoor::{indoor_world, IndoorParams};
 use smug_worlds::lunar::{lunar_world, LunarParams};
 use std::sync::{Arc, OnceLock};
 
@@ -41,13 +42,22 @@ fn lunar() -> &'static Checkers {
     })
 }
 
+fn indoor() -> &'static Checkers {
+    static INDOOR: OnceLock<Checkers> = OnceLock::new();
+    INDOOR.get_or_init(|| {
+        checkers_for(
+            indoor_world(&IndoorParams::default(), &mut StageRng::seed_from_u64(11)).unwrap(),
+        )
+    })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
     #[test]
     fn volumetric_never_calls_free_what_exact_finds_in_collision(
-        fx in 0.0f64..1.0, fy in 0.0f64..1.0, yaw in -3.14159f64..3.14159,
+        fx in 0.0f64..1.0, fy in 0.0f64..1.0, yaw in -3.14159f64..3.14159, in_lunar in any::<bool>(),
     ) {
-        let c = lunar();
+        let c = if in_lunar { lunar() } else { indoor() };
         let b = c.world.bounds();
         let state = Pose2::new(b.min[0] + fx * (b.max[0] - b.min[0]), b.min[1] + fy * (b.max[1] - b.min[1]), yaw);
         if c.volumetric.is_valid(&state) {
@@ -82,9 +92,14 @@ fn agreement(c: &Checkers, n: usize, seed: u64) -> [usize; 4] {
 
 #[test]
 fn volumetric_is_safe_and_not_much_more_conservative_than_exact() {
-    let c = lunar();
+    for (name, c) in [("lunar", lunar()), ("indoor", indoor())] {
+        check_agreement(name, c);
+    }
+}
+
+fn check_agreement(name: &str, c: &Checkers) {
     let [both_valid, only_exact, both_invalid, only_volumetric] = agreement(c, 4000, 5);
-    println!("lunar: both valid {both_valid}, only exact {only_exact}, both invalid {both_invalid}, unsafe {only_volumetric}");
+    println!("{name}: both valid {both_valid}, only exact {only_exact}, both invalid {both_invalid}, unsafe {only_volumetric}");
     assert_eq!(
         only_volumetric, 0,
         "the volumetric checker called colliding states free"
@@ -101,8 +116,13 @@ fn volumetric_is_safe_and_not_much_more_conservative_than_exact() {
 }
 
 #[test]
-fn the_start_and_most_pois_of_the_lunar_world_are_valid() {
-    let c = lunar();
+fn the_start_and_most_pois_of_both_worlds_are_valid() {
+    for c in [lunar(), indoor()] {
+        check_mission_validity(c);
+    }
+}
+
+fn check_mission_validity(c: &Checkers) {
     let mission = &c.world.mission;
     let valid_pois = mission
         .targets

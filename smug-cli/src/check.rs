@@ -70,6 +70,18 @@ pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
             m.poi_count()
         );
     }
+    if !pipeline.dropped_pois.is_empty() {
+        println!(
+            "# {} PoIs are not valid for the robot and were left out: {}",
+            pipeline.dropped_pois.len(),
+            pipeline
+                .dropped_pois
+                .iter()
+                .map(|d| format!("{}[{}]", d.target, d.index))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     let missing: Vec<&str> = [
         ("world", pipeline.world.is_some()),
         ("validity", pipeline.state_validity.is_some()),

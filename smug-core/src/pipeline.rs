@@ -4,6 +4,8 @@
 use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
 use crate::error::{Error, Result};
 use crate::metric::{CostMetric, Se2Metric};
+use crate::mission::Mission;
+use crate::pose::Pose2;
 use crate::registry::{
     Built, CostStage, MotionStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
     Stage, TraversabilityStage, ValidityStage, WorldStage,
@@ -181,6 +183,11 @@ pub struct Pipeline {
     pub config: PipelineConfig,
     /// The world (with its traversability layer), if configured.
     pub world: Option<Arc<World>>,
+    /// The world's mission without the PoIs the validity checker rejects (once both
+    /// a world and a validity checker are configured; else the world's mission).
+    pub mission: Option<Mission>,
+    /// PoIs left out because they are not valid for the robot.
+    pub dropped_pois: Vec<DroppedPoi>,
     /// The cost metric.
     pub metric: Arc<dyn CostMetric>,
     /// The state validity checker, if configured.
@@ -218,6 +225,8 @@ impl Pipeline {
         let mut pipeline = Pipeline {
             config: config.clone(),
             world: None,
+            mission: None,
+            dropped_pois: Vec::new(),
             metric: ctx.metric(),
             state_validity: None,
             motion_validator: None,
@@ -253,6 +262,7 @@ impl Pipeline {
                 )?);
                 pipeline.add_time(&section.key, started);
             }
+            pipeline.mission = Some(world.mission.clone());
             let world = Arc::new(world);
             ctx = ctx.with_world(world.clone());
             pipeline.world = Some(world);
@@ -260,6 +270,11 @@ impl Pipeline {
         if let Some(section) = &config.validity {
             let checker: Arc<dyn StateValidityChecker> =
                 pipeline.build_stage::<ValidityStage>(&ctx, section)?.into();
+            if let Some(mission) = &pipeline.mission {
+                let (pruned, dropped) = prune_mission(mission, checker.as_ref())?;
+                pipeline.mission = Some(pruned);
+                pipeline.dropped_pois = dropped;
+            }
             ctx = ctx.with_state_validity(checker.clone());
             pipeline.state_validity = Some(checker);
         }
@@ -328,6 +343,63 @@ impl Pipeline {
         }
         toml::to_string_pretty(&table).unwrap_or_default()
     }
+}
+
+/// A PoI left out of the mission.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DroppedPoi {
+    /// Target id.
+    pub target: String,
+    /// Index of the PoI in the target's list.
+    pub index: usize,
+    /// The PoI.
+    pub pose: Pose2,
+}
+
+/// The mission without invalid PoIs. An invalid start or end, or a target left with
+/// no valid PoI, is an error that names it.
+pub fn prune_mission(
+    mission: &Mission,
+    checker: &dyn StateValidityChecker,
+) -> Result<(Mission, Vec<DroppedPoi>)> {
+    let describe = |p: &Pose2| format!("({:.3}, {:.3}, yaw {:.3})", p.x, p.y, p.yaw);
+    if !checker.is_valid(&mission.start) {
+        return Err(Error::InvalidInput(format!(
+            "the start pose {} is not valid for the robot (in collision, untraversable or off the map)",
+            describe(&mission.start)
+        )));
+    }
+    if let Some(end) = mission.end.filter(|e| !checker.is_valid(e)) {
+        return Err(Error::InvalidInput(format!(
+            "the end pose {} is not valid for the robot (in collision, untraversable or off the map)",
+            describe(&end)
+        )));
+    }
+    let mut pruned = mission.clone();
+    let mut dropped = Vec::new();
+    for target in &mut pruned.targets {
+        let mut index = 0;
+        target.pois.retain(|pose| {
+            let keep = checker.is_valid(pose);
+            if !keep {
+                dropped.push(DroppedPoi {
+                    target: target.id.clone(),
+                    index,
+                    pose: *pose,
+                });
+            }
+            index += 1;
+            keep
+        });
+        if target.pois.is_empty() {
+            return Err(Error::InvalidInput(format!(
+                "target `{}` has no valid pose of interest: all {index} PoIs are in collision, \
+                 untraversable or off the map",
+                target.id
+            )));
+        }
+    }
+    Ok((pruned, dropped))
 }
 
 fn check_layer_fits(

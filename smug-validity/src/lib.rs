@@ -1,20 +1,32 @@
 //! SMUG validity: traversability estimators, state validity checkers and motion validators.
 //!
-//! Plugins: state validity `volumetric` (box vs ESDF by sphere subdivision), `exact`
-//! (box vs voxel cubes with parry3d); motion validator `discrete` (states at a fixed
-//! resolution in bisection order plus a terrain inclination limit).
+//! Plugins:
+//! - traversability: `geometric` (slope, roughness, step of a local plane fit), `from-file`;
+//! - state validity: `volumetric` (box vs ESDF by sphere subdivision), `exact` (box vs
+//!   voxel cubes with parry3d), `hierarchical` (traversability first, then volumetric),
+//!   `clearance-2d` (a disc on a flat map);
+//! - motion: `discrete` (states at a fixed resolution in bisection order plus a terrain
+//!   inclination limit).
 
 #![warn(missing_docs)]
 
+pub mod clearance_2d;
+pub mod counting;
 pub mod discrete_motion;
 pub mod edt;
 pub mod exact;
+pub mod geometric;
+pub mod hierarchical;
 pub mod robot_box;
 pub mod volumes;
 pub mod volumetric;
 
+pub use clearance_2d::Clearance2dChecker;
+pub use counting::CountingChecker;
 pub use discrete_motion::DiscreteMotionValidator;
 pub use exact::ExactChecker;
+pub use geometric::GeometricEstimator;
+pub use hierarchical::HierarchicalChecker;
 pub use robot_box::RobotBox;
 pub use volumes::Volumes;
 pub use volumetric::VolumetricChecker;

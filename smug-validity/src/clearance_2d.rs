@@ -1,0 +1,181 @@
+//! `clearance-2d`: a disc robot of radius `radius` on a flat map: valid when the disc
+//! lies inside the map and touches no obstacle cell (a cell without elevation data or
+//! higher than the lowest ground by more than `obstacle_height`). A 2D distance field
+//! accepts most states at once; near obstacles the cells around the disc decide exactly.
+
+use crate::edt::squared_edt_2d;
+use serde::{Deserialize, Serialize};
+use smug_core::{BuildContext, Counters, Error, GridGeometry, Pose2, StateValidityChecker, World};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+
+/// Parameters of the disc checker.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Clearance2dParams {
+    /// Disc radius, metres.
+    pub radius: f64,
+    /// Cells higher than the lowest ground by more than this are obstacles, metres.
+    pub obstacle_height: f64,
+}
+
+impl Default for Clearance2dParams {
+    fn default() -> Self {
+        Self {
+            radius: 0.3,
+            obstacle_height: 0.3,
+        }
+    }
+}
+
+/// Disc-vs-obstacle-cells validity.
+pub struct Clearance2dChecker {
+    geometry: GridGeometry,
+    obstacles: Vec<bool>,
+    /// Distance (metres) from each cell centre to the nearest obstacle cell centre.
+    distance: Vec<f64>,
+    radius: f64,
+    checks: AtomicU64,
+    exact_checks: AtomicU64,
+}
+
+impl Clearance2dChecker {
+    /// A checker for a disc of `params.radius` on `world`'s elevation layer.
+    pub fn new(world: &World, params: Clearance2dParams) -> Result<Self, Error> {
+        if !(params.radius.is_finite() && params.radius >= 0.0) {
+            return Err(Error::invalid_param(
+                "validity",
+                format!("radius must be ≥ 0, got {}", params.radius),
+            ));
+        }
+        let e = &world.elevation;
+        let ground = e
+            .data
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold(f32::INFINITY, |a, &b| a.min(b));
+        let limit = ground as f64 + params.obstacle_height;
+        let obstacles: Vec<bool> = e
+            .data
+            .iter()
+            .map(|&h| h.is_nan() || h as f64 > limit)
+            .collect();
+        let res = e.geometry.resolution;
+        let distance = squared_edt_2d(&obstacles, e.geometry.size)
+            .into_iter()
+            .map(|d| d.sqrt() * res)
+            .collect();
+        Ok(Self {
+            geometry: e.geometry,
+            obstacles,
+            distance,
+            radius: params.radius,
+            checks: AtomicU64::new(0),
+            exact_checks: AtomicU64::new(0),
+        })
+    }
+
+    /// True when the disc at `(x, y)` touches an obstacle cell (checks the cells around it).
+    fn touches_obstacle(&self, x: f64, y: f64) -> bool {
+        self.exact_checks.fetch_add(1, Relaxed);
+        let g = &self.geometry;
+        let res = g.resolution;
+        let lo = |v: f64, o: f64| ((v - self.radius - o) / res).floor().max(0.0) as usize;
+        let hi =
+            |v: f64, o: f64, n: usize| (((v + self.radius - o) / res).floor() as usize).min(n - 1);
+        for j in lo(y, g.origin[1])..=hi(y, g.origin[1], g.size[1]) {
+            for i in lo(x, g.origin[0])..=hi(x, g.origin[0], g.size[0]) {
+                if self.obstacles[g.index(i, j)] {
+                    let x0 = g.origin[0] + i as f64 * res;
+                    let y0 = g.origin[1] + j as f64 * res;
+                    let dx = (x0 - x).max(0.0).max(x - (x0 + res));
+                    let dy = (y0 - y).max(0.0).max(y - (y0 + res));
+                    if dx.hypot(dy) < self.radius || self.radius == 0.0 && dx == 0.0 && dy == 0.0 {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
+impl StateValidityChecker for Clearance2dChecker {
+    fn is_valid(&self, state: &Pose2) -> bool {
+        self.checks.fetch_add(1, Relaxed);
+        let b = self.geometry.bounds();
+        let (x, y, r) = (state.x, state.y, self.radius);
+        if !(x - r >= b.min[0] && x + r <= b.max[0] && y - r >= b.min[1] && y + r <= b.max[1]) {
+            return false;
+        }
+        let Some([i, j]) = self.geometry.cell_of(x, y) else {
+            return false;
+        };
+        let [cx, cy] = self.geometry.center_of(i, j);
+        // Lower bound of the distance to the nearest obstacle square.
+        let bound = self.distance[self.geometry.index(i, j)]
+            - (x - cx).hypot(y - cy)
+            - std::f64::consts::FRAC_1_SQRT_2 * self.geometry.resolution;
+        bound > r || !self.touches_obstacle(x, y)
+    }
+
+    fn counters(&self) -> Counters {
+        Counters::from([
+            ("checks".to_string(), self.checks.load(Relaxed)),
+            ("exact_checks".to_string(), self.exact_checks.load(Relaxed)),
+        ])
+    }
+}
+
+fn build_clearance(
+    params: Clearance2dParams,
+    ctx: &BuildContext,
+) -> Result<Clearance2dChecker, Error> {
+    Clearance2dChecker::new(ctx.world()?.as_ref(), params)
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::ValidityStage,
+    name = "clearance-2d",
+    summary = "a disc robot of radius r on a flat map (wheeled robots, comparisons with OMPL)",
+    params = Clearance2dParams,
+    build = |params, ctx| Ok(Box::new(build_clearance(params, ctx)?)),
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use smug_core::{GridLayer, Mission};
+
+    /// A 10×10 map at 1 m with a few blocked cells.
+    fn world() -> World {
+        let g = GridGeometry::new([0.0, 0.0], 1.0, [10, 10]).unwrap();
+        let blocked = [(3, 3), (4, 3), (7, 8), (0, 9)];
+        let elevation =
+            GridLayer::from_fn(g, |i, j| if blocked.contains(&(i, j)) { 2.0 } else { 0.0 });
+        World::new(
+            "grid",
+            elevation,
+            Mission {
+                start: Pose2::new(0.5, 0.5, 0.0),
+                end: None,
+                targets: vec![],
+            },
+        )
+    }
+
+    proptest! {
+        #[test]
+        fn agrees_with_brute_force_disc_vs_squares(x in 0.0f64..10.0, y in 0.0f64..10.0, r in 0.0f64..1.5) {
+            let w = world();
+            let checker = Clearance2dChecker::new(&w, Clearance2dParams { radius: r, obstacle_height: 1.0 }).unwrap();
+            let inside = x - r >= 0.0 && x + r <= 10.0 && y - r >= 0.0 && y + r <= 10.0;
+            let clear = [(3, 3), (4, 3), (7, 8), (0, 9)].iter().all(|&(i, j)| {
+                let dx = (i as f64 - x).max(0.0).max(x - (i as f64 + 1.0));
+                let dy = (j as f64 - y).max(0.0).max(y - (j as f64 + 1.0));
+                dx.hypot(dy) >= r && !(dx == 0.0 && dy == 0.0)
+            });
+            prop_assert_eq!(checker.is_valid(&Pose2::new(x, y, 0.0)), inside && clear);
+        }
+    }
+}

@@ -1,0 +1,144 @@
+//! `hierarchical`: the paper's two-level check. Traversability first (missing →
+//! invalid, `< t_low` → invalid, `> t_high` → valid without a collision check), the
+//! volumetric box check only in between.
+
+use crate::robot_box::RobotBox;
+use crate::volumes::Volumes;
+use crate::volumetric::{VolumetricChecker, VolumetricParams};
+use serde::{Deserialize, Serialize};
+use smug_core::{BuildContext, Counters, Error, GridLayer, Pose2, StateValidityChecker};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::Arc;
+
+/// Parameters of the hierarchical checker.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HierarchicalParams {
+    /// Below this traversability a state is invalid (paper: 0.3).
+    pub t_low: f64,
+    /// Above this traversability a state is valid (paper: 0.3 or 0.8).
+    pub t_high: f64,
+    /// Subdivision levels of the volumetric check.
+    pub max_depth: u32,
+    /// Smallest sub-box side of the volumetric check, metres.
+    pub min_size: f64,
+}
+
+impl Default for HierarchicalParams {
+    fn default() -> Self {
+        let volumetric = VolumetricParams::default();
+        Self {
+            t_low: 0.3,
+            t_high: 0.3,
+            max_depth: volumetric.max_depth,
+            min_size: volumetric.min_size,
+        }
+    }
+}
+
+/// Traversability first, the volumetric check where traversability is unsure.
+pub struct HierarchicalChecker {
+    traversability: GridLayer,
+    volumetric: VolumetricChecker,
+    t_low: f64,
+    t_high: f64,
+    checks: AtomicU64,
+    decided_by_traversability: AtomicU64,
+}
+
+impl HierarchicalChecker {
+    /// A checker over `traversability` with `volumetric` for the unsure band.
+    pub fn new(
+        traversability: GridLayer,
+        volumetric: VolumetricChecker,
+        t_low: f64,
+        t_high: f64,
+    ) -> Result<Self, Error> {
+        if !(0.0..=1.0).contains(&t_low) || !(0.0..=1.0).contains(&t_high) || t_low > t_high {
+            return Err(Error::invalid_param(
+                "validity",
+                format!("need 0 ≤ t_low ≤ t_high ≤ 1, got t_low = {t_low}, t_high = {t_high}"),
+            ));
+        }
+        Ok(Self {
+            traversability,
+            volumetric,
+            t_low,
+            t_high,
+            checks: AtomicU64::new(0),
+            decided_by_traversability: AtomicU64::new(0),
+        })
+    }
+
+    /// The decision traversability alone makes, if any.
+    fn traversability_verdict(&self, state: &Pose2) -> Option<bool> {
+        match self.traversability.nearest(state.x, state.y) {
+            None => Some(false),
+            Some(t) if t < self.t_low => Some(false),
+            Some(t) if t > self.t_high => Some(true),
+            Some(_) => None,
+        }
+    }
+}
+
+impl StateValidityChecker for HierarchicalChecker {
+    fn is_valid(&self, state: &Pose2) -> bool {
+        self.checks.fetch_add(1, Relaxed);
+        match self.traversability_verdict(state) {
+            Some(verdict) => {
+                self.decided_by_traversability.fetch_add(1, Relaxed);
+                verdict
+            }
+            None => self.volumetric.is_valid(state),
+        }
+    }
+
+    fn counters(&self) -> Counters {
+        let mut counters = self.volumetric.counters();
+        counters.insert(
+            "volumetric_checks".into(),
+            counters.get("checks").copied().unwrap_or(0),
+        );
+        counters.insert("checks".into(), self.checks.load(Relaxed));
+        counters.insert(
+            "traversability_decided".into(),
+            self.decided_by_traversability.load(Relaxed),
+        );
+        counters
+    }
+}
+
+fn build_hierarchical(
+    params: HierarchicalParams,
+    ctx: &BuildContext,
+) -> Result<HierarchicalChecker, Error> {
+    let world = ctx.world()?;
+    let traversability = world.traversability.clone().ok_or_else(|| {
+        Error::invalid_param(
+            "validity",
+            "the hierarchical checker needs a traversability layer: add a [traversability] section \
+             (e.g. type = \"geometric\") or use a world that has one",
+        )
+    })?;
+    let robot = RobotBox::from_robot(ctx.robot());
+    let volumes =
+        Volumes::from_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))?;
+    let volumetric = VolumetricChecker::new(
+        world,
+        Arc::new(volumes),
+        robot,
+        VolumetricParams {
+            max_depth: params.max_depth,
+            min_size: params.min_size,
+        },
+    )?;
+    HierarchicalChecker::new(traversability, volumetric, params.t_low, params.t_high)
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::ValidityStage,
+    name = "hierarchical",
+    summary = "traversability thresholds first, the volumetric box check only in between",
+    params = HierarchicalParams,
+    build = |params, ctx| Ok(Box::new(build_hierarchical(params, ctx)?)),
+);
