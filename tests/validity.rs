@@ -140,3 +140,46 @@ fn check_mission_validity(c: &Checkers) {
         mission.poi_count()
     );
 }
+
+/// Builds the lunar pipeline's world with a validity checker of `kind` and `params`.
+fn lunar_checker(kind: &str, params: &str) -> Arc<dyn StateValidityChecker> {
+    let text = format!(
+        "seed = 3\n[world]\ntype = \"lunar\"\n[traversability]\ntype = \"geometric\"\n[validity]\ntype = \"{kind}\"\nparams = {{ {params} }}\n"
+    );
+    let loaded =
+        smug_core::LoadedConfig::from_text(&text, "bench.toml", std::path::Path::new("."), &[])
+            .unwrap();
+    smug_core::Pipeline::assemble(&loaded)
+        .unwrap()
+        .state_validity
+        .unwrap()
+}
+
+#[test]
+fn hierarchical_checking_needs_at_least_30_percent_fewer_distance_queries() {
+    use rand::Rng;
+    let volumetric = lunar_checker("volumetric", "");
+    let hierarchical = lunar_checker("hierarchical", "t_low = 0.3, t_high = 0.8");
+    let fastest = lunar_checker("hierarchical", "t_low = 0.3, t_high = 0.3");
+    let mut rng = StageRng::seed_from_u64(9);
+    for _ in 0..3000 {
+        let s = Pose2::new(
+            rng.random_range(0.0..30.0),
+            rng.random_range(0.0..29.0),
+            rng.random_range(-3.1..3.1),
+        );
+        volumetric.is_valid(&s);
+        hierarchical.is_valid(&s);
+        fastest.is_valid(&s);
+    }
+    let queries = |c: &Arc<dyn StateValidityChecker>| c.counters()["esdf_queries"] as f64;
+    println!(
+        "ESDF queries: volumetric {}, 0.3/0.8 {}, 0.3/0.3 {}",
+        queries(&volumetric),
+        queries(&hierarchical),
+        queries(&fastest)
+    );
+    assert!(queries(&hierarchical) <= 0.7 * queries(&volumetric));
+    assert!(queries(&fastest) <= queries(&hierarchical));
+    assert!(hierarchical.counters()["traversability_decided"] > 0);
+}

@@ -14,11 +14,14 @@ pub struct BenchArgs {
 enum BenchCommand {
     /// TSP solvers on the TSPLIB instances: gap to the optimum and time.
     Tsp(crate::tsp::BenchTspArgs),
+    /// State validity checkers: checks per second and distance-field queries.
+    Validity(crate::bench_validity::BenchValidityArgs),
 }
 
 /// Runs `smug bench`.
 pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
     match args.which {
         BenchCommand::Tsp(args) => crate::tsp::run_bench(args),
+        BenchCommand::Validity(args) => crate::bench_validity::run(args),
     }
 }

@@ -22,8 +22,9 @@ pub enum Combine {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct GeometricParams {
-    /// Radius of the fitting window, metres.
-    pub window_radius: f64,
+    /// Radius of the fitting window, metres; absent: robot-sized (half the diagonal
+    /// of the robot's footprint), so that obstacles under any part of the base count.
+    pub window_radius: Option<f64>,
     /// Slope (radians) at which the slope score reaches 0.
     pub critical_slope: f64,
     /// RMS residual (metres) at which the roughness score reaches 0.
@@ -39,7 +40,7 @@ pub struct GeometricParams {
 impl Default for GeometricParams {
     fn default() -> Self {
         Self {
-            window_radius: 0.3,
+            window_radius: None,
             critical_slope: 0.6,
             critical_roughness: 0.05,
             critical_step: 0.3,
@@ -64,13 +65,16 @@ pub struct TerrainFeatures {
 #[derive(Clone, Copy, Debug)]
 pub struct GeometricEstimator {
     params: GeometricParams,
+    window_radius: f64,
 }
 
 impl GeometricEstimator {
-    /// An estimator; every critical value and the window must be > 0.
-    pub fn new(params: GeometricParams) -> Result<Self, Error> {
+    /// An estimator; every critical value and the window must be > 0. `robot_window`
+    /// is the window radius used when the parameters give none.
+    pub fn new(params: GeometricParams, robot_window: f64) -> Result<Self, Error> {
+        let window_radius = params.window_radius.unwrap_or(robot_window);
         let positive = [
-            ("window_radius", params.window_radius),
+            ("window_radius", window_radius),
             ("critical_slope", params.critical_slope),
             ("critical_roughness", params.critical_roughness),
             ("critical_step", params.critical_step),
@@ -89,7 +93,10 @@ impl GeometricEstimator {
                 "weights must be ≥ 0 with a positive sum",
             ));
         }
-        Ok(Self { params })
+        Ok(Self {
+            params,
+            window_radius,
+        })
     }
 
     /// The terrain features around cell `(i, j)`; `None` without enough data.
@@ -99,7 +106,7 @@ impl GeometricEstimator {
         if z0.is_nan() {
             return None;
         }
-        let reach = (self.params.window_radius / g.resolution).floor() as isize;
+        let reach = (self.window_radius / g.resolution).floor() as isize;
         let mut fit = PlaneFit::default();
         for dj in -reach..=reach {
             for di in -reach..=reach {
@@ -107,7 +114,7 @@ impl GeometricEstimator {
                 let (ci, cj) = (i as isize + di, j as isize + dj);
                 let inside =
                     ci >= 0 && cj >= 0 && (ci as usize) < g.size[0] && (cj as usize) < g.size[1];
-                if inside && x.hypot(y) <= self.params.window_radius + 1e-9 {
+                if inside && x.hypot(y) <= self.window_radius + 1e-9 {
                     let z = elevation.get(ci as usize, cj as usize);
                     if !z.is_nan() {
                         fit.add(x, y, (z - z0) as f64);
@@ -234,7 +241,13 @@ smug_core::register_plugin!(
     name = "geometric",
     summary = "slope, roughness and step height of a plane fit over a robot-sized window",
     params = GeometricParams,
-    build = |params, _ctx| Ok(Box::new(GeometricEstimator::new(params)?)),
+    build = |params, ctx| {
+        let robot = ctx.robot();
+        Ok(Box::new(GeometricEstimator::new(
+            params,
+            0.5 * robot.length.hypot(robot.width),
+        )?))
+    },
 );
 
 #[cfg(test)]
@@ -258,7 +271,7 @@ mod tests {
     }
 
     fn score_at_centre(world: &World) -> f64 {
-        let layer = GeometricEstimator::new(GeometricParams::default())
+        let layer = GeometricEstimator::new(GeometricParams::default(), 0.3)
             .unwrap()
             .estimate(world)
             .unwrap();
@@ -267,7 +280,7 @@ mod tests {
 
     #[test]
     fn flat_plane_is_fully_traversable() {
-        let layer = GeometricEstimator::new(GeometricParams::default())
+        let layer = GeometricEstimator::new(GeometricParams::default(), 0.3)
             .unwrap()
             .estimate(&world_from(|_, _| 1.5))
             .unwrap();
@@ -286,7 +299,7 @@ mod tests {
 
     #[test]
     fn slope_is_measured_and_missing_data_stays_missing() {
-        let e = GeometricEstimator::new(GeometricParams::default()).unwrap();
+        let e = GeometricEstimator::new(GeometricParams::default(), 0.3).unwrap();
         let ramp = world_from(|x, _| 0.2 * x);
         let f = e.features(&ramp.elevation, 20, 20).unwrap();
         assert!((f.slope - 0.2f64.atan()).abs() < 1e-3, "{f:?}");
@@ -296,17 +309,20 @@ mod tests {
         let layer = e.estimate(&holes).unwrap();
         assert!(layer.get(5, 5).is_nan());
         assert_eq!(layer.get(6, 5), 1.0);
-        assert!(GeometricEstimator::new(GeometricParams {
-            critical_step: 0.0,
-            ..Default::default()
-        })
+        assert!(GeometricEstimator::new(
+            GeometricParams {
+                critical_step: 0.0,
+                ..Default::default()
+            },
+            0.3
+        )
         .is_err());
     }
 
     #[test]
     fn steps_and_roughness_lower_the_score() {
         let step = world_from(|x, _| if x > 2.0 { 0.2 } else { 0.0 });
-        let layer = GeometricEstimator::new(GeometricParams::default())
+        let layer = GeometricEstimator::new(GeometricParams::default(), 0.3)
             .unwrap()
             .estimate(&step)
             .unwrap();

@@ -15,6 +15,7 @@ pub mod counting;
 pub mod discrete_motion;
 pub mod edt;
 pub mod exact;
+pub mod from_file;
 pub mod geometric;
 pub mod hierarchical;
 pub mod robot_box;
