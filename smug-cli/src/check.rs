@@ -31,23 +31,6 @@ pub struct PlanArgs {
     json: bool,
 }
 
-/// Arguments of `smug p2p`.
-#[derive(clap::Args, Debug)]
-pub struct P2pArgs {
-    /// The map (ROS map_server-style YAML).
-    #[arg(long)]
-    map: PathBuf,
-    /// Queries, one `sx,sy,syaw,gx,gy,gyaw` per row.
-    #[arg(long)]
-    queries: PathBuf,
-    /// Pipeline config for the planner and validity checker.
-    #[arg(long)]
-    config: Option<PathBuf>,
-    /// Where to write results.json.
-    #[arg(long)]
-    out: Option<PathBuf>,
-}
-
 fn load(config: &std::path::Path, set: &[String]) -> anyhow::Result<Pipeline> {
     let loaded = LoadedConfig::from_file(config, set)?;
     Ok(Pipeline::assemble(&loaded)?)
@@ -111,14 +94,5 @@ pub fn run_plan(args: PlanArgs) -> anyhow::Result<Outcome> {
     anyhow::bail!(
         "{}: `smug plan` is not available in this version yet",
         args.config.display()
-    )
-}
-
-/// Runs `smug p2p`.
-pub fn run_p2p(args: P2pArgs) -> anyhow::Result<Outcome> {
-    let _ = (&args.queries, &args.config, &args.out);
-    anyhow::bail!(
-        "{}: `smug p2p` is not available in this version yet",
-        args.map.display()
     )
 }

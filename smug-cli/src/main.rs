@@ -16,6 +16,7 @@ use smug_worlds as _;
 mod bench;
 mod bench_validity;
 mod check;
+mod p2p;
 mod plugins;
 mod tsp;
 mod worlds;
@@ -46,7 +47,7 @@ enum Command {
     /// Plan a safe multi-goal mission from a config.
     Plan(check::PlanArgs),
     /// Plan point-to-point queries on one shared roadmap.
-    P2p(check::P2pArgs),
+    P2p(p2p::P2pArgs),
     /// Solve a TSPLIB instance.
     Tsp(tsp::TspArgs),
     /// Run benchmarks.
@@ -60,7 +61,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Plugins(args) => plugins::run(args),
         Command::Check(args) => check::run_check(args),
         Command::Plan(args) => check::run_plan(args),
-        Command::P2p(args) => check::run_p2p(args),
+        Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Worlds(args) => worlds::run(args),

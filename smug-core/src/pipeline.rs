@@ -270,7 +270,9 @@ impl Pipeline {
         if let Some(section) = &config.validity {
             let checker: Arc<dyn StateValidityChecker> =
                 pipeline.build_stage::<ValidityStage>(&ctx, section)?.into();
-            if let Some(mission) = &pipeline.mission {
+            // A mission without targets only carries a map (e.g. for point-to-point
+            // queries): nothing to prune.
+            if let Some(mission) = pipeline.mission.as_ref().filter(|m| !m.targets.is_empty()) {
                 let (pruned, dropped) = prune_mission(mission, checker.as_ref())?;
                 pipeline.mission = Some(pruned);
                 pipeline.dropped_pois = dropped;

@@ -1,0 +1,186 @@
+//! `smug p2p`: point-to-point queries, in order, on one shared roadmap.
+
+use crate::Outcome;
+use serde::Serialize;
+use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The pipeline `smug p2p` uses when no config is given: a disc robot on the map.
+const DEFAULT_CONFIG: &str = r#"
+seed = 1
+[validity]
+type = "clearance-2d"
+[motion]
+type = "discrete"
+params = { resolution = 0.05, max_inclination = 1e9 }
+[sampler]
+type = "informed"
+[planner]
+type = "lazy-prm-star"
+"#;
+
+/// Arguments of `smug p2p`.
+#[derive(clap::Args, Debug)]
+pub struct P2pArgs {
+    /// The map (ROS map_server-style YAML); absent: the config's world.
+    #[arg(long)]
+    map: Option<PathBuf>,
+    /// Queries, one `sx,sy,syaw,gx,gy,gyaw` per row (a header row is allowed).
+    #[arg(long)]
+    queries: PathBuf,
+    /// Pipeline config for the planner and validity checker (default: a disc robot).
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Override a config key.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Use this validity checker (e.g. `clearance-2d`).
+    #[arg(long)]
+    validity: Option<String>,
+    /// Disc radius for `--validity clearance-2d`, metres.
+    #[arg(long)]
+    radius: Option<f64>,
+    /// Obstacle height of imported maps, metres.
+    #[arg(long, default_value_t = 2.0)]
+    obstacle_height: f64,
+    /// Where to write results.json.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// One query's result.
+#[derive(Debug, Serialize)]
+struct QueryResult {
+    status: &'static str,
+    cost: Option<f64>,
+    time_s: f64,
+    vertices: u64,
+    waypoints: Vec<[f64; 3]>,
+}
+
+/// All results.
+#[derive(Debug, Serialize)]
+struct Results {
+    queries: Vec<QueryResult>,
+    total_time_s: f64,
+    planner: smug_core::PlannerStats,
+}
+
+/// Reads `sx,sy,syaw,gx,gy,gyaw` rows; the first row may be a header.
+fn read_queries(path: &Path) -> anyhow::Result<Vec<(Pose2, Pose2)>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
+    let mut queries = Vec::new();
+    for (n, line) in text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+    {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let numbers: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
+        match numbers {
+            Ok(v) if v.len() == 6 && v.iter().all(|x| x.is_finite()) => {
+                queries.push((Pose2::new(v[0], v[1], v[2]), Pose2::new(v[3], v[4], v[5])))
+            }
+            Err(_) if n == 0 => continue,
+            _ => anyhow::bail!(
+                "{}:{}: expected six finite numbers sx,sy,syaw,gx,gy,gyaw, got `{line}`",
+                path.display(),
+                n + 1
+            ),
+        }
+    }
+    Ok(queries)
+}
+
+fn overrides(args: &P2pArgs) -> Vec<String> {
+    let mut set = args.set.clone();
+    if let Some(kind) = &args.validity {
+        set.push(format!("validity.type={kind}"));
+    }
+    if let Some(r) = args.radius {
+        set.push(format!("validity.params.radius={r}"));
+    }
+    set
+}
+
+fn assemble(args: &P2pArgs, first_start: Pose2) -> anyhow::Result<Pipeline> {
+    let set = overrides(args);
+    let loaded = match &args.config {
+        Some(path) => LoadedConfig::from_file(path, &set)?,
+        None => {
+            LoadedConfig::from_text(DEFAULT_CONFIG, "<default p2p config>", Path::new("."), &set)?
+        }
+    };
+    let Some(map) = &args.map else {
+        return Ok(Pipeline::assemble(&loaded)?);
+    };
+    let layers = smug_worlds::map_file::load_map(map, args.obstacle_height)?;
+    let mission = Mission {
+        start: first_start,
+        end: None,
+        targets: Vec::new(),
+    };
+    let world = layers.into_world(smug_worlds::map_file::file_stem(map), mission, map)?;
+    Ok(Pipeline::assemble_with_world(&loaded, world)?)
+}
+
+/// Runs `smug p2p`.
+pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
+    let queries = read_queries(&args.queries)?;
+    let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
+    let mut pipeline = assemble(&args, first_start)?;
+    let planner = pipeline
+        .planner
+        .as_mut()
+        .ok_or_else(|| anyhow::anyhow!("the config has no [planner] section"))?;
+    let started = Instant::now();
+    let mut results = Vec::with_capacity(queries.len());
+    for (start, goal) in &queries {
+        let t = Instant::now();
+        let outcome = planner.plan(start, goal)?;
+        let time_s = t.elapsed().as_secs_f64();
+        let path = match &outcome {
+            PlannerOutcome::Exact(p) | PlannerOutcome::Approximate { path: p, .. } => Some(p),
+            _ => None,
+        };
+        results.push(QueryResult {
+            status: outcome.status(),
+            cost: outcome.exact_path().map(|p| p.cost),
+            time_s,
+            vertices: planner.stats().vertices,
+            waypoints: path.map_or(Vec::new(), |p| {
+                p.states.iter().map(|s| [s.x, s.y, s.yaw]).collect()
+            }),
+        });
+    }
+    let results = Results {
+        queries: results,
+        total_time_s: started.elapsed().as_secs_f64(),
+        planner: planner.stats(),
+    };
+    let exact = results
+        .queries
+        .iter()
+        .filter(|q| q.status == "exact")
+        .count();
+    let mean_cost =
+        results.queries.iter().filter_map(|q| q.cost).sum::<f64>() / exact.max(1) as f64;
+    println!(
+        "{} queries: {exact} exact, {} without a path; mean cost {mean_cost:.3}; {:.3} s; roadmap {} vertices",
+        results.queries.len(),
+        results.queries.len() - exact,
+        results.total_time_s,
+        results.planner.vertices
+    );
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string_pretty(&results)?)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
+    }
+    Ok(if exact == results.queries.len() {
+        Outcome::Ok
+    } else {
+        Outcome::NoSolution
+    })
+}

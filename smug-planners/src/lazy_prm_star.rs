@@ -1,0 +1,384 @@
+//! `lazy-prm-star`: LazyPRM* (Hauser 2015; OMPL's `LazyPRMstar`) with an informed
+//! sampler on one roadmap shared by every query of a mission.
+//!
+//! A query adds its endpoints to the roadmap (they stay), then repeats: A* on the
+//! roadmap with the metric as heuristic; check the unknown vertices, then the unknown
+//! edges, of the candidate path; remove what is invalid; until a valid path is found or
+//! start and goal are disconnected. Between searches the roadmap grows by samples
+//! (informed once a path is known), each connected to its k nearest neighbours with
+//! `k = ⌈e(1 + 1/3) ln n⌉`. A query stops after `max_stall` solution attempts in a row
+//! that improve the best cost by less than `improvement`, when the informed set is
+//! empty (the path is optimal), or at its sample or time budget — an unreachable goal
+//! ends with "no path", never a hang.
+
+use crate::roadmap::{AStar, GraphPath, Roadmap, Validity};
+use crate::shortcut::shortcut;
+use serde::{Deserialize, Serialize};
+use smug_core::{
+    Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionValidator, Path, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateValidityChecker, Termination,
+    TimeBreakdown,
+};
+use std::collections::BTreeMap;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Parameters of LazyPRM*.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LazyPrmStarParams {
+    /// Stop after this many solution attempts in a row without enough improvement
+    /// (the reference code's `max_stall`).
+    pub max_stall: u32,
+    /// Relative improvement that resets the stall count (0.02: the reference's 0.98 factor).
+    pub improvement: f64,
+    /// Valid samples added between solution attempts once a path is known.
+    pub attempt_every: u32,
+    /// Samples drawn per query at most (the query's sample budget).
+    pub max_samples: u64,
+    /// Seconds per query at most (absent: no time budget; runs stay reproducible).
+    pub time_limit: Option<f64>,
+    /// Samples added before the first query (a pre-built roadmap).
+    pub initial_samples: u64,
+    /// Check vertices lazily, only when on a candidate path (default: check each
+    /// sample when drawn and keep only valid ones, as the reference code does).
+    pub lazy_vertices: bool,
+    /// Shortcut returned paths (never raises cost, never makes a path invalid).
+    pub shortcut: bool,
+}
+
+impl Default for LazyPrmStarParams {
+    fn default() -> Self {
+        Self {
+            max_stall: 3,
+            improvement: 0.02,
+            attempt_every: 5,
+            max_samples: 20_000,
+            time_limit: None,
+            initial_samples: 0,
+            lazy_vertices: false,
+            shortcut: false,
+        }
+    }
+}
+
+/// Counters kept across queries.
+#[derive(Clone, Debug, Default)]
+struct Counts {
+    queries: u64,
+    samples: u64,
+    vertex_checks: u64,
+    edge_checks: u64,
+    searches: u64,
+    breakdown: TimeBreakdown,
+}
+
+/// LazyPRM* on a shared roadmap.
+pub struct LazyPrmStar {
+    params: LazyPrmStarParams,
+    roadmap: Roadmap,
+    astar: AStar,
+    sampler: Box<dyn Sampler>,
+    states: Arc<dyn StateValidityChecker>,
+    motions: Arc<dyn MotionValidator>,
+    metric: Arc<dyn CostMetric>,
+    bounds: Bounds2,
+    w_t: f64,
+    grown: bool,
+    counts: Counts,
+}
+
+/// `k = ⌈e(1 + 1/d) ln n⌉` with `d = 3`, at least 1.
+fn connection_k(n: usize) -> usize {
+    let k = (std::f64::consts::E * (1.0 + 1.0 / 3.0) * (n.max(1) as f64).ln()).ceil();
+    (k as usize).max(1)
+}
+
+impl LazyPrmStar {
+    /// A planner over the given stages in `bounds`.
+    pub fn new(
+        params: LazyPrmStarParams,
+        sampler: Box<dyn Sampler>,
+        states: Arc<dyn StateValidityChecker>,
+        motions: Arc<dyn MotionValidator>,
+        metric: Arc<dyn CostMetric>,
+        bounds: Bounds2,
+    ) -> Result<Self> {
+        if !(params.improvement.is_finite() && (0.0..1.0).contains(&params.improvement)) {
+            return Err(Error::invalid_param(
+                "planner",
+                format!("improvement must be in [0, 1), got {}", params.improvement),
+            ));
+        }
+        if params.time_limit.is_some_and(|t| !(t > 0.0)) {
+            return Err(Error::invalid_param("planner", "time_limit must be > 0"));
+        }
+        let (w_t, _) = metric.lower_bound_weights();
+        Ok(Self {
+            params,
+            roadmap: Roadmap::new(bounds),
+            astar: AStar::default(),
+            sampler,
+            states,
+            motions,
+            metric,
+            bounds,
+            w_t,
+            grown: false,
+            counts: Counts::default(),
+        })
+    }
+
+    /// The roadmap (for inspection and tests).
+    pub fn roadmap(&self) -> &Roadmap {
+        &self.roadmap
+    }
+
+    /// Draws `n` samples into the roadmap now.
+    pub fn grow(&mut self, n: u64) {
+        for _ in 0..n {
+            if let Some(sample) = self.draw_sample(None) {
+                self.insert_sample(sample);
+            }
+        }
+    }
+
+    fn draw_sample(&mut self, informed: Option<&InformedSet>) -> Option<Pose2> {
+        let started = Instant::now();
+        let sample = self.sampler.sample(&self.bounds, informed);
+        self.counts.samples += 1;
+        self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+        sample
+    }
+
+    fn check_state(&mut self, state: &Pose2) -> bool {
+        let started = Instant::now();
+        let valid = self.states.is_valid(state);
+        self.counts.vertex_checks += 1;
+        self.counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
+        valid
+    }
+
+    /// Adds a sample as a vertex (checked first unless vertices are lazy); true if added.
+    fn insert_sample(&mut self, sample: Pose2) -> bool {
+        let validity = if self.params.lazy_vertices {
+            Validity::Unknown
+        } else if self.check_state(&sample) {
+            Validity::Valid
+        } else {
+            return false;
+        };
+        self.add_vertex(sample, validity);
+        true
+    }
+
+    fn add_vertex(&mut self, pose: Pose2, validity: Validity) -> u32 {
+        let started = Instant::now();
+        let k = connection_k(self.roadmap.live_vertex_count() + 1);
+        let v = self
+            .roadmap
+            .add_vertex(pose, validity, k, self.metric.as_ref(), self.w_t);
+        self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+        v
+    }
+
+    /// The vertex of a query endpoint (added if new), checked; `None` when invalid.
+    fn terminal(&mut self, pose: &Pose2) -> Option<u32> {
+        if let Some(v) = self.roadmap.find(pose) {
+            return match self.roadmap.vertex_validity(v) {
+                Validity::Valid => Some(v),
+                Validity::Invalid => None,
+                Validity::Unknown => {
+                    if self.check_state(pose) {
+                        self.roadmap.mark_vertex_valid(v);
+                        Some(v)
+                    } else {
+                        self.roadmap.remove_vertex(v);
+                        None
+                    }
+                }
+            };
+        }
+        if !self.check_state(pose) {
+            return None;
+        }
+        Some(self.add_vertex(*pose, Validity::Valid))
+    }
+
+    /// Checks the unknown vertices, then the unknown edges, of `path`; removes the
+    /// first invalid one found. True when the whole path is valid.
+    fn validate(&mut self, path: &GraphPath) -> bool {
+        for &v in &path.vertices {
+            if self.roadmap.vertex_validity(v) == Validity::Unknown {
+                let pose = *self.roadmap.pose(v);
+                if self.check_state(&pose) {
+                    self.roadmap.mark_vertex_valid(v);
+                } else {
+                    self.roadmap.remove_vertex(v);
+                    return false;
+                }
+            }
+        }
+        for &e in &path.edges {
+            if self.roadmap.edge(e).validity == Validity::Unknown {
+                let edge = *self.roadmap.edge(e);
+                let started = Instant::now();
+                let valid = self
+                    .motions
+                    .is_valid_motion(self.roadmap.pose(edge.a), self.roadmap.pose(edge.b));
+                self.counts.edge_checks += 1;
+                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
+                if valid {
+                    self.roadmap.mark_edge_valid(e);
+                } else {
+                    self.roadmap.remove_edge(e);
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
+    fn attempt(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+        loop {
+            let started = Instant::now();
+            let found = self.astar.search(&self.roadmap, s, g, self.metric.as_ref());
+            self.counts.searches += 1;
+            self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
+            let Some(path) = found else {
+                self.roadmap.refresh_components();
+                return None;
+            };
+            if self.validate(&path) {
+                return Some(path);
+            }
+        }
+    }
+
+    /// Grows the roadmap and searches until the stall rule, the budget or optimality stops.
+    fn solve(&mut self, start: &Pose2, goal: &Pose2, s: u32, g: u32) -> Option<GraphPath> {
+        let budget =
+            Termination::from_budgets(self.params.time_limit, Some(self.params.max_samples));
+        let mut clock = budget.start();
+        let mut best = if self.roadmap.maybe_connected(s, g) {
+            self.attempt(s, g)
+        } else {
+            None
+        };
+        let (mut stall, mut since_attempt) = (0u32, 0u32);
+        while !clock.is_done() && !(best.is_some() && stall >= self.params.max_stall) {
+            let informed = best.as_ref().map(|b| InformedSet {
+                start: *start,
+                goal: *goal,
+                best_cost: b.cost,
+            });
+            clock.tick();
+            let Some(sample) = self.draw_sample(informed.as_ref()) else {
+                break; // the informed set is empty: nothing can improve the path
+            };
+            if !self.insert_sample(sample) {
+                continue;
+            }
+            since_attempt += 1;
+            let due = match &best {
+                None => self.roadmap.maybe_connected(s, g),
+                Some(_) => since_attempt >= self.params.attempt_every,
+            };
+            if !due {
+                continue;
+            }
+            since_attempt = 0;
+            if let Some(path) = self.attempt(s, g) {
+                let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
+                if path.cost > best_cost * (1.0 - self.params.improvement) {
+                    stall += 1;
+                } else {
+                    stall = 0;
+                }
+                if path.cost < best_cost {
+                    best = Some(path);
+                }
+            }
+        }
+        best
+    }
+
+    fn to_path(&self, graph_path: &GraphPath) -> Path {
+        let states: Vec<Pose2> = graph_path
+            .vertices
+            .iter()
+            .map(|&v| *self.roadmap.pose(v))
+            .collect();
+        let states = if self.params.shortcut {
+            shortcut(&states, self.motions.as_ref(), self.metric.as_ref())
+        } else {
+            states
+        };
+        Path::new(states, self.metric.as_ref())
+    }
+}
+
+impl PointToPointPlanner for LazyPrmStar {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        let started = Instant::now();
+        let before = self.counts.breakdown;
+        self.counts.queries += 1;
+        if !self.grown {
+            self.grown = true;
+            self.grow(self.params.initial_samples);
+        }
+        let outcome = match (self.terminal(start), self.terminal(goal)) {
+            (None, _) => PlannerOutcome::InvalidStart,
+            (_, None) => PlannerOutcome::InvalidGoal,
+            (Some(s), Some(g)) if s == g => PlannerOutcome::Exact(Path {
+                states: vec![*start],
+                cost: 0.0,
+            }),
+            (Some(s), Some(g)) => match self.solve(start, goal, s, g) {
+                Some(path) => PlannerOutcome::Exact(self.to_path(&path)),
+                None => PlannerOutcome::NoPath,
+            },
+        };
+        let accounted = self.counts.breakdown.total_s() - before.total_s();
+        self.counts.breakdown.misc_s += (started.elapsed().as_secs_f64() - accounted).max(0.0);
+        Ok(outcome)
+    }
+
+    fn stats(&self) -> PlannerStats {
+        let c = &self.counts;
+        PlannerStats {
+            queries: c.queries,
+            vertices: self.roadmap.live_vertex_count() as u64,
+            edges: self.roadmap.live_edge_count() as u64,
+            breakdown: c.breakdown,
+            counters: BTreeMap::from([
+                ("samples".to_string(), c.samples),
+                ("vertex_checks".to_string(), c.vertex_checks),
+                ("edge_checks".to_string(), c.edge_checks),
+                ("astar_searches".to_string(), c.searches),
+                ("astar_expansions".to_string(), self.astar.expansions),
+            ]),
+        }
+    }
+}
+
+fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
+    let bounds = ctx.world()?.bounds();
+    LazyPrmStar::new(
+        params,
+        ctx.new_sampler()?,
+        ctx.state_validity()?,
+        ctx.motion_validator()?,
+        ctx.metric(),
+        bounds,
+    )
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::PlannerStage,
+    name = "lazy-prm-star",
+    summary = "LazyPRM* with informed sampling on one roadmap shared by all queries",
+    params = LazyPrmStarParams,
+    build = |params, ctx| Ok(Box::new(build_planner(params, ctx)?)),
+);

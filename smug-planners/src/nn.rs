@@ -1,0 +1,269 @@
+//! Exact k-nearest neighbours under an SE(2) metric with an xy bucket grid.
+//!
+//! The metric is bounded below by `w_t·‖Δxy‖`, so rings of buckets are searched in
+//! order of growing xy distance until the ring's xy lower bound exceeds the current
+//! k-th best full distance: the result is exactly the k nearest.
+
+use smug_core::{Bounds2, CostMetric, Pose2};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// Points per bucket the grid aims for; it is rebuilt finer as points arrive.
+const TARGET_PER_BUCKET: f64 = 2.0;
+
+/// A candidate neighbour: distance then id (ids break ties deterministically).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Neighbour {
+    /// Metric distance to the query.
+    pub distance: f64,
+    /// Vertex id.
+    pub id: u32,
+}
+
+impl Eq for Neighbour {}
+
+impl Ord for Neighbour {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.distance
+            .total_cmp(&other.distance)
+            .then(self.id.cmp(&other.id))
+    }
+}
+
+impl PartialOrd for Neighbour {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Buckets of vertex ids over the map bounds.
+#[derive(Clone, Debug)]
+pub struct XyGrid {
+    bounds: Bounds2,
+    cell: f64,
+    size: [usize; 2],
+    buckets: Vec<Vec<u32>>,
+    count: usize,
+}
+
+impl XyGrid {
+    /// An empty grid over `bounds` with buckets of side `cell`.
+    pub fn new(bounds: Bounds2, cell: f64) -> Self {
+        let [w, h] = bounds.extent();
+        let cell = cell.max(1e-6).max(w.max(h) / 4096.0);
+        let size = [
+            ((w / cell).ceil() as usize).max(1),
+            ((h / cell).ceil() as usize).max(1),
+        ];
+        Self {
+            bounds,
+            cell,
+            size,
+            buckets: vec![Vec::new(); size[0] * size[1]],
+            count: 0,
+        }
+    }
+
+    /// Number of stored ids.
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    fn inside(&self, p: &Pose2) -> bool {
+        self.bounds.contains(p.x, p.y)
+    }
+
+    fn bucket_of(&self, p: &Pose2) -> [usize; 2] {
+        let fx = ((p.x - self.bounds.min[0]) / self.cell).floor();
+        let fy = ((p.y - self.bounds.min[1]) / self.cell).floor();
+        [
+            (fx.max(0.0) as usize).min(self.size[0] - 1),
+            (fy.max(0.0) as usize).min(self.size[1] - 1),
+        ]
+    }
+
+    /// Adds `id` at `p`; rebuilds finer when crowded (`poses` gives every id's pose).
+    pub fn insert(&mut self, id: u32, p: &Pose2, poses: &[Pose2]) {
+        let [i, j] = self.bucket_of(p);
+        self.buckets[j * self.size[0] + i].push(id);
+        self.count += 1;
+        if self.count as f64 > TARGET_PER_BUCKET * 4.0 * self.buckets.len() as f64 {
+            self.rebuild(poses);
+        }
+    }
+
+    /// Removes `id` at `p`.
+    pub fn remove(&mut self, id: u32, p: &Pose2) {
+        let [i, j] = self.bucket_of(p);
+        let bucket = &mut self.buckets[j * self.size[0] + i];
+        if let Some(k) = bucket.iter().position(|&v| v == id) {
+            bucket.swap_remove(k);
+            self.count -= 1;
+        }
+    }
+
+    fn rebuild(&mut self, poses: &[Pose2]) {
+        let [w, h] = self.bounds.extent();
+        let cell = (w * h * TARGET_PER_BUCKET / self.count as f64).sqrt();
+        let mut ids: Vec<u32> = self.buckets.iter().flatten().copied().collect();
+        ids.sort_unstable();
+        *self = XyGrid::new(self.bounds, cell);
+        for id in ids {
+            let [i, j] = self.bucket_of(&poses[id as usize]);
+            self.buckets[j * self.size[0] + i].push(id);
+            self.count += 1;
+        }
+    }
+
+    /// The `k` nearest stored ids to `q` under `metric` (excluding `exclude`), nearest
+    /// first. `w_t` must satisfy `metric(a, b) ≥ w_t·‖Δxy‖`.
+    pub fn k_nearest(
+        &self,
+        q: &Pose2,
+        k: usize,
+        poses: &[Pose2],
+        metric: &dyn CostMetric,
+        w_t: f64,
+        exclude: Option<u32>,
+    ) -> Vec<Neighbour> {
+        let mut heap: BinaryHeap<Neighbour> = BinaryHeap::with_capacity(k + 1);
+        if k == 0 {
+            return Vec::new();
+        }
+        let consider = |id: u32, heap: &mut BinaryHeap<Neighbour>| {
+            if Some(id) == exclude {
+                return;
+            }
+            let candidate = Neighbour {
+                distance: metric.distance(q, &poses[id as usize]),
+                id,
+            };
+            if heap.len() < k {
+                heap.push(candidate);
+            } else if candidate < *heap.peek().expect("full heap") {
+                heap.pop();
+                heap.push(candidate);
+            }
+        };
+        if !self.inside(q) {
+            self.buckets
+                .iter()
+                .flatten()
+                .for_each(|&id| consider(id, &mut heap));
+            return heap.into_sorted_vec();
+        }
+        let [ci, cj] = self.bucket_of(q);
+        let max_ring = self.size[0].max(self.size[1]);
+        for ring in 0..=max_ring {
+            if heap.len() == k
+                && w_t * self.ring_lower_bound(q, [ci, cj], ring)
+                    > heap.peek().expect("full").distance
+            {
+                break;
+            }
+            self.for_ring(ci, cj, ring, |bucket| {
+                bucket.iter().for_each(|&id| consider(id, &mut heap))
+            });
+        }
+        heap.into_sorted_vec()
+    }
+
+    /// A lower bound of the xy distance from `q` to any point in a bucket of `ring`.
+    fn ring_lower_bound(&self, q: &Pose2, [ci, cj]: [usize; 2], ring: usize) -> f64 {
+        if ring == 0 {
+            return 0.0;
+        }
+        let r = ring as f64 - 1.0;
+        let x_lo = self.bounds.min[0] + (ci as f64 - r) * self.cell;
+        let x_hi = self.bounds.min[0] + (ci as f64 + r + 1.0) * self.cell;
+        let y_lo = self.bounds.min[1] + (cj as f64 - r) * self.cell;
+        let y_hi = self.bounds.min[1] + (cj as f64 + r + 1.0) * self.cell;
+        (q.x - x_lo)
+            .min(x_hi - q.x)
+            .min(q.y - y_lo)
+            .min(y_hi - q.y)
+            .max(0.0)
+    }
+
+    /// Calls `f` on every bucket at Chebyshev distance exactly `ring` from `(ci, cj)`.
+    fn for_ring(&self, ci: usize, cj: usize, ring: usize, mut f: impl FnMut(&[u32])) {
+        let (ci, cj, r) = (ci as isize, cj as isize, ring as isize);
+        let (nx, ny) = (self.size[0] as isize, self.size[1] as isize);
+        let mut visit = |i: isize, j: isize| {
+            if i >= 0 && j >= 0 && i < nx && j < ny {
+                f(&self.buckets[(j * nx + i) as usize]);
+            }
+        };
+        if r == 0 {
+            visit(ci, cj);
+            return;
+        }
+        for i in ci - r..=ci + r {
+            visit(i, cj - r);
+            visit(i, cj + r);
+        }
+        for j in cj - r + 1..=cj + r - 1 {
+            visit(ci - r, j);
+            visit(ci + r, j);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use smug_core::Se2Metric;
+
+    proptest! {
+        #[test]
+        fn k_nearest_equals_brute_force(
+            points in proptest::collection::vec((0.0f64..20.0, 0.0f64..10.0, -3.14f64..3.14), 1..300),
+            q in (-2.0f64..22.0, -2.0f64..12.0, -3.14f64..3.14),
+            k in 1usize..20, w_r in 0.0f64..3.0, cell in 0.05f64..5.0,
+        ) {
+            let metric = Se2Metric::new(1.0, w_r).unwrap();
+            let bounds = Bounds2 { min: [0.0, 0.0], max: [20.0, 10.0] };
+            let poses: Vec<Pose2> = points.iter().map(|&(x, y, t)| Pose2::new(x, y, t)).collect();
+            let mut grid = XyGrid::new(bounds, cell);
+            for (id, p) in poses.iter().enumerate() {
+                grid.insert(id as u32, p, &poses);
+            }
+            let q = Pose2::new(q.0, q.1, q.2);
+            let fast = grid.k_nearest(&q, k, &poses, &metric, 1.0, Some(0));
+            let mut slow: Vec<Neighbour> = (1..poses.len() as u32)
+                .map(|id| Neighbour { distance: metric.distance(&q, &poses[id as usize]), id })
+                .collect();
+            slow.sort();
+            slow.truncate(k);
+            prop_assert_eq!(fast, slow);
+        }
+    }
+
+    #[test]
+    fn removal_hides_ids() {
+        let metric = Se2Metric::default();
+        let bounds = Bounds2 {
+            min: [0.0, 0.0],
+            max: [10.0, 10.0],
+        };
+        let poses = vec![
+            Pose2::new(1.0, 1.0, 0.0),
+            Pose2::new(2.0, 2.0, 0.0),
+            Pose2::new(9.0, 9.0, 0.0),
+        ];
+        let mut grid = XyGrid::new(bounds, 1.0);
+        for (id, p) in poses.iter().enumerate() {
+            grid.insert(id as u32, p, &poses);
+        }
+        grid.remove(1, &poses[1]);
+        let got = grid.k_nearest(&poses[0], 1, &poses, &metric, 1.0, Some(0));
+        assert_eq!(got[0].id, 2);
+        assert_eq!(grid.len(), 2);
+    }
+}
