@@ -55,7 +55,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
     #[test]
     fn volumetric_never_calls_free_what_exact_finds_in_collision(
-        fx in 0.0f64..1.0, fy in 0.0f64..1.0, yaw in -3.14159f64..3.14159, in_lunar in any::<bool>(),
+        fx in 0.0f64..1.0, fy in 0.0f64..1.0, yaw in -std::f64::consts::PI..std::f64::consts::PI, in_lunar in any::<bool>(),
     ) {
         let c = if in_lunar { lunar() } else { indoor() };
         let b = c.world.bounds();
@@ -77,7 +77,7 @@ fn agreement(c: &Checkers, n: usize, seed: u64) -> [usize; 4] {
         let state = Pose2::new(
             rng.random_range(b.min[0]..b.max[0]),
             rng.random_range(b.min[1]..b.max[1]),
-            rng.random_range(-3.14159..3.14159),
+            rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
         );
         let k = match (c.volumetric.is_valid(&state), c.exact.is_valid(&state)) {
             (true, true) => 0,

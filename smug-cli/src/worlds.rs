@@ -1,7 +1,19 @@
-//! `smug worlds`: look at, convert and export worlds (filled in with the worlds issue).
+//! `smug worlds`: look at, convert and export worlds.
+//!
+//! A world is named in one of three ways: a registered world plugin built with its
+//! default parameters (`lunar`; `--set world.params.KEY=VALUE` changes them), a pipeline
+//! config (`configs/lunar.toml`: its world and traversability stages are built), or a map
+//! YAML (`map.yaml`: imported as is, the mission optional).
 
 use crate::Outcome;
+use anyhow::{bail, Context};
 use clap::Subcommand;
+use smug_core::{LoadedConfig, Mission, Pipeline, Pose2, World};
+use smug_worlds::export::ExportOptions;
+use smug_worlds::map_file::{check_mission_inside, file_stem, DEFAULT_OBSTACLE_HEIGHT};
+use smug_worlds::render::RasterLayer;
+use smug_worlds::{load_map, load_mission, RenderOptions};
+use std::path::{Path, PathBuf};
 
 /// Arguments of `smug worlds`.
 #[derive(clap::Args, Debug)]
@@ -11,9 +23,262 @@ pub struct WorldsArgs {
 }
 
 #[derive(Subcommand, Debug)]
-enum WorldsCommand {}
+enum WorldsCommand {
+    /// Draw a world (and its mission) as an SVG picture.
+    Show(ShowArgs),
+    /// Convert a MovingAI `.map` grid into a map YAML + PGM.
+    ConvertMovingai(ConvertArgs),
+    /// Export a world as map YAML + occupancy PGM + elevation and traversability PNGs +
+    /// mission TOML.
+    Export(ExportArgs),
+}
+
+/// Which world, and how to build it.
+#[derive(clap::Args, Debug)]
+struct WorldSource {
+    /// A world plugin name (e.g. `lunar`), a pipeline config (`.toml`) or a map (`.yaml`).
+    world: String,
+    /// Override a key: `world.params.KEY=VALUE` for a plugin name, any key for a config.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Seed of the world's random choices (overrides the config's `seed`).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// A mission file (TOML or JSON) replacing the world's mission.
+    #[arg(long, value_name = "FILE")]
+    mission: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
+struct ShowArgs {
+    #[command(flatten)]
+    source: WorldSource,
+    /// The SVG file to write.
+    #[arg(long, value_name = "FILE.svg")]
+    out: PathBuf,
+    /// Title above the picture (default: the world's name).
+    #[arg(long)]
+    title: Option<String>,
+    /// The layer drawn under the mission.
+    #[arg(long, value_enum, default_value_t = LayerArg::Auto)]
+    layer: LayerArg,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum LayerArg {
+    /// Traversability when the world has it, elevation otherwise.
+    Auto,
+    /// The elevation.
+    Elevation,
+    /// The traversability.
+    Traversability,
+}
+
+#[derive(clap::Args, Debug)]
+struct ConvertArgs {
+    /// The MovingAI `.map` file.
+    input: PathBuf,
+    /// The map YAML to write (the PGM goes beside it, with the same stem).
+    output: PathBuf,
+    /// Metres per grid cell.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    resolution: f64,
+}
+
+#[derive(clap::Args, Debug)]
+struct ExportArgs {
+    #[command(flatten)]
+    source: WorldSource,
+    /// The folder to write into.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// File name stem (default: the world's name).
+    #[arg(long)]
+    stem: Option<String>,
+    /// Cells higher than the lowest elevation plus this (metres) are occupied in the PGM.
+    #[arg(long, default_value_t = smug_worlds::export::DEFAULT_OBSTACLE_THRESHOLD, allow_negative_numbers = true)]
+    obstacle_threshold: f64,
+}
 
 /// Runs `smug worlds`.
 pub fn run(args: WorldsArgs) -> anyhow::Result<Outcome> {
-    match args.command {}
+    match args.command {
+        WorldsCommand::Show(args) => show(args),
+        WorldsCommand::ConvertMovingai(args) => convert(args),
+        WorldsCommand::Export(args) => export(args),
+    }
+}
+
+fn show(args: ShowArgs) -> anyhow::Result<Outcome> {
+    let world = load_world(&args.source)?;
+    let options = RenderOptions {
+        title: Some(args.title.unwrap_or_else(|| world.name.clone())),
+        layer: match args.layer {
+            LayerArg::Auto => RasterLayer::Auto,
+            LayerArg::Elevation => RasterLayer::Elevation,
+            LayerArg::Traversability => RasterLayer::Traversability,
+        },
+        ..RenderOptions::default()
+    };
+    let svg = smug_worlds::render_svg(&world, &options);
+    create_parent(&args.out)?;
+    std::fs::write(&args.out, svg)
+        .with_context(|| format!("{}: cannot write", args.out.display()))?;
+    println!("wrote {}: {}", args.out.display(), describe(&world));
+    Ok(Outcome::Ok)
+}
+
+fn convert(args: ConvertArgs) -> anyhow::Result<Outcome> {
+    let pgm = smug_worlds::convert_movingai(&args.input, &args.output, args.resolution)?;
+    println!(
+        "wrote {} and {} ({} m per cell)",
+        args.output.display(),
+        pgm.display(),
+        args.resolution
+    );
+    Ok(Outcome::Ok)
+}
+
+fn export(args: ExportArgs) -> anyhow::Result<Outcome> {
+    let world = load_world(&args.source)?;
+    let stem = args.stem.unwrap_or_else(|| file_safe(&world.name));
+    let options = ExportOptions {
+        obstacle_threshold: args.obstacle_threshold,
+    };
+    let yaml = smug_worlds::export_world_with(&world, &args.out, &stem, &options)?;
+    println!("wrote {}: {}", yaml.display(), describe(&world));
+    Ok(Outcome::Ok)
+}
+
+/// How the command line names a world.
+enum WorldSpec<'a> {
+    Map(&'a Path),
+    Config(&'a Path),
+    Plugin(&'a str),
+}
+
+fn world_spec(text: &str) -> anyhow::Result<WorldSpec<'_>> {
+    let path = Path::new(text);
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("yaml" | "yml") => Ok(WorldSpec::Map(path)),
+        Some("toml") => Ok(WorldSpec::Config(path)),
+        _ if text.contains(['/', '\\']) || path.is_file() => {
+            bail!("{text}: not a world plugin name, a pipeline config (.toml) or a map (.yaml)")
+        }
+        _ => Ok(WorldSpec::Plugin(text)),
+    }
+}
+
+/// Builds the world the command line names, with its `--mission` if given.
+fn load_world(source: &WorldSource) -> anyhow::Result<World> {
+    let mut overrides = source.set.clone();
+    if let Some(seed) = source.seed {
+        overrides.push(format!("seed={seed}"));
+    }
+    let mut world = match world_spec(&source.world)? {
+        WorldSpec::Map(path) => {
+            if !source.set.is_empty() {
+                bail!(
+                    "{}: --set applies to world plugins and pipeline configs, not to maps",
+                    path.display()
+                );
+            }
+            return load_map_world(path, source.mission.as_deref());
+        }
+        WorldSpec::Config(path) => {
+            let loaded = LoadedConfig::from_file(path, &overrides)?;
+            build_world(loaded).with_context(|| path.display().to_string())?
+        }
+        WorldSpec::Plugin(name) => {
+            let text = format!("[world]\ntype = {}\n", toml::Value::String(name.into()));
+            let loaded =
+                LoadedConfig::from_text(&text, "<command line>", Path::new("."), &overrides)?;
+            build_world(loaded).with_context(|| format!("world plugin `{name}`"))?
+        }
+    };
+    if let Some(path) = &source.mission {
+        let mission = load_mission(path)?;
+        check_mission_inside(&mission, &world.elevation.geometry, path)?;
+        world.mission = mission;
+    }
+    Ok(world)
+}
+
+/// Builds the world and traversability stages of a config (the others are not needed).
+fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<World> {
+    let config = &mut loaded.config;
+    config.validity = None;
+    config.motion = None;
+    config.sampler = None;
+    config.planner = None;
+    config.sequencer = None;
+    config.selector = None;
+    let pipeline = Pipeline::assemble(&loaded)?;
+    match pipeline.world {
+        Some(world) => Ok(World::clone(&world)),
+        None => bail!("the config has no [world] section"),
+    }
+}
+
+/// Imports a map YAML; without a mission (`--mission` or the YAML's `mission` key) the
+/// world gets an empty one starting at the map's centre.
+fn load_map_world(path: &Path, mission: Option<&Path>) -> anyhow::Result<World> {
+    let layers = load_map(path, DEFAULT_OBSTACLE_HEIGHT)?;
+    let mission = match mission.or(layers.mission_file.as_deref()) {
+        Some(file) => load_mission(file)?,
+        None => {
+            let b = layers.elevation.geometry.bounds();
+            Mission {
+                start: Pose2::new(
+                    (b.min[0] + b.max[0]) / 2.0,
+                    (b.min[1] + b.max[1]) / 2.0,
+                    0.0,
+                ),
+                end: None,
+                targets: Vec::new(),
+            }
+        }
+    };
+    Ok(layers.into_world(file_stem(path), mission, path)?)
+}
+
+fn describe(world: &World) -> String {
+    let g = world.elevation.geometry;
+    format!(
+        "world `{}`, {}×{} cells at {} m, {} targets, {} poses of interest",
+        world.name,
+        g.size[0],
+        g.size[1],
+        g.resolution,
+        world.mission.targets.len(),
+        world.mission.poi_count()
+    )
+}
+
+/// `name` with every character but letters, digits, `-`, `_` and `.` replaced by `-`.
+fn file_safe(name: &str) -> String {
+    let safe: String = name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '-'
+            }
+        })
+        .collect();
+    let trimmed = safe.trim_matches(['-', '.']);
+    if trimmed.is_empty() {
+        "world".to_string()
+    } else {
+        trimmed.to_string()
+    }
+}
+
+fn create_parent(file: &Path) -> anyhow::Result<()> {
+    match file.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => std::fs::create_dir_all(dir)
+            .with_context(|| format!("{}: cannot create folder", dir.display())),
+        _ => Ok(()),
+    }
 }

@@ -110,7 +110,7 @@ impl LazyPrmStar {
                 format!("improvement must be in [0, 1), got {}", params.improvement),
             ));
         }
-        if params.time_limit.is_some_and(|t| !(t > 0.0)) {
+        if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
         }
         let (w_t, _) = metric.lower_bound_weights();
@@ -267,7 +267,9 @@ impl LazyPrmStar {
             None
         };
         let (mut stall, mut since_attempt) = (0u32, 0u32);
-        while !clock.is_done() && !(best.is_some() && stall >= self.params.max_stall) {
+        let max_stall = self.params.max_stall;
+        let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
+        while !clock.is_done() && !stalled(&best, stall) {
             let informed = best.as_ref().map(|b| InformedSet {
                 start: *start,
                 goal: *goal,

@@ -289,7 +289,7 @@ mod tests {
 
     proptest! {
         #[test]
-        fn traversability_falls_with_slope(s1 in 0.0f64..0.5, s2 in 0.0f64..0.5, dir in 0.0f64..6.28) {
+        fn traversability_falls_with_slope(s1 in 0.0f64..0.5, s2 in 0.0f64..0.5, dir in 0.0f64..std::f64::consts::TAU) {
             let (low, high) = if s1 < s2 { (s1, s2) } else { (s2, s1) };
             let ramp = |s: f64| world_from(move |x, y| s * (x * dir.cos() + y * dir.sin()));
             let (a, b) = (score_at_centre(&ramp(low)), score_at_centre(&ramp(high)));

@@ -127,7 +127,7 @@ fn room_sides(room: &Rect) -> [Side; 4] {
 /// Builds the indoor world from `params` with randomness from `rng`.
 pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<World, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
-    if !(params.size >= 8.0) {
+    if params.size.is_nan() || params.size < 8.0 {
         return Err(bad(format!(
             "size must be ≥ 8 m for four rooms, got {}",
             params.size

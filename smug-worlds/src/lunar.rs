@@ -168,7 +168,10 @@ fn pois_around(center: [f64; 2], distance: f64, count: usize, offset: f64) -> Ve
 /// Builds the lunar world from `params` with randomness from `rng`.
 pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<World, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
-    if params.pois_per_target == 0 || !(params.inspection_distance > 0.0) {
+    if params.pois_per_target == 0
+        || params.inspection_distance.is_nan()
+        || params.inspection_distance <= 0.0
+    {
         return Err(bad(
             "pois_per_target and inspection_distance must be > 0".into()
         ));

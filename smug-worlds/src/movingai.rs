@@ -1,1 +1,407 @@
-//! (in progress)
+//! MovingAI grid benchmarks (<https://movingai.com/benchmarks/formats.html>): `.map`
+//! and `.scen` readers and a converter to the map format of [`crate::map_file`].
+//!
+//! # Coordinates
+//!
+//! A MovingAI cell `(x, y)` is column `x` and row `y`, both 0-based, with row 0 at the
+//! **top** of the map. [`convert_movingai`] writes the map with origin `[0, 0]` and
+//! `resolution` metres per cell, so MovingAI row 0 becomes the top row of the world
+//! (largest y). The centre of MovingAI cell `(sx, sy)` of a map `H` rows high lies at
+//!
+//! ```text
+//! world x = (sx + 0.5) · resolution
+//! world y = (H − 1 − sy + 0.5) · resolution
+//! ```
+//!
+//! which [`scenario_to_world`] computes (and [`world_to_scenario`] inverts). Scenario
+//! path lengths are in cells: multiply by `resolution` for metres.
+
+use crate::export::{write_map_yaml, write_pgm, ExportError, FREE_VALUE, OCCUPIED_VALUE};
+use crate::map_file::MapYaml;
+use std::path::{Path, PathBuf};
+
+/// Why a MovingAI file could not be read or converted.
+#[derive(Debug, thiserror::Error)]
+pub enum MovingAiError {
+    /// The file could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file is malformed.
+    #[error("{}:{line}: {message}", path.display())]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A conversion parameter is out of its domain.
+    #[error("{}: {message}", path.display())]
+    Invalid {
+        /// The file being converted.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// Writing the converted map failed.
+    #[error(transparent)]
+    Write(#[from] ExportError),
+}
+
+/// A MovingAI grid map: which cells are passable, row 0 at the top.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MovingAiMap {
+    /// Number of columns.
+    pub width: usize,
+    /// Number of rows.
+    pub height: usize,
+    /// Passability of cell `(x, y)` at index `y · width + x` (row 0 = top).
+    pub passable: Vec<bool>,
+}
+
+impl MovingAiMap {
+    /// True when cell `(x, y)` exists and is passable.
+    pub fn is_passable(&self, x: usize, y: usize) -> bool {
+        x < self.width && y < self.height && self.passable[y * self.width + x]
+    }
+}
+
+/// One scenario (one line of a `.scen` file): a start and a goal cell on a map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    /// Difficulty bucket.
+    pub bucket: u32,
+    /// The map's file name, as written.
+    pub map: String,
+    /// The map's width in cells.
+    pub width: usize,
+    /// The map's height in cells.
+    pub height: usize,
+    /// Start cell `(x, y)`, row 0 at the top.
+    pub start: [usize; 2],
+    /// Goal cell `(x, y)`, row 0 at the top.
+    pub goal: [usize; 2],
+    /// Optimal 8-connected path length (no corner cutting), in cells.
+    pub optimal_length: f64,
+}
+
+/// The world coordinates of the centre of MovingAI cell `cell = (x, y)` on a map
+/// `map_height` rows high, converted at `resolution` metres per cell with origin `[0, 0]`.
+pub fn scenario_to_world(cell: [usize; 2], map_height: usize, resolution: f64) -> [f64; 2] {
+    let [x, y] = cell;
+    [
+        (x as f64 + 0.5) * resolution,
+        (map_height as f64 - 1.0 - y as f64 + 0.5) * resolution,
+    ]
+}
+
+/// The MovingAI cell `(x, y)` containing world point `point` (inverse of
+/// [`scenario_to_world`]); `None` outside a `width` × `map_height` map.
+pub fn world_to_scenario(
+    point: [f64; 2],
+    width: usize,
+    map_height: usize,
+    resolution: f64,
+) -> Option<[usize; 2]> {
+    let column = point[0] / resolution;
+    let row_from_bottom = point[1] / resolution;
+    if !(column >= 0.0 && row_from_bottom >= 0.0) {
+        return None;
+    }
+    let (x, j) = (column as usize, row_from_bottom as usize);
+    (x < width && j < map_height).then(|| [x, map_height - 1 - j])
+}
+
+/// Reads a `.map` file.
+pub fn read_map(path: &Path) -> Result<MovingAiMap, MovingAiError> {
+    parse_map(&read_text(path)?, path)
+}
+
+/// Parses the text of a `.map` file; `path` names it in errors.
+pub fn parse_map(text: &str, path: &Path) -> Result<MovingAiMap, MovingAiError> {
+    let syntax = |line: usize, message: String| MovingAiError::Syntax {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut lines = text.lines().map(|l| l.trim_end_matches('\r')).enumerate();
+    let mut next_line = |expected: &str| {
+        lines
+            .next()
+            .map(|(k, line)| (k + 1, line))
+            .ok_or_else(|| syntax(text.lines().count() + 1, format!("missing {expected}")))
+    };
+    let (line, type_line) = next_line("`type octile` line")?;
+    if type_line.split_whitespace().collect::<Vec<_>>() != ["type", "octile"] {
+        return Err(syntax(
+            line,
+            format!("expected `type octile`, got `{type_line}`"),
+        ));
+    }
+    let mut width = None;
+    let mut height = None;
+    let map_line = loop {
+        let (line, header) = next_line("`map` line")?;
+        let words: Vec<&str> = header.split_whitespace().collect();
+        match words.as_slice() {
+            ["map"] => break line,
+            ["height", n] => height = Some(parse_dimension(n).map_err(|m| syntax(line, m))?),
+            ["width", n] => width = Some(parse_dimension(n).map_err(|m| syntax(line, m))?),
+            _ => {
+                return Err(syntax(
+                    line,
+                    format!("expected `height N`, `width N` or `map`, got `{header}`"),
+                ))
+            }
+        }
+    };
+    let (Some(width), Some(height)) = (width, height) else {
+        return Err(syntax(
+            map_line,
+            "the header needs `height` and `width`".into(),
+        ));
+    };
+    let mut passable = Vec::new();
+    for row in 0..height {
+        let (line, text) = next_line(&format!("row {row} of {height}"))?;
+        passable.extend(parse_row(text, width).map_err(|m| syntax(line, m))?);
+    }
+    if let Some((k, extra)) = lines.find(|(_, l)| !l.trim().is_empty()) {
+        return Err(syntax(
+            k + 1,
+            format!("extra line after {height} rows: `{extra}`"),
+        ));
+    }
+    Ok(MovingAiMap {
+        width,
+        height,
+        passable,
+    })
+}
+
+fn parse_dimension(word: &str) -> Result<usize, String> {
+    match word.parse::<usize>() {
+        Ok(n) if n > 0 => Ok(n),
+        _ => Err(format!("expected a positive whole number, got `{word}`")),
+    }
+}
+
+/// The passability of one map row.
+fn parse_row(text: &str, width: usize) -> Result<Vec<bool>, String> {
+    let cells: Vec<char> = text.chars().collect();
+    if cells.len() != width {
+        return Err(format!(
+            "row has {} cells, the header says width {width}",
+            cells.len()
+        ));
+    }
+    cells
+        .iter()
+        .enumerate()
+        .map(|(column, &c)| match c {
+            '.' | 'G' | 'S' => Ok(true),
+            '@' | 'O' | 'T' | 'W' => Ok(false),
+            other => Err(format!(
+                "unknown terrain `{}` in column {} (expected one of . G S @ O T W)",
+                other.escape_debug(),
+                column + 1
+            )),
+        })
+        .collect()
+}
+
+/// Reads a `.scen` file.
+pub fn read_scenarios(path: &Path) -> Result<Vec<Scenario>, MovingAiError> {
+    parse_scenarios(&read_text(path)?, path)
+}
+
+/// Parses the text of a `.scen` file; `path` names it in errors.
+pub fn parse_scenarios(text: &str, path: &Path) -> Result<Vec<Scenario>, MovingAiError> {
+    let syntax = |line: usize, message: String| MovingAiError::Syntax {
+        path: path.to_path_buf(),
+        line,
+        message,
+    };
+    let mut lines = text.lines().map(|l| l.trim_end_matches('\r')).enumerate();
+    match lines.next() {
+        Some((_, first)) if first.split_whitespace().collect::<Vec<_>>() == ["version", "1"] => {}
+        Some((_, first)) => return Err(syntax(1, format!("expected `version 1`, got `{first}`"))),
+        None => return Err(syntax(1, "empty file, expected `version 1`".into())),
+    }
+    lines
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(k, l)| parse_scenario(l).map_err(|m| syntax(k + 1, m)))
+        .collect()
+}
+
+fn parse_scenario(line: &str) -> Result<Scenario, String> {
+    let fields: Vec<&str> = line.split('\t').map(str::trim).collect();
+    let fields: Vec<&str> = if fields.len() == 9 {
+        fields
+    } else {
+        line.split_whitespace().collect()
+    };
+    let [bucket, map, width, height, sx, sy, gx, gy, length] = fields.as_slice() else {
+        return Err(format!(
+            "expected 9 fields (bucket map width height start_x start_y goal_x goal_y \
+             optimal_length), got {}",
+            fields.len()
+        ));
+    };
+    let whole = |name: &str, word: &str| {
+        word.parse::<usize>()
+            .map_err(|_| format!("`{name}` must be a whole number ≥ 0, got `{word}`"))
+    };
+    let scenario = Scenario {
+        bucket: whole("bucket", bucket)? as u32,
+        map: map.to_string(),
+        width: whole("width", width)?,
+        height: whole("height", height)?,
+        start: [whole("start_x", sx)?, whole("start_y", sy)?],
+        goal: [whole("goal_x", gx)?, whole("goal_y", gy)?],
+        optimal_length: length
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && *v >= 0.0)
+            .ok_or_else(|| format!("`optimal_length` must be a number ≥ 0, got `{length}`"))?,
+    };
+    let inside = |[x, y]: [usize; 2]| x < scenario.width && y < scenario.height;
+    if !(inside(scenario.start) && inside(scenario.goal)) {
+        return Err(format!(
+            "start {:?} or goal {:?} lies outside the {}×{} map",
+            scenario.start, scenario.goal, scenario.width, scenario.height
+        ));
+    }
+    Ok(scenario)
+}
+
+fn read_text(path: &Path) -> Result<String, MovingAiError> {
+    std::fs::read_to_string(path).map_err(|source| MovingAiError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Converts the MovingAI map `map` into `out_yaml` and a PGM beside it (same stem),
+/// at `resolution` metres per cell with origin `[0, 0]` (see the
+/// [module documentation](self) for the coordinates). Passable cells are free,
+/// blocked ones occupied. Returns the PGM's path.
+pub fn convert_movingai(
+    map: &Path,
+    out_yaml: &Path,
+    resolution: f64,
+) -> Result<PathBuf, MovingAiError> {
+    if !(resolution.is_finite() && resolution > 0.0) {
+        return Err(MovingAiError::Invalid {
+            path: map.to_path_buf(),
+            message: format!("resolution must be a finite number > 0, got {resolution}"),
+        });
+    }
+    let grid = read_map(map)?;
+    let dir = out_yaml.parent().unwrap_or(Path::new(""));
+    if !dir.as_os_str().is_empty() {
+        std::fs::create_dir_all(dir).map_err(|source| ExportError::Write {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    let pgm_name = format!("{}.pgm", crate::map_file::file_stem(out_yaml));
+    let pgm_path = dir.join(&pgm_name);
+    let pixels: Vec<u8> = grid
+        .passable
+        .iter()
+        .map(|&free| if free { FREE_VALUE } else { OCCUPIED_VALUE })
+        .collect();
+    write_pgm(&pgm_path, [grid.width, grid.height], &pixels)?;
+    let yaml = MapYaml::new(pgm_name, resolution, [0.0, 0.0]);
+    write_map_yaml(
+        out_yaml,
+        &yaml,
+        &format!("converted from MovingAI map {}", map.display()),
+    )?;
+    Ok(pgm_path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MAP: &str = "type octile\nheight 2\nwidth 3\nmap\n.@T\nGS.\n";
+
+    #[test]
+    fn parses_maps_with_top_row_first() {
+        let map = parse_map(MAP, Path::new("m.map")).unwrap();
+        assert_eq!((map.width, map.height), (3, 2));
+        assert!(map.is_passable(0, 0) && !map.is_passable(1, 0) && !map.is_passable(2, 0));
+        assert!(map.is_passable(1, 1) && !map.is_passable(3, 1));
+        let crlf = MAP.replace('\n', "\r\n");
+        assert_eq!(parse_map(&crlf, Path::new("m.map")).unwrap(), map);
+    }
+
+    #[test]
+    fn map_errors_name_file_and_line() {
+        let cases = [
+            (
+                MAP.replace(".@T", ".x."),
+                "m.map:5: unknown terrain `x` in column 2",
+            ),
+            (MAP.replace(".@T", ".@"), "m.map:5: row has 2 cells"),
+            (MAP.replace("GS.\n", ""), "m.map:6: missing row 1 of 2"),
+            (
+                MAP.replace("octile", "tile"),
+                "m.map:1: expected `type octile`",
+            ),
+            (
+                MAP.replace("width 3", "width -3"),
+                "m.map:3: expected a positive",
+            ),
+            (format!("{MAP}...\n"), "m.map:7: extra line"),
+            (
+                MAP.replace("height 2", "height 4000000000"),
+                "m.map:7: missing row 2 of 4000000000",
+            ),
+        ];
+        for (text, needle) in cases {
+            let err = parse_map(&text, Path::new("m.map"))
+                .unwrap_err()
+                .to_string();
+            assert!(err.starts_with(needle), "{err}");
+        }
+    }
+
+    #[test]
+    fn parses_scenarios() {
+        let text = "version 1\n3\tm.map\t3\t2\t0\t1\t2\t1\t2.5\n\n";
+        let s = parse_scenarios(text, Path::new("m.scen")).unwrap();
+        assert_eq!(s.len(), 1);
+        assert_eq!(
+            (s[0].start, s[0].goal, s[0].optimal_length),
+            ([0, 1], [2, 1], 2.5)
+        );
+        let err = parse_scenarios(
+            "version 1\n3\tm.map\t3\t2\t0\t5\t2\t1\t2.5\n",
+            Path::new("m.scen"),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.starts_with("m.scen:2: start [0, 5]"), "{err}");
+        assert!(parse_scenarios("version 2\n", Path::new("m.scen")).is_err());
+    }
+
+    #[test]
+    fn scenario_cells_map_to_world_centres_and_back() {
+        assert_eq!(scenario_to_world([0, 0], 4, 0.5), [0.25, 1.75]);
+        assert_eq!(scenario_to_world([2, 3], 4, 0.5), [1.25, 0.25]);
+        for cell in [[0, 0], [2, 3], [1, 2]] {
+            let p = scenario_to_world(cell, 4, 0.5);
+            assert_eq!(world_to_scenario(p, 3, 4, 0.5), Some(cell));
+        }
+        assert_eq!(world_to_scenario([-0.1, 0.0], 3, 4, 0.5), None);
+    }
+}
