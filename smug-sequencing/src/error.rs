@@ -1,0 +1,49 @@
+//! The crate's typed errors; the [`Sequencer`](smug_core::Sequencer) implementations wrap
+//! them in [`smug_core::Error::Stage`] with the stage name `"sequencer"`.
+
+/// Why a solver refuses an instance.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SequencingError {
+    /// The cost matrix has no node, not even the start.
+    #[error("the cost matrix is empty: a tour needs at least the start node 0")]
+    Empty,
+    /// The end node of an open path is not a node other than the start.
+    #[error("open path end node {end} is invalid for {n} nodes: it must be in 1..{n}")]
+    BadEnd {
+        /// The requested end node.
+        end: usize,
+        /// Number of nodes.
+        n: usize,
+    },
+    /// The instance has more nodes than the solver accepts.
+    #[error("{solver}: {n} nodes exceed its limit of {limit} nodes{hint}")]
+    TooManyNodes {
+        /// The solver.
+        solver: &'static str,
+        /// Number of nodes.
+        n: usize,
+        /// The solver's limit.
+        limit: usize,
+        /// What to do about it (may be empty).
+        hint: &'static str,
+    },
+    /// Held-Karp's table would not fit the memory limit.
+    #[error(
+        "held-karp: {n} nodes need a {needed_mib} MiB table, more than the limit of \
+         {limit_mib} MiB (max_memory_mib); use local-search or auto"
+    )]
+    TooMuchMemory {
+        /// Number of nodes.
+        n: usize,
+        /// Size of the table in MiB.
+        needed_mib: u64,
+        /// The configured limit in MiB.
+        limit_mib: u64,
+    },
+}
+
+impl From<SequencingError> for smug_core::Error {
+    fn from(err: SequencingError) -> Self {
+        smug_core::Error::stage("sequencer", err)
+    }
+}

@@ -1,0 +1,279 @@
+//! `local-search`: iterated local search with LK-style and Or-opt moves.
+//!
+//! 1. A construction ([`Construction`]) gives a first cycle.
+//! 2. Local search to a local optimum: on symmetric matrices LK-style chains of 2-opt
+//!    flips plus Or-opt; on asymmetric ones reversal-free Or-3opt plus Or-opt (see the
+//!    `search` module). Candidate legs come from K-nearest lists and nodes are revisited
+//!    only when their surroundings change (don't-look bits).
+//! 3. Until the budget is spent: a random double bridge on short blocks, local search
+//!    around the changed legs; keep the result if it is no worse than the current tour
+//!    or close to the best one (within a fifth of an average leg), else roll it back.
+//!    The best tour found is returned, never one worse than the construction.
+//!
+//! An open path 0 → … → end is solved as a cycle whose leg end → 0 no move may remove.
+//! The time budget counts from the start of the solve, but the first descent always
+//! completes. With `time_limit_s = 0` and `max_iterations` set, a seed gives
+//! bit-identical tours.
+
+mod construct;
+mod kick;
+mod neighbours;
+mod search;
+mod tour;
+
+pub use construct::Construction;
+
+use crate::costs::{tour_of, trivial_tour, validate, Dist};
+use crate::held_karp::{HeldKarp, HeldKarpParams};
+use kick::Kick;
+use neighbours::Neighbours;
+use search::Search;
+use serde::{Deserialize, Serialize};
+use smug_core::rng::{stage_rng, StageRng};
+use smug_core::termination::TerminationClock;
+use smug_core::{CostMatrix, Sequencer, Termination, Tour, TourKind};
+
+/// Below this many nodes the local search hands over to Held-Karp (exact and instant).
+const EXACT_BELOW: usize = 13;
+/// A perturbed tour is kept when it is within this fraction of an average leg of the
+/// best tour (measured on the TSPLIB suite: 0.2 beats both 0 and 0.5).
+const ACCEPT_WORSE_FRACTION: f64 = 0.2;
+/// Longest block a double bridge moves.
+const KICK_MAX_BLOCK: usize = 50;
+
+/// Parameters of [`LocalSearch`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LocalSearchParams {
+    /// Wall-time budget in seconds; 0 = no time limit (then `max_iterations` is needed).
+    pub time_limit_s: f64,
+    /// Budget of perturbation rounds (double bridge + local search); unset = no limit.
+    /// With `time_limit_s = 0`, the result depends only on the seed.
+    pub max_iterations: Option<u64>,
+    /// Candidate legs per node: the K cheapest (at least 3).
+    pub neighbours: usize,
+    /// First tour: `"greedy"` or `"nearest-neighbour"`.
+    pub construction: Construction,
+}
+
+impl Default for LocalSearchParams {
+    fn default() -> Self {
+        Self {
+            time_limit_s: 1.0,
+            max_iterations: None,
+            neighbours: 10,
+            construction: Construction::Greedy,
+        }
+    }
+}
+
+impl LocalSearchParams {
+    /// The stopping rule: the time budget, the iteration budget, or both.
+    pub fn termination(&self) -> Termination {
+        let time = (self.time_limit_s > 0.0).then_some(self.time_limit_s);
+        Termination::from_budgets(time, self.max_iterations)
+    }
+
+    /// Checks the values; the message names the offending parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.time_limit_s >= 0.0 && self.time_limit_s.is_finite()) {
+            return Err(format!(
+                "time_limit_s = {} must be a finite number ≥ 0",
+                self.time_limit_s
+            ));
+        }
+        if self.time_limit_s == 0.0 && self.max_iterations.is_none() {
+            return Err("time_limit_s = 0 needs max_iterations, or the search never stops".into());
+        }
+        if self.neighbours < 3 {
+            return Err(format!(
+                "neighbours = {} must be at least 3",
+                self.neighbours
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What a local search run did, besides its tour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SearchStats {
+    /// True cost of the constructed tour.
+    pub construction_cost: f64,
+    /// True cost of the first local optimum.
+    pub first_optimum_cost: f64,
+    /// Perturbation rounds done.
+    pub iterations: u64,
+}
+
+/// Iterated local search for any size, matrix and tour kind. `Send + Sync`: each solve
+/// starts from a copy of the seeded generator, so solves do not influence each other.
+#[derive(Clone, Debug)]
+pub struct LocalSearch {
+    params: LocalSearchParams,
+    rng: StageRng,
+}
+
+impl LocalSearch {
+    /// A solver drawing its randomness from `rng` (e.g. `ctx.rng("sequencer")`).
+    pub fn new(params: LocalSearchParams, rng: StageRng) -> smug_core::Result<Self> {
+        params.validate().map_err(|m| {
+            smug_core::Error::invalid_param("sequencer", format!("local-search: {m}"))
+        })?;
+        Ok(Self { params, rng })
+    }
+
+    /// A solver seeded like a pipeline with seed `seed` would seed it.
+    pub fn with_seed(params: LocalSearchParams, seed: u64) -> smug_core::Result<Self> {
+        Self::new(params, stage_rng(seed, "sequencer"))
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &LocalSearchParams {
+        &self.params
+    }
+
+    /// Solves and reports what the search did.
+    pub fn solve_with_stats(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+    ) -> smug_core::Result<(Tour, SearchStats)> {
+        validate(costs.len(), kind)?;
+        if costs.len() < EXACT_BELOW {
+            let tour = match trivial_tour(costs, kind) {
+                Some(tour) => tour,
+                None => HeldKarp::new(HeldKarpParams::default())?.solve(costs, kind)?,
+            };
+            let stats = SearchStats {
+                construction_cost: tour.cost,
+                first_optimum_cost: tour.cost,
+                iterations: 0,
+            };
+            return Ok((tour, stats));
+        }
+        Ok(self.iterated_local_search(costs, kind))
+    }
+
+    fn iterated_local_search(&self, costs: &CostMatrix, kind: TourKind) -> (Tour, SearchStats) {
+        let rule = self.params.termination();
+        let mut clock = rule.start();
+        let dist = Dist::new(costs);
+        let neighbours = Neighbours::new(&dist, self.params.neighbours);
+        let end = match kind {
+            TourKind::Closed => None,
+            TourKind::OpenTo(end) => Some(end),
+        };
+        let fixed = end.map(|end| (end, 0));
+        let first = construct::construct(self.params.construction, &dist, &neighbours, fixed);
+        let construction = tour_of(costs, rotate_to_start(&first, end), kind);
+
+        let mut search = Search::new(&dist, &neighbours, &first, fixed);
+        search.activate_all();
+        search.optimise();
+        search.tour.commit();
+        let first_optimum_cost = costs.tour_cost(&search.tour.path_from(0, end), kind);
+
+        let kick = if dist.is_symmetric() {
+            Kick::SegmentSwap
+        } else {
+            Kick::TripleReversal
+        };
+        let iterations = self.perturb_until_done(&mut search, kick, &mut clock);
+        let tour = tour_of(costs, search.tour.path_from(0, end), kind);
+        let stats = SearchStats {
+            construction_cost: construction.cost,
+            first_optimum_cost,
+            iterations,
+        };
+        // Moves are judged on the finite working copy; never hand back a worse tour.
+        if construction.cost < tour.cost {
+            (construction, stats)
+        } else {
+            (tour, stats)
+        }
+    }
+
+    /// The iterated local search loop; leaves the best tour found in `search` and
+    /// returns the rounds done.
+    ///
+    /// Acceptance: a perturbed-and-reoptimised tour replaces the current one when it is
+    /// no worse, or when it is within a small threshold of the best tour (a fraction of
+    /// an average leg), which lets the search drift across plateaus and shallow basins.
+    fn perturb_until_done(
+        &self,
+        search: &mut Search<'_>,
+        kick: Kick,
+        clock: &mut TerminationClock<'_>,
+    ) -> u64 {
+        let mut rng = self.rng.clone();
+        let eps = search.dist.eps();
+        let mut current = search.cost();
+        let mut best = current;
+        let mut best_order = search.tour.order().to_vec();
+        let threshold = ACCEPT_WORSE_FRACTION * best.abs() / search.tour.len() as f64;
+        while !clock.is_done() {
+            clock.tick();
+            let Some(kick_cost) = search.kick(kick, &mut rng, KICK_MAX_BLOCK) else {
+                break;
+            };
+            let candidate = current + kick_cost - search.optimise();
+            if candidate <= current || candidate < best + threshold {
+                search.tour.commit();
+                current = candidate;
+                if candidate < best - eps {
+                    best = candidate;
+                    best_order.clear();
+                    best_order.extend_from_slice(search.tour.order());
+                }
+            } else {
+                search.tour.rollback(0);
+            }
+        }
+        if current > best + eps {
+            search.reset(&best_order);
+        }
+        clock.iterations()
+    }
+}
+
+/// `order` (a cycle) read from node 0, ending at `end` if given.
+fn rotate_to_start(order: &[usize], end: Option<usize>) -> Vec<usize> {
+    tour::ArrayTour::new(order).path_from(0, end)
+}
+
+impl Sequencer for LocalSearch {
+    fn solve(&self, costs: &CostMatrix, kind: TourKind) -> smug_core::Result<Tour> {
+        Ok(self.solve_with_stats(costs, kind)?.0)
+    }
+}
+
+/// The tour a construction heuristic gives (what the local search starts from), with
+/// `neighbours` candidate legs per node for the greedy construction.
+pub fn construct_tour(
+    costs: &CostMatrix,
+    kind: TourKind,
+    method: Construction,
+    neighbours: usize,
+) -> smug_core::Result<Tour> {
+    validate(costs.len(), kind)?;
+    if let Some(tour) = trivial_tour(costs, kind) {
+        return Ok(tour);
+    }
+    let dist = Dist::new(costs);
+    let lists = Neighbours::new(&dist, neighbours.max(1));
+    let end = match kind {
+        TourKind::Closed => None,
+        TourKind::OpenTo(end) => Some(end),
+    };
+    let cycle = construct::construct(method, &dist, &lists, end.map(|e| (e, 0)));
+    Ok(tour_of(costs, rotate_to_start(&cycle, end), kind))
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::SequencerStage,
+    name = "local-search",
+    summary = "iterated LK-style/Or-opt local search (any size; asymmetric and open paths ok)",
+    params = LocalSearchParams,
+    build = |params, ctx| Ok(Box::new(LocalSearch::new(params, ctx.rng("sequencer"))?)),
+);

@@ -1,0 +1,758 @@
+//! A TSPLIB95 reader (Reinelt 1991; see TSPLIB95's `DOC.PS`).
+//!
+//! Supported: `TYPE` TSP and ATSP; `EDGE_WEIGHT_TYPE` EUC_2D, CEIL_2D, MAN_2D, MAX_2D,
+//! GEO, ATT and EXPLICIT with `EDGE_WEIGHT_FORMAT` FULL_MATRIX, UPPER_ROW, LOWER_ROW,
+//! UPPER_DIAG_ROW, LOWER_DIAG_ROW and their column-wise twins. Numbers of a section may
+//! wrap across lines arbitrarily. Distances are rounded exactly as TSPLIB defines them, so
+//! tour costs are the integers the published optima refer to.
+//!
+//! Tolerated quirks: diagonal placeholders (9999, 100000000, …) are ignored — the diagonal
+//! is always 0; `DIMENSION` wins over the number in the name (ftv33 has 34 nodes); a
+//! missing `EOF`; blank lines; `KEY: value`, `KEY : value` and `KEY value`-less sections.
+
+use smug_core::CostMatrix;
+use std::path::Path;
+
+/// Problem types the reader accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProblemType {
+    /// Symmetric TSP.
+    Tsp,
+    /// Asymmetric TSP.
+    Atsp,
+}
+
+/// A TSPLIB instance: its name and the cost matrix (node `k` of the file is index
+/// `k − 1`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TsplibInstance {
+    /// `NAME` (the file stem if absent).
+    pub name: String,
+    /// `TYPE`.
+    pub problem: ProblemType,
+    /// `COMMENT` lines, joined.
+    pub comment: String,
+    /// How the weights were given, e.g. `EUC_2D` or `EXPLICIT/FULL_MATRIX`.
+    pub weights: String,
+    /// Costs between nodes, diagonal 0.
+    pub costs: CostMatrix,
+}
+
+/// Why a TSPLIB file cannot be used. Line numbers are 1-based.
+#[derive(Debug, thiserror::Error)]
+pub enum TsplibError {
+    /// The file could not be read.
+    #[error("{path}: cannot read: {error}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why (part of the message, so not also a `source()`).
+        error: std::io::Error,
+    },
+    /// A line is malformed.
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        /// The file.
+        path: String,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file as a whole is unusable (a required key is missing, …).
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Reads a `.tsp` / `.atsp` file.
+pub fn read_tsplib(path: impl AsRef<Path>) -> Result<TsplibInstance, TsplibError> {
+    let path = path.as_ref();
+    let text = read_text(path)?;
+    let mut instance = parse_tsplib(&text, &path.display().to_string())?;
+    if instance.name.is_empty() {
+        instance.name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+    }
+    Ok(instance)
+}
+
+/// Reads a `.tour` file: the order as 0-based node indices.
+pub fn read_tour(path: impl AsRef<Path>) -> Result<Vec<usize>, TsplibError> {
+    let path = path.as_ref();
+    parse_tour(&read_text(path)?, &path.display().to_string())
+}
+
+fn read_text(path: &Path) -> Result<String, TsplibError> {
+    let bytes = std::fs::read(path).map_err(|error| TsplibError::Io {
+        path: path.display().to_string(),
+        error,
+    })?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// How distances are computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum WeightType {
+    Explicit,
+    Euc2d,
+    Ceil2d,
+    Man2d,
+    Max2d,
+    Geo,
+    Att,
+}
+
+/// Layout of an `EDGE_WEIGHT_SECTION` (column-wise formats are read as their row-wise
+/// twins: for a symmetric matrix the number sequences coincide).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum WeightFormat {
+    FullMatrix,
+    UpperRow,
+    LowerRow,
+    UpperDiagRow,
+    LowerDiagRow,
+    Function,
+}
+
+impl WeightFormat {
+    fn value_count(self, n: usize) -> usize {
+        match self {
+            WeightFormat::FullMatrix => n * n,
+            WeightFormat::UpperRow | WeightFormat::LowerRow => n * n.saturating_sub(1) / 2,
+            WeightFormat::UpperDiagRow | WeightFormat::LowerDiagRow => n * (n + 1) / 2,
+            WeightFormat::Function => 0,
+        }
+    }
+
+    /// The `(row, column)` cells in the order the section lists them.
+    fn cells(self, n: usize) -> Box<dyn Iterator<Item = (usize, usize)>> {
+        match self {
+            WeightFormat::FullMatrix => {
+                Box::new((0..n).flat_map(move |i| (0..n).map(move |j| (i, j))))
+            }
+            WeightFormat::UpperRow => {
+                Box::new((0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j))))
+            }
+            WeightFormat::LowerRow => Box::new((0..n).flat_map(|i| (0..i).map(move |j| (i, j)))),
+            WeightFormat::UpperDiagRow => {
+                Box::new((0..n).flat_map(move |i| (i..n).map(move |j| (i, j))))
+            }
+            WeightFormat::LowerDiagRow => {
+                Box::new((0..n).flat_map(|i| (0..=i).map(move |j| (i, j))))
+            }
+            WeightFormat::Function => Box::new(std::iter::empty()),
+        }
+    }
+}
+
+/// A number of a section and the line it is on.
+type Located = (f64, usize);
+
+/// The lines of a file with a cursor; errors carry the file and line.
+struct Cursor<'a> {
+    path: &'a str,
+    lines: Vec<&'a str>,
+    next: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn new(text: &'a str, path: &'a str) -> Self {
+        Self {
+            path,
+            lines: text.lines().collect(),
+            next: 0,
+        }
+    }
+
+    fn syntax(&self, line: usize, message: impl Into<String>) -> TsplibError {
+        TsplibError::Syntax {
+            path: self.path.to_string(),
+            line,
+            message: message.into(),
+        }
+    }
+
+    fn invalid(&self, message: impl Into<String>) -> TsplibError {
+        TsplibError::Invalid {
+            path: self.path.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// The next non-blank line and its number, as `(KEY, value)`.
+    fn next_entry(&mut self) -> Option<(usize, String, &'a str)> {
+        while let Some(line) = self.lines.get(self.next).copied() {
+            self.next += 1;
+            let line = line.trim();
+            if line.is_empty() {
+                continue;
+            }
+            let (key, value) = match line.split_once(':') {
+                Some((key, value)) => (key.trim(), value.trim()),
+                None => match line.split_once(char::is_whitespace) {
+                    Some((key, value)) => (key, value.trim()),
+                    None => (line, ""),
+                },
+            };
+            return Some((self.next, key.to_ascii_uppercase(), value));
+        }
+        None
+    }
+
+    /// The next `count` numbers, which may span any number of lines. `what` names the
+    /// section in errors.
+    fn numbers(&mut self, count: usize, what: &str) -> Result<Vec<Located>, TsplibError> {
+        let mut out = Vec::with_capacity(count.min(1 << 20));
+        let start_line = self.next;
+        while out.len() < count {
+            let Some(line) = self.lines.get(self.next).copied() else {
+                return Err(self.syntax(
+                    self.next.max(start_line),
+                    format!(
+                        "{what}: the file ends after {} of {count} numbers",
+                        out.len()
+                    ),
+                ));
+            };
+            self.next += 1;
+            let line_no = self.next;
+            for token in line.split_whitespace() {
+                if out.len() == count {
+                    return Err(self.syntax(
+                        line_no,
+                        format!("{what}: unexpected `{token}` after the {count} expected numbers"),
+                    ));
+                }
+                let value = token
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| {
+                        self.syntax(
+                            line_no,
+                            format!(
+                                "{what}: `{token}` is not a number (found {} of {count})",
+                                out.len()
+                            ),
+                        )
+                    })?;
+                out.push((value, line_no));
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Keys read before the data sections.
+#[derive(Default)]
+struct Header {
+    name: String,
+    problem: Option<ProblemType>,
+    comment: Vec<String>,
+    dimension: Option<usize>,
+    weight_type: Option<WeightType>,
+    weight_format: Option<WeightFormat>,
+}
+
+/// Parses the text of a `.tsp` / `.atsp` file; `path` is only used in errors.
+pub fn parse_tsplib(text: &str, path: &str) -> Result<TsplibInstance, TsplibError> {
+    let mut cursor = Cursor::new(text, path);
+    let mut header = Header::default();
+    let mut coords: Option<Vec<(f64, f64)>> = None;
+    let mut explicit: Option<Vec<Located>> = None;
+    while let Some((line, key, value)) = cursor.next_entry() {
+        match key.as_str() {
+            "EOF" => break,
+            "NAME" => header.name = value.to_string(),
+            "COMMENT" => header.comment.push(value.to_string()),
+            "TYPE" => header.problem = Some(parse_problem(&cursor, line, value)?),
+            "DIMENSION" => header.dimension = Some(parse_dimension(&cursor, line, value)?),
+            "EDGE_WEIGHT_TYPE" => {
+                header.weight_type = Some(parse_weight_type(&cursor, line, value)?)
+            }
+            "EDGE_WEIGHT_FORMAT" => {
+                header.weight_format = Some(parse_weight_format(&cursor, line, value)?)
+            }
+            "NODE_COORD_TYPE" if value.eq_ignore_ascii_case("TWOD_COORDS") => {}
+            "NODE_COORD_TYPE" if value.eq_ignore_ascii_case("NO_COORDS") => {}
+            "NODE_COORD_TYPE" => {
+                return Err(cursor.syntax(line, format!("NODE_COORD_TYPE {value} is not supported")))
+            }
+            "DISPLAY_DATA_TYPE" | "CAPACITY" => {}
+            "NODE_COORD_SECTION" => {
+                let n = dimension_before(&cursor, &header, line, &key)?;
+                coords = Some(read_coords(&mut cursor, n)?);
+            }
+            "EDGE_WEIGHT_SECTION" => {
+                let n = dimension_before(&cursor, &header, line, &key)?;
+                let format = header.weight_format.ok_or_else(|| {
+                    cursor.syntax(line, "EDGE_WEIGHT_SECTION before EDGE_WEIGHT_FORMAT")
+                })?;
+                explicit = Some(cursor.numbers(format.value_count(n), "EDGE_WEIGHT_SECTION")?);
+            }
+            "DISPLAY_DATA_SECTION" => {
+                let n = dimension_before(&cursor, &header, line, &key)?;
+                cursor.numbers(3 * n, "DISPLAY_DATA_SECTION")?;
+            }
+            _ => return Err(cursor.syntax(line, format!("unknown or unsupported keyword `{key}`"))),
+        }
+    }
+    build_instance(&cursor, header, coords, explicit)
+}
+
+fn parse_problem(cursor: &Cursor, line: usize, value: &str) -> Result<ProblemType, TsplibError> {
+    match value.to_ascii_uppercase().as_str() {
+        "TSP" => Ok(ProblemType::Tsp),
+        "ATSP" => Ok(ProblemType::Atsp),
+        other => Err(cursor.syntax(line, format!("TYPE {other} is not supported (TSP or ATSP)"))),
+    }
+}
+
+/// Largest `DIMENSION` accepted: the matrix is dense (20 000 nodes take 3.2 GB).
+pub const MAX_DIMENSION: usize = 20_000;
+
+fn parse_dimension(cursor: &Cursor, line: usize, value: &str) -> Result<usize, TsplibError> {
+    let n = value
+        .parse::<usize>()
+        .ok()
+        .filter(|&n| n >= 1)
+        .ok_or_else(|| {
+            cursor.syntax(
+                line,
+                format!("DIMENSION `{value}` is not a positive integer"),
+            )
+        })?;
+    if n > MAX_DIMENSION {
+        return Err(cursor.syntax(
+            line,
+            format!("DIMENSION {n} is above the {MAX_DIMENSION} nodes a dense matrix allows here"),
+        ));
+    }
+    Ok(n)
+}
+
+fn parse_weight_type(cursor: &Cursor, line: usize, value: &str) -> Result<WeightType, TsplibError> {
+    Ok(match value.to_ascii_uppercase().as_str() {
+        "EXPLICIT" => WeightType::Explicit,
+        "EUC_2D" => WeightType::Euc2d,
+        "CEIL_2D" => WeightType::Ceil2d,
+        "MAN_2D" => WeightType::Man2d,
+        "MAX_2D" => WeightType::Max2d,
+        "GEO" => WeightType::Geo,
+        "ATT" => WeightType::Att,
+        other => {
+            return Err(cursor.syntax(line, format!("EDGE_WEIGHT_TYPE {other} is not supported")))
+        }
+    })
+}
+
+fn parse_weight_format(
+    cursor: &Cursor,
+    line: usize,
+    value: &str,
+) -> Result<WeightFormat, TsplibError> {
+    Ok(match value.to_ascii_uppercase().as_str() {
+        "FULL_MATRIX" => WeightFormat::FullMatrix,
+        "UPPER_ROW" | "LOWER_COL" => WeightFormat::UpperRow,
+        "LOWER_ROW" | "UPPER_COL" => WeightFormat::LowerRow,
+        "UPPER_DIAG_ROW" | "LOWER_DIAG_COL" => WeightFormat::UpperDiagRow,
+        "LOWER_DIAG_ROW" | "UPPER_DIAG_COL" => WeightFormat::LowerDiagRow,
+        "FUNCTION" => WeightFormat::Function,
+        other => {
+            return Err(cursor.syntax(line, format!("EDGE_WEIGHT_FORMAT {other} is not supported")))
+        }
+    })
+}
+
+fn dimension_before(
+    cursor: &Cursor,
+    header: &Header,
+    line: usize,
+    section: &str,
+) -> Result<usize, TsplibError> {
+    header
+        .dimension
+        .ok_or_else(|| cursor.syntax(line, format!("{section} before DIMENSION")))
+}
+
+/// `n` records `id x y` (ids 1..=n, any order, each once).
+fn read_coords(cursor: &mut Cursor, n: usize) -> Result<Vec<(f64, f64)>, TsplibError> {
+    let numbers = cursor.numbers(3 * n, "NODE_COORD_SECTION")?;
+    let mut coords: Vec<Option<(f64, f64)>> = vec![None; n];
+    for record in numbers.chunks_exact(3) {
+        let (id, line) = record[0];
+        let index = (id.fract() == 0.0 && id >= 1.0 && id <= n as f64)
+            .then(|| id as usize - 1)
+            .ok_or_else(|| cursor.syntax(line, format!("node id {id} is not in 1..={n}")))?;
+        if coords[index].replace((record[1].0, record[2].0)).is_some() {
+            return Err(cursor.syntax(line, format!("node {id} appears twice")));
+        }
+    }
+    // n records with distinct ids in 1..=n cover every node.
+    Ok(coords.into_iter().map(|c| c.unwrap_or_default()).collect())
+}
+
+fn build_instance(
+    cursor: &Cursor,
+    header: Header,
+    coords: Option<Vec<(f64, f64)>>,
+    explicit: Option<Vec<Located>>,
+) -> Result<TsplibInstance, TsplibError> {
+    let problem = header
+        .problem
+        .ok_or_else(|| cursor.invalid("TYPE is missing"))?;
+    let n = header
+        .dimension
+        .ok_or_else(|| cursor.invalid("DIMENSION is missing"))?;
+    let weight_type = header
+        .weight_type
+        .ok_or_else(|| cursor.invalid("EDGE_WEIGHT_TYPE is missing"))?;
+    let (data, weights) = match weight_type {
+        WeightType::Explicit => {
+            let format = header
+                .weight_format
+                .filter(|f| *f != WeightFormat::Function)
+                .ok_or_else(|| {
+                    cursor
+                        .invalid("EXPLICIT weights need an EDGE_WEIGHT_FORMAT other than FUNCTION")
+                })?;
+            let values =
+                explicit.ok_or_else(|| cursor.invalid("EDGE_WEIGHT_SECTION is missing"))?;
+            (
+                fill_explicit(cursor, n, format, &values)?,
+                format!("EXPLICIT/{format:?}"),
+            )
+        }
+        kind => {
+            let coords = coords.ok_or_else(|| cursor.invalid("NODE_COORD_SECTION is missing"))?;
+            (coordinate_matrix(kind, &coords), format!("{kind:?}"))
+        }
+    };
+    let costs = CostMatrix::from_rows(n, data).map_err(|e| cursor.invalid(e.to_string()))?;
+    Ok(TsplibInstance {
+        name: header.name,
+        problem,
+        comment: header.comment.join(" "),
+        weights: weights.to_ascii_uppercase(),
+        costs,
+    })
+}
+
+fn fill_explicit(
+    cursor: &Cursor,
+    n: usize,
+    format: WeightFormat,
+    values: &[Located],
+) -> Result<Vec<f64>, TsplibError> {
+    let mut data = vec![0.0; n * n];
+    for ((i, j), &(value, line)) in format.cells(n).zip(values) {
+        if i == j {
+            continue; // diagonal placeholders (9999, 100000000, …) mean nothing
+        }
+        if value < 0.0 {
+            return Err(cursor.syntax(
+                line,
+                format!(
+                    "weight {value} from node {} to {} is negative",
+                    i + 1,
+                    j + 1
+                ),
+            ));
+        }
+        data[i * n + j] = value;
+        if format != WeightFormat::FullMatrix {
+            data[j * n + i] = value;
+        }
+    }
+    Ok(data)
+}
+
+fn coordinate_matrix(kind: WeightType, coords: &[(f64, f64)]) -> Vec<f64> {
+    let n = coords.len();
+    (0..n * n)
+        .map(|k| {
+            let (i, j) = (k / n, k % n);
+            if i == j {
+                0.0
+            } else {
+                distance(kind, coords[i], coords[j])
+            }
+        })
+        .collect()
+}
+
+/// TSPLIB's `nint`: round half up.
+fn nint(x: f64) -> f64 {
+    (x + 0.5).floor()
+}
+
+/// The TSPLIB distance between two nodes.
+fn distance(kind: WeightType, a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (a.0 - b.0, a.1 - b.1);
+    match kind {
+        WeightType::Euc2d => nint(dx.hypot(dy)),
+        WeightType::Ceil2d => dx.hypot(dy).ceil(),
+        WeightType::Man2d => nint(dx.abs() + dy.abs()),
+        WeightType::Max2d => nint(dx.abs()).max(nint(dy.abs())),
+        WeightType::Att => {
+            let r = ((dx * dx + dy * dy) / 10.0).sqrt();
+            let t = nint(r);
+            if t < r {
+                t + 1.0
+            } else {
+                t
+            }
+        }
+        WeightType::Geo => geo_distance(a, b),
+        WeightType::Explicit => 0.0,
+    }
+}
+
+/// TSPLIB GEO: coordinates are `DDD.MM` (degrees and minutes) latitude, longitude; the
+/// distance is in whole kilometres on the TSPLIB sphere (degrees truncated, as TSPLIB's
+/// reference code does).
+fn geo_distance(a: (f64, f64), b: (f64, f64)) -> f64 {
+    // TSPLIB's truncated π, on purpose: the published GEO optima depend on it.
+    #[allow(clippy::approx_constant)]
+    const PI: f64 = 3.141592;
+    const RRR: f64 = 6378.388;
+    let radians = |x: f64| {
+        let degrees = x.trunc();
+        PI * (degrees + 5.0 * (x - degrees) / 3.0) / 180.0
+    };
+    let (lat_a, lon_a, lat_b, lon_b) = (radians(a.0), radians(a.1), radians(b.0), radians(b.1));
+    let q1 = (lon_a - lon_b).cos();
+    let q2 = (lat_a - lat_b).cos();
+    let q3 = (lat_a + lat_b).cos();
+    let cosine = (0.5 * ((1.0 + q1) * q2 - (1.0 - q1) * q3)).clamp(-1.0, 1.0);
+    (RRR * cosine.acos() + 1.0).trunc()
+}
+
+/// Parses the text of a `.tour` file (`TOUR_SECTION` of 1-based ids ended by -1):
+/// the order as 0-based indices.
+pub fn parse_tour(text: &str, path: &str) -> Result<Vec<usize>, TsplibError> {
+    let mut cursor = Cursor::new(text, path);
+    let mut dimension = None;
+    while let Some((line, key, value)) = cursor.next_entry() {
+        match key.as_str() {
+            "DIMENSION" => dimension = Some(parse_dimension(&cursor, line, value)?),
+            "TOUR_SECTION" => return read_tour_section(&mut cursor, dimension),
+            "EOF" => break,
+            _ => {}
+        }
+    }
+    Err(cursor.invalid("TOUR_SECTION is missing"))
+}
+
+fn read_tour_section(
+    cursor: &mut Cursor,
+    dimension: Option<usize>,
+) -> Result<Vec<usize>, TsplibError> {
+    let mut order = Vec::new();
+    while let Some(line) = cursor.lines.get(cursor.next).copied() {
+        cursor.next += 1;
+        let line_no = cursor.next;
+        for token in line.split_whitespace() {
+            let id: i64 = token
+                .parse()
+                .map_err(|_| cursor.syntax(line_no, format!("`{token}` is not a node id")))?;
+            if id == -1 {
+                return check_permutation(cursor, order, dimension);
+            }
+            let index = usize::try_from(id)
+                .ok()
+                .filter(|&i| i >= 1)
+                .ok_or_else(|| cursor.syntax(line_no, format!("node id {id} is not positive")))?;
+            order.push(index - 1);
+        }
+    }
+    Err(cursor.invalid("TOUR_SECTION is not ended by -1"))
+}
+
+fn check_permutation(
+    cursor: &Cursor,
+    order: Vec<usize>,
+    dimension: Option<usize>,
+) -> Result<Vec<usize>, TsplibError> {
+    let n = dimension.unwrap_or(order.len());
+    let mut seen = vec![false; n];
+    let is_permutation = order.len() == n
+        && order
+            .iter()
+            .all(|&v| v < n && !std::mem::replace(&mut seen[v], true));
+    if is_permutation {
+        Ok(order)
+    } else {
+        Err(cursor.invalid(format!("the tour is not a permutation of the {n} nodes")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A symmetric 4-node matrix in every explicit layout.
+    const MATRIX: [[f64; 4]; 4] = [
+        [0.0, 1.0, 2.0, 3.0],
+        [1.0, 0.0, 4.0, 5.0],
+        [2.0, 4.0, 0.0, 6.0],
+        [3.0, 5.0, 6.0, 0.0],
+    ];
+
+    fn explicit(format: &str, numbers: &str) -> String {
+        format!(
+            "NAME: t\nTYPE: TSP\nDIMENSION: 4\nEDGE_WEIGHT_TYPE: EXPLICIT\n\
+             EDGE_WEIGHT_FORMAT: {format}\nEDGE_WEIGHT_SECTION\n{numbers}\nEOF\n"
+        )
+    }
+
+    fn assert_matrix(costs: &CostMatrix) {
+        for (i, row) in MATRIX.iter().enumerate() {
+            for (j, &value) in row.iter().enumerate() {
+                assert_eq!(costs.get(i, j), value, "({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn every_explicit_layout_gives_the_same_matrix() {
+        let layouts = [
+            (
+                "FULL_MATRIX",
+                "9999 1 2 3\n1 9999 4\n5 2 4 9999 6 3 5 6 9999",
+            ),
+            ("UPPER_ROW", "1 2 3\n4 5\n6"),
+            ("LOWER_COL", "1 2 3 4 5 6"),
+            ("LOWER_ROW", "1\n2 4\n3 5 6"),
+            ("UPPER_COL", "1 2\n 4 3 5 6"),
+            ("UPPER_DIAG_ROW", "0 1 2 3 0 4 5 0 6 0"),
+            ("LOWER_DIAG_COL", "0 1 2 3\n0 4 5\n0 6\n0"),
+            ("LOWER_DIAG_ROW", "100000000\n1 0\n2 4 0\n3 5 6 0"),
+            ("UPPER_DIAG_COL", "0 1 0 2 4 0 3 5 6 0"),
+        ];
+        for (format, numbers) in layouts {
+            let instance = parse_tsplib(&explicit(format, numbers), format)
+                .unwrap_or_else(|e| panic!("{format}: {e}"));
+            assert_matrix(&instance.costs);
+            assert_eq!(instance.name, "t");
+        }
+    }
+
+    #[test]
+    fn asymmetric_full_matrix_keeps_direction() {
+        let text = "NAME:a\nTYPE: ATSP\nDIMENSION: 3\nEDGE_WEIGHT_TYPE: EXPLICIT\n\
+                    EDGE_WEIGHT_FORMAT: FULL_MATRIX\nEDGE_WEIGHT_SECTION\n0 1 2\n3 0 4\n5 6 0\n";
+        let instance = parse_tsplib(text, "a").unwrap();
+        assert_eq!(instance.problem, ProblemType::Atsp);
+        assert_eq!(
+            (instance.costs.get(0, 1), instance.costs.get(1, 0)),
+            (1.0, 3.0)
+        );
+        assert_eq!(instance.weights, "EXPLICIT/FULLMATRIX");
+    }
+
+    fn coordinates(kind: &str, nodes: &str) -> CostMatrix {
+        let n = nodes.lines().filter(|l| !l.trim().is_empty()).count();
+        let text = format!(
+            "NAME : c\nTYPE : TSP\nDIMENSION : {n}\nEDGE_WEIGHT_TYPE : {kind}\nNODE_COORD_SECTION\n{nodes}\n"
+        );
+        parse_tsplib(&text, kind).unwrap().costs
+    }
+
+    #[test]
+    fn euclidean_distances_round_as_tsplib_does() {
+        let costs = coordinates("EUC_2D", "1 0 0\n2 3 4\n3 0 1.5\n4 0 2.5");
+        assert_eq!(costs.get(0, 1), 5.0);
+        assert_eq!(costs.get(0, 2), 2.0); // nint(1.5) = 2
+        assert_eq!(costs.get(0, 3), 3.0); // nint(2.5) = 3 (half up)
+        let costs = coordinates("CEIL_2D", "1 0 0\n2 1 1");
+        assert_eq!(costs.get(0, 1), 2.0);
+        let costs = coordinates("MAN_2D", "1 0 0\n2 1 2");
+        assert_eq!(costs.get(1, 0), 3.0);
+        let costs = coordinates("MAX_2D", "1 0 0\n2 1 2");
+        assert_eq!(costs.get(1, 0), 2.0);
+    }
+
+    #[test]
+    fn att_distance_is_the_pseudo_euclidean_one() {
+        // r = sqrt(100 / 10) = 3.162…, nint = 3 < r → 4.
+        let costs = coordinates("ATT", "1 0 0\n2 6 8");
+        assert_eq!(costs.get(0, 1), 4.0);
+        // r = sqrt(1000 / 10) = 10 exactly → 10.
+        let costs = coordinates("ATT", "1 0 0\n2 30 10");
+        assert_eq!(costs.get(0, 1), 10.0);
+    }
+
+    #[test]
+    fn geo_distances_match_burma14() {
+        // TSPLIB burma14 (GEO); its optimal tour length is 3323.
+        let burma14 = "1 16.47 96.10\n2 16.47 94.44\n3 20.09 92.54\n4 22.39 93.37\n\
+                       5 25.23 97.24\n6 22.00 96.05\n7 20.47 97.02\n8 17.20 96.29\n\
+                       9 16.30 97.38\n10 14.05 98.12\n11 16.53 97.38\n12 21.52 95.59\n\
+                       13 19.41 97.13\n14 20.09 94.55";
+        let costs = coordinates("GEO", burma14);
+        let optimal = [0, 1, 13, 2, 3, 4, 5, 11, 6, 12, 7, 10, 8, 9];
+        assert_eq!(
+            costs.tour_cost(&optimal, smug_core::TourKind::Closed),
+            3323.0
+        );
+        assert_eq!(costs.get(0, 1), costs.get(1, 0));
+    }
+
+    fn error_of(text: &str) -> String {
+        parse_tsplib(text, "f.tsp").unwrap_err().to_string()
+    }
+
+    #[test]
+    fn malformed_files_name_the_line() {
+        let header =
+            "NAME: x\nTYPE: TSP\nDIMENSION: 3\nEDGE_WEIGHT_TYPE: EUC_2D\nNODE_COORD_SECTION\n";
+        assert_eq!(
+            error_of(&format!("{header}1 0 0\n2 zero 1\n3 1 1\n")),
+            "f.tsp:7: NODE_COORD_SECTION: `zero` is not a number (found 4 of 9)"
+        );
+        assert!(error_of(&format!("{header}1 0 0\n2 1 1\n"))
+            .starts_with("f.tsp:7: NODE_COORD_SECTION: the file ends"));
+        assert!(
+            error_of(&format!("{header}1 0 0\n2 1 1\n7 1 1\n")).starts_with("f.tsp:8: node id 7")
+        );
+        assert!(error_of(&format!("{header}1 0 0\n1 1 1\n3 1 1\n"))
+            .starts_with("f.tsp:7: node 1 appears twice"));
+        assert!(error_of("NAME: x\nTYPE: CVRP\n").starts_with("f.tsp:2: TYPE CVRP"));
+        assert!(error_of("NAME: x\nFOO: 3\n")
+            .starts_with("f.tsp:2: unknown or unsupported keyword `FOO`"));
+        assert!(error_of("TYPE: TSP\nDIMENSION: -3\n").starts_with("f.tsp:2: DIMENSION"));
+        assert!(error_of("DIMENSION: 99999999999\n").contains("above the 20000 nodes"));
+        assert!(error_of("TYPE: TSP\nNODE_COORD_SECTION\n")
+            .starts_with("f.tsp:2: NODE_COORD_SECTION before DIMENSION"));
+        assert_eq!(
+            error_of("TYPE: TSP\nDIMENSION: 2\n"),
+            "f.tsp: EDGE_WEIGHT_TYPE is missing"
+        );
+        let negative = explicit("UPPER_ROW", "1 2 3\n4 -5\n6");
+        assert!(parse_tsplib(&negative, "n")
+            .unwrap_err()
+            .to_string()
+            .starts_with("n:8: weight -5"));
+        let extra = explicit("UPPER_ROW", "1 2 3 4 5 6 7");
+        assert!(parse_tsplib(&extra, "e")
+            .unwrap_err()
+            .to_string()
+            .contains("unexpected `7`"));
+    }
+
+    #[test]
+    fn tours_are_read_zero_based() {
+        let text = "NAME : t.tour\nTYPE : TOUR\nDIMENSION : 3\nTOUR_SECTION\n1\n3 2\n-1\nEOF\n";
+        assert_eq!(parse_tour(text, "t").unwrap(), vec![0, 2, 1]);
+        assert!(parse_tour("DIMENSION : 3\nTOUR_SECTION\n1 1 2 -1\n", "t").is_err());
+        assert!(parse_tour("DIMENSION : 3\nTOUR_SECTION\n1 2 3\n", "t").is_err());
+    }
+}

@@ -1,0 +1,62 @@
+//! The plugins as a pipeline builds them: registered names, typed parameters, errors.
+
+use smug_core::registry::{SequencerStage, Stage};
+use smug_core::{BuildContext, CostMatrix, PluginSection, RobotConfig, TourKind};
+// Link the crate so that its `inventory` registrations are collected.
+use smug_sequencing as _;
+
+fn section(kind: &str, params: &str) -> PluginSection {
+    let mut section = PluginSection::new("sequencer", kind);
+    section.params = toml::from_str(params).expect("test parameters are valid TOML");
+    section
+}
+
+fn build(kind: &str, params: &str) -> smug_core::Result<Box<dyn smug_core::Sequencer>> {
+    let ctx = BuildContext::new(42, RobotConfig::default());
+    Ok(ctx.build::<SequencerStage>(&section(kind, params))?.object)
+}
+
+#[test]
+fn all_four_plugins_are_registered() {
+    let names = SequencerStage::registry().unwrap().names();
+    for name in ["auto", "brute-force", "held-karp", "local-search"] {
+        assert!(names.contains(&name), "{name} missing from {names:?}");
+    }
+}
+
+#[test]
+fn plugins_build_from_parameters_and_solve() {
+    let costs = CostMatrix::from_fn(16, |i, j| (i as f64 - j as f64).abs()).unwrap();
+    let plugins = [
+        ("held-karp", "max_nodes = 16"),
+        ("local-search", "time_limit_s = 0.0\nmax_iterations = 50\nneighbours = 6"),
+        ("auto", "threshold = 10\ntime_limit_s = 0.0\nmax_iterations = 50\nconstruction = \"nearest-neighbour\""),
+    ];
+    for (kind, params) in plugins {
+        let solver = build(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}"));
+        let tour = solver.solve(&costs, TourKind::Closed).unwrap();
+        assert_eq!(tour.cost, 30.0, "{kind}");
+        let path = solver.solve(&costs, TourKind::OpenTo(15)).unwrap();
+        assert_eq!(path.cost, 15.0, "{kind}");
+    }
+    assert!(build("brute-force", "").is_ok());
+}
+
+#[test]
+fn bad_parameters_are_rejected_with_their_name() {
+    let cases = [
+        ("held-karp", "max_node = 5", "max_node"),
+        ("held-karp", "max_nodes = 40", "max_nodes"),
+        ("local-search", "time_limit_s = 0.0", "max_iterations"),
+        ("local-search", "neighbours = 1", "neighbours"),
+        ("local-search", "construction = \"random\"", "random"),
+        ("auto", "threshold = 25", "threshold"),
+    ];
+    for (kind, params, needle) in cases {
+        let message = build(kind, params)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(message.contains(needle), "{kind} {params}: `{message}`");
+    }
+}
