@@ -205,9 +205,11 @@ impl LazyPrmStar {
         Some(self.add_vertex(*pose, Validity::Valid))
     }
 
-    /// Checks the unknown vertices, then the unknown edges, of `path`; removes the
-    /// first invalid one found. True when the whole path is valid.
+    /// Checks the unknown vertices, then the unknown edges, of `path`, and removes
+    /// every invalid one found (all of them, so that one search discards as many bad
+    /// edges as possible). True when the whole path is valid.
     fn validate(&mut self, path: &GraphPath) -> bool {
+        let mut valid = true;
         for &v in &path.vertices {
             if self.roadmap.vertex_validity(v) == Validity::Unknown {
                 let pose = *self.roadmap.pose(v);
@@ -215,28 +217,31 @@ impl LazyPrmStar {
                     self.roadmap.mark_vertex_valid(v);
                 } else {
                     self.roadmap.remove_vertex(v);
-                    return false;
+                    valid = false;
                 }
             }
+        }
+        if !valid {
+            return false;
         }
         for &e in &path.edges {
             if self.roadmap.edge(e).validity == Validity::Unknown {
                 let edge = *self.roadmap.edge(e);
                 let started = Instant::now();
-                let valid = self
+                let ok = self
                     .motions
                     .is_valid_motion(self.roadmap.pose(edge.a), self.roadmap.pose(edge.b));
                 self.counts.edge_checks += 1;
                 self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
-                if valid {
+                if ok {
                     self.roadmap.mark_edge_valid(e);
                 } else {
                     self.roadmap.remove_edge(e);
-                    return false;
+                    valid = false;
                 }
             }
         }
-        true
+        valid
     }
 
     /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
