@@ -11,7 +11,7 @@
 //! empty (the path is optimal), or at its sample or time budget — an unreachable goal
 //! ends with "no path", never a hang.
 
-use crate::roadmap::{AStar, GraphPath, Roadmap, Validity};
+use crate::roadmap::{AStar, Evaluator, GraphPath, Roadmap, Validity};
 use crate::shortcut::shortcut;
 use serde::{Deserialize, Serialize};
 use smug_core::{
@@ -22,6 +22,23 @@ use smug_core::{
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
+
+/// How a solution attempt searches the roadmap.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SearchMode {
+    /// Classic LazyPRM: A*, check the path, remove what is invalid, search again.
+    LazySp,
+    /// Lazy Weighted A*: one search checking an edge when its vertex is expanded
+    /// (far fewer searches in cluttered maps, a few more edge checks in open ones).
+    LazyWeighted,
+    /// A few LazySP rounds, then Lazy Weighted A* if the path keeps breaking.
+    #[default]
+    Auto,
+}
+
+/// LazySP rounds an `auto` attempt tries before switching to Lazy Weighted A*.
+const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 
 /// Parameters of LazyPRM*.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -45,6 +62,8 @@ pub struct LazyPrmStarParams {
     pub lazy_vertices: bool,
     /// Shortcut returned paths (never raises cost, never makes a path invalid).
     pub shortcut: bool,
+    /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
+    pub search: SearchMode,
 }
 
 impl Default for LazyPrmStarParams {
@@ -58,6 +77,7 @@ impl Default for LazyPrmStarParams {
             initial_samples: 0,
             lazy_vertices: false,
             shortcut: false,
+            search: SearchMode::Auto,
         }
     }
 }
@@ -209,56 +229,55 @@ impl LazyPrmStar {
     /// every invalid one found (all of them, so that one search discards as many bad
     /// edges as possible). True when the whole path is valid.
     fn validate(&mut self, path: &GraphPath) -> bool {
-        let mut valid = true;
-        for &v in &path.vertices {
-            if self.roadmap.vertex_validity(v) == Validity::Unknown {
-                let pose = *self.roadmap.pose(v);
-                if self.check_state(&pose) {
-                    self.roadmap.mark_vertex_valid(v);
-                } else {
-                    self.roadmap.remove_vertex(v);
-                    valid = false;
-                }
-            }
-        }
-        if !valid {
-            return false;
-        }
-        for &e in &path.edges {
-            if self.roadmap.edge(e).validity == Validity::Unknown {
-                let edge = *self.roadmap.edge(e);
-                let started = Instant::now();
-                let ok = self
-                    .motions
-                    .is_valid_motion(self.roadmap.pose(edge.a), self.roadmap.pose(edge.b));
-                self.counts.edge_checks += 1;
-                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
-                if ok {
-                    self.roadmap.mark_edge_valid(e);
-                } else {
-                    self.roadmap.remove_edge(e);
-                    valid = false;
-                }
-            }
-        }
-        valid
+        let mut checks = Checks { states: self.states.as_ref(), motions: self.motions.as_ref(), counts: &mut self.counts };
+        let vertices_valid = path.vertices.iter().fold(true, |ok, &v| checks.vertex(&mut self.roadmap, v) && ok);
+        vertices_valid && path.edges.iter().fold(true, |ok, &e| checks.edge(&mut self.roadmap, e) && ok)
+    }
+
+    /// One A* search on the optimistic roadmap (no checks).
+    fn optimistic_search(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+        let started = Instant::now();
+        let found = self.astar.search(&self.roadmap, s, g, self.metric.as_ref());
+        self.counts.searches += 1;
+        self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
+        found
+    }
+
+    /// One Lazy Weighted A* search; its checking time is booked as checking, not search.
+    fn lazy_weighted_search(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+        let started = Instant::now();
+        let checking_before = self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
+        let mut checks = Checks { states: self.states.as_ref(), motions: self.motions.as_ref(), counts: &mut self.counts };
+        let found = self.astar.search_lazy(&mut self.roadmap, s, g, self.metric.as_ref(), &mut checks);
+        self.counts.searches += 1;
+        let checking = self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s - checking_before;
+        self.counts.breakdown.astar_s += (started.elapsed().as_secs_f64() - checking).max(0.0);
+        found
     }
 
     /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
     fn attempt(&mut self, s: u32, g: u32) -> Option<GraphPath> {
-        loop {
-            let started = Instant::now();
-            let found = self.astar.search(&self.roadmap, s, g, self.metric.as_ref());
-            self.counts.searches += 1;
-            self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
-            let Some(path) = found else {
-                self.roadmap.refresh_components();
-                return None;
-            };
-            if self.validate(&path) {
-                return Some(path);
+        let lazy_sp_rounds = match self.params.search {
+            SearchMode::LazySp => u32::MAX,
+            SearchMode::LazyWeighted => 0,
+            SearchMode::Auto => AUTO_LAZY_SP_ROUNDS,
+        };
+        let mut rounds = 0;
+        let found = loop {
+            if rounds >= lazy_sp_rounds {
+                break self.lazy_weighted_search(s, g);
             }
+            rounds += 1;
+            match self.optimistic_search(s, g) {
+                None => break None,
+                Some(path) if self.validate(&path) => break Some(path),
+                Some(_) => {}
+            }
+        };
+        if found.is_none() {
+            self.roadmap.refresh_components();
         }
+        found
     }
 
     /// Grows the roadmap and searches until the stall rule, the budget or optimality stops.
@@ -272,6 +291,9 @@ impl LazyPrmStar {
             None
         };
         let (mut stall, mut since_attempt) = (0u32, 0u32);
+        // Before the first solution, wait longer after each failed attempt (the roadmap
+        // must grow by a share of its size), so cluttered maps do not search per sample.
+        let mut wait = 1u32;
         let max_stall = self.params.max_stall;
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
         while !clock.is_done() && !stalled(&best, stall) {
@@ -289,14 +311,18 @@ impl LazyPrmStar {
             }
             since_attempt += 1;
             let due = match &best {
-                None => self.roadmap.maybe_connected(s, g),
+                None => since_attempt >= wait && self.roadmap.maybe_connected(s, g),
                 Some(_) => since_attempt >= self.params.attempt_every,
             };
             if !due {
                 continue;
             }
             since_attempt = 0;
-            if let Some(path) = self.attempt(s, g) {
+            let found = self.attempt(s, g);
+            if found.is_none() && best.is_none() {
+                wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
+            }
+            if let Some(path) = found {
                 let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
                 if path.cost > best_cost * (1.0 - self.params.improvement) {
                     stall += 1;
@@ -366,6 +392,54 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("astar_searches".to_string(), c.searches),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
+        }
+    }
+}
+
+/// The checks the searches run, with their counters.
+struct Checks<'a> {
+    states: &'a dyn StateValidityChecker,
+    motions: &'a dyn MotionValidator,
+    counts: &'a mut Counts,
+}
+
+impl Evaluator for Checks<'_> {
+    fn vertex(&mut self, map: &mut Roadmap, v: u32) -> bool {
+        match map.vertex_validity(v) {
+            Validity::Valid => true,
+            Validity::Invalid => false,
+            Validity::Unknown => {
+                let started = Instant::now();
+                let valid = self.states.is_valid(map.pose(v));
+                self.counts.vertex_checks += 1;
+                self.counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
+                if valid {
+                    map.mark_vertex_valid(v);
+                } else {
+                    map.remove_vertex(v);
+                }
+                valid
+            }
+        }
+    }
+
+    fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
+        let edge = *map.edge(e);
+        match edge.validity {
+            Validity::Valid => true,
+            Validity::Invalid => false,
+            Validity::Unknown => {
+                let started = Instant::now();
+                let valid = self.motions.is_valid_motion(map.pose(edge.a), map.pose(edge.b));
+                self.counts.edge_checks += 1;
+                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
+                if valid {
+                    map.mark_edge_valid(e);
+                } else {
+                    map.remove_edge(e);
+                }
+                valid
+            }
         }
     }
 }

@@ -9,4 +9,4 @@ pub mod nn;
 pub mod roadmap;
 pub mod shortcut;
 
-pub use lazy_prm_star::{LazyPrmStar, LazyPrmStarParams};
+pub use lazy_prm_star::{LazyPrmStar, LazyPrmStarParams, SearchMode};

@@ -273,6 +273,38 @@ struct Open {
     v: u32,
 }
 
+/// An entry of the lazy search: a vertex reached through a parent edge whose
+/// validity may still be unknown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct LazyOpen {
+    f: f64,
+    g: f64,
+    v: u32,
+    parent: (u32, u32),
+}
+
+impl Eq for LazyOpen {}
+
+impl Ord for LazyOpen {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.f.total_cmp(&self.f).then(self.g.total_cmp(&other.g)).then(other.v.cmp(&self.v))
+    }
+}
+
+impl PartialOrd for LazyOpen {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Checks roadmap elements for the lazy search (and records what it finds).
+pub trait Evaluator {
+    /// Checks vertex `v` if unknown; true when valid (invalid ones are removed).
+    fn vertex(&mut self, map: &mut Roadmap, v: u32) -> bool;
+    /// Checks edge `e` if unknown; true when valid (invalid ones are removed).
+    fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool;
+}
+
 impl Eq for Open {}
 
 impl Ord for Open {
@@ -301,6 +333,8 @@ pub struct AStar {
     closed: Vec<u32>,
     generation: u32,
     heap: BinaryHeap<Open>,
+    lazy_heap: BinaryHeap<LazyOpen>,
+    best_valid: Vec<f64>,
     /// Vertices expanded over all searches.
     pub expansions: u64,
 }
@@ -351,12 +385,71 @@ impl AStar {
         None
     }
 
+    /// Lazy Weighted A* (Cohen, Phillips & Likhachev 2014): one search that checks an
+    /// element only when the vertex it leads to is about to be expanded. Returns the
+    /// cheapest valid path over the live edges (every element on it checked), or `None`.
+    pub fn search_lazy(
+        &mut self,
+        map: &mut Roadmap,
+        start: u32,
+        goal: u32,
+        metric: &dyn CostMetric,
+        evaluator: &mut dyn Evaluator,
+    ) -> Option<GraphPath> {
+        self.prepare(map.vertex_count());
+        let goal_pose = *map.pose(goal);
+        let mut open = std::mem::take(&mut self.lazy_heap);
+        open.clear();
+        let none = (u32::MAX, u32::MAX);
+        let h0 = metric.distance(map.pose(start), &goal_pose);
+        open.push(LazyOpen { f: h0, g: 0.0, v: start, parent: none });
+        let mut found = None;
+        while let Some(LazyOpen { g, v, parent, .. }) = open.pop() {
+            if self.closed[v as usize] == self.generation {
+                continue;
+            }
+            let (_, e) = parent;
+            let reachable = (e == u32::MAX || map.edge(e).validity != Validity::Invalid && evaluator.edge(map, e))
+                && evaluator.vertex(map, v);
+            if !reachable {
+                continue;
+            }
+            self.closed[v as usize] = self.generation;
+            self.g[v as usize] = g;
+            self.parent[v as usize] = parent;
+            if v == goal {
+                found = Some(self.trace(start, goal));
+                break;
+            }
+            self.expansions += 1;
+            for &(w, e2) in map.neighbours(v) {
+                if self.closed[w as usize] == self.generation {
+                    continue;
+                }
+                let candidate = g + map.edge(e2).cost;
+                let known = self.seen[w as usize] == self.generation;
+                if known && candidate >= self.best_valid[w as usize] {
+                    continue;
+                }
+                if map.edge(e2).validity == Validity::Valid {
+                    self.seen[w as usize] = self.generation;
+                    self.best_valid[w as usize] = candidate;
+                }
+                let f = candidate + metric.distance(map.pose(w), &goal_pose);
+                open.push(LazyOpen { f, g: candidate, v: w, parent: (v, e2) });
+            }
+        }
+        self.lazy_heap = open;
+        found
+    }
+
     fn prepare(&mut self, n: usize) {
         if self.g.len() < n {
             self.g.resize(n, f64::INFINITY);
             self.parent.resize(n, (u32::MAX, u32::MAX));
             self.seen.resize(n, 0);
             self.closed.resize(n, 0);
+            self.best_valid.resize(n, f64::INFINITY);
         }
         self.heap.clear();
         self.generation = self.generation.wrapping_add(1);
