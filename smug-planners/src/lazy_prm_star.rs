@@ -229,9 +229,21 @@ impl LazyPrmStar {
     /// every invalid one found (all of them, so that one search discards as many bad
     /// edges as possible). True when the whole path is valid.
     fn validate(&mut self, path: &GraphPath) -> bool {
-        let mut checks = Checks { states: self.states.as_ref(), motions: self.motions.as_ref(), counts: &mut self.counts };
-        let vertices_valid = path.vertices.iter().fold(true, |ok, &v| checks.vertex(&mut self.roadmap, v) && ok);
-        vertices_valid && path.edges.iter().fold(true, |ok, &e| checks.edge(&mut self.roadmap, e) && ok)
+        let mut checks = Checks {
+            states: self.states.as_ref(),
+            motions: self.motions.as_ref(),
+            counts: &mut self.counts,
+        };
+        let mut valid = true;
+        for &v in &path.vertices {
+            valid &= checks.vertex(&mut self.roadmap, v);
+        }
+        if valid {
+            for &e in &path.edges {
+                valid &= checks.edge(&mut self.roadmap, e);
+            }
+        }
+        valid
     }
 
     /// One A* search on the optimistic roadmap (no checks).
@@ -246,11 +258,20 @@ impl LazyPrmStar {
     /// One Lazy Weighted A* search; its checking time is booked as checking, not search.
     fn lazy_weighted_search(&mut self, s: u32, g: u32) -> Option<GraphPath> {
         let started = Instant::now();
-        let checking_before = self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
-        let mut checks = Checks { states: self.states.as_ref(), motions: self.motions.as_ref(), counts: &mut self.counts };
-        let found = self.astar.search_lazy(&mut self.roadmap, s, g, self.metric.as_ref(), &mut checks);
+        let checking_before =
+            self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
+        let mut checks = Checks {
+            states: self.states.as_ref(),
+            motions: self.motions.as_ref(),
+            counts: &mut self.counts,
+        };
+        let found =
+            self.astar
+                .search_lazy(&mut self.roadmap, s, g, self.metric.as_ref(), &mut checks);
         self.counts.searches += 1;
-        let checking = self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s - checking_before;
+        let checking = self.counts.breakdown.edge_checking_s
+            + self.counts.breakdown.vertex_checking_s
+            - checking_before;
         self.counts.breakdown.astar_s += (started.elapsed().as_secs_f64() - checking).max(0.0);
         found
     }
@@ -430,7 +451,9 @@ impl Evaluator for Checks<'_> {
             Validity::Invalid => false,
             Validity::Unknown => {
                 let started = Instant::now();
-                let valid = self.motions.is_valid_motion(map.pose(edge.a), map.pose(edge.b));
+                let valid = self
+                    .motions
+                    .is_valid_motion(map.pose(edge.a), map.pose(edge.b));
                 self.counts.edge_checks += 1;
                 self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
                 if valid {

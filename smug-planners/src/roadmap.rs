@@ -287,7 +287,11 @@ impl Eq for LazyOpen {}
 
 impl Ord for LazyOpen {
     fn cmp(&self, other: &Self) -> Ordering {
-        other.f.total_cmp(&self.f).then(self.g.total_cmp(&other.g)).then(other.v.cmp(&self.v))
+        other
+            .f
+            .total_cmp(&self.f)
+            .then(self.g.total_cmp(&other.g))
+            .then(other.v.cmp(&self.v))
     }
 }
 
@@ -402,14 +406,20 @@ impl AStar {
         open.clear();
         let none = (u32::MAX, u32::MAX);
         let h0 = metric.distance(map.pose(start), &goal_pose);
-        open.push(LazyOpen { f: h0, g: 0.0, v: start, parent: none });
+        open.push(LazyOpen {
+            f: h0,
+            g: 0.0,
+            v: start,
+            parent: none,
+        });
         let mut found = None;
         while let Some(LazyOpen { g, v, parent, .. }) = open.pop() {
             if self.closed[v as usize] == self.generation {
                 continue;
             }
             let (_, e) = parent;
-            let reachable = (e == u32::MAX || map.edge(e).validity != Validity::Invalid && evaluator.edge(map, e))
+            let reachable = (e == u32::MAX
+                || map.edge(e).validity != Validity::Invalid && evaluator.edge(map, e))
                 && evaluator.vertex(map, v);
             if !reachable {
                 continue;
@@ -436,7 +446,12 @@ impl AStar {
                     self.best_valid[w as usize] = candidate;
                 }
                 let f = candidate + metric.distance(map.pose(w), &goal_pose);
-                open.push(LazyOpen { f, g: candidate, v: w, parent: (v, e2) });
+                open.push(LazyOpen {
+                    f,
+                    g: candidate,
+                    v: w,
+                    parent: (v, e2),
+                });
             }
         }
         self.lazy_heap = open;
