@@ -1,30 +1,8 @@
 //! End-to-end tests of the `smug` binary: exit codes and error messages.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn smug(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smug"))
-        .args(args)
-        .current_dir(workspace())
-        .output()
-        .expect("the smug binary runs")
-}
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn stdout(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
+use common::*;
 
 /// Writes `text` as a config next to the shipped ones (so includes resolve) and
 /// returns its path relative to the workspace.
@@ -43,21 +21,6 @@ fn temp_config(name: &str, text: &str) -> String {
 
 fn demo_config() -> String {
     std::fs::read_to_string(workspace().join("configs/flat-demo.toml")).unwrap()
-}
-
-/// Asserts exit code 2 with one clear line on stderr containing every `needle`.
-fn assert_bad_input(out: &Output, needles: &[&str]) {
-    let err = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert!(!err.contains("panicked"), "panic: {err}");
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "one line expected: {err}"
-    );
-    for needle in needles {
-        assert!(err.contains(needle), "`{needle}` missing from: {err}");
-    }
 }
 
 #[test]

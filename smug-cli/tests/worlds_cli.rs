@@ -1,22 +1,10 @@
 //! End-to-end tests of `smug worlds`: convert, show, export, and bad maps.
 
+mod common;
+
+use common::*;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn smug(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smug"))
-        .args(args)
-        .current_dir(workspace())
-        .output()
-        .expect("the smug binary runs")
-}
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
-}
+use std::process::Output;
 
 fn movingai(file: &str) -> String {
     let path = workspace().join("../shared/data/movingai").join(file);
@@ -35,27 +23,8 @@ fn text(path: &Path) -> &str {
     path.to_str().unwrap()
 }
 
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
 fn assert_ok(out: &Output) {
     assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(out));
-}
-
-/// Asserts exit code 2 with one clear line on stderr containing every `needle`.
-fn assert_bad_input(out: &Output, needles: &[&str]) {
-    let err = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert!(!err.contains("panicked"), "panic: {err}");
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "one line expected: {err}"
-    );
-    for needle in needles {
-        assert!(err.contains(needle), "`{needle}` missing from: {err}");
-    }
 }
 
 const MISSION: &str = r#"start = { x = 1.5, y = 1.5, yaw = 0.0 }

@@ -1,6 +1,6 @@
 //! Missions: start, optional end, targets of interest with their poses of interest.
 
-use crate::pose::{Point3, Pose2};
+use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeSet;
 
@@ -54,6 +54,24 @@ impl Mission {
     /// Total number of PoIs.
     pub fn poi_count(&self) -> usize {
         self.targets.iter().map(|t| t.pois.len()).sum()
+    }
+
+    /// Describes the first pose (start, end, then PoIs in order) outside `bounds`, e.g.
+    /// ``"PoI 3 of target `stone-2`"``; `None` when all lie inside.
+    pub fn first_pose_outside(&self, bounds: &Bounds2) -> Option<String> {
+        let outside = |p: &Pose2| !bounds.contains(p.x, p.y);
+        if outside(&self.start) {
+            return Some("the start pose".to_string());
+        }
+        if self.end.as_ref().is_some_and(outside) {
+            return Some("the end pose".to_string());
+        }
+        self.targets.iter().find_map(|t| {
+            t.pois
+                .iter()
+                .position(outside)
+                .map(|k| format!("PoI {k} of target `{}`", t.id))
+        })
     }
 
     /// Checks ids are unique, every target has a PoI, all numbers are finite.

@@ -266,40 +266,18 @@ pub struct GraphPath {
     pub cost: f64,
 }
 
+/// An open-list entry: a vertex, its cost so far and estimate, and (for the lazy
+/// search) the parent edge it is reached through.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Open {
-    f: f64,
-    g: f64,
-    v: u32,
-}
-
-/// An entry of the lazy search: a vertex reached through a parent edge whose
-/// validity may still be unknown.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct LazyOpen {
     f: f64,
     g: f64,
     v: u32,
     parent: (u32, u32),
 }
 
-impl Eq for LazyOpen {}
-
-impl Ord for LazyOpen {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.v.cmp(&self.v))
-    }
-}
-
-impl PartialOrd for LazyOpen {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
+/// No parent (the search's start).
+const NO_PARENT: (u32, u32) = (u32::MAX, u32::MAX);
 
 /// Checks roadmap elements for the lazy search (and records what it finds).
 pub trait Evaluator {
@@ -337,7 +315,7 @@ pub struct AStar {
     closed: Vec<u32>,
     generation: u32,
     heap: BinaryHeap<Open>,
-    lazy_heap: BinaryHeap<LazyOpen>,
+    lazy_heap: BinaryHeap<Open>,
     best_valid: Vec<f64>,
     /// Vertices expanded over all searches.
     pub expansions: u64,
@@ -356,11 +334,12 @@ impl AStar {
         self.prepare(map.vertex_count());
         let goal_pose = *map.pose(goal);
         let h = |v: u32| metric.distance(map.pose(v), &goal_pose);
-        self.open(start, 0.0, (u32::MAX, u32::MAX));
+        self.open(start, 0.0, NO_PARENT);
         self.heap.push(Open {
             f: h(start),
             g: 0.0,
             v: start,
+            parent: NO_PARENT,
         });
         while let Some(Open { g, v, .. }) = self.heap.pop() {
             if self.closed[v as usize] == self.generation || g > self.g[v as usize] {
@@ -382,6 +361,7 @@ impl AStar {
                         f: candidate + h(w),
                         g: candidate,
                         v: w,
+                        parent: (v, e),
                     });
                 }
             }
@@ -404,16 +384,15 @@ impl AStar {
         let goal_pose = *map.pose(goal);
         let mut open = std::mem::take(&mut self.lazy_heap);
         open.clear();
-        let none = (u32::MAX, u32::MAX);
         let h0 = metric.distance(map.pose(start), &goal_pose);
-        open.push(LazyOpen {
+        open.push(Open {
             f: h0,
             g: 0.0,
             v: start,
-            parent: none,
+            parent: NO_PARENT,
         });
         let mut found = None;
-        while let Some(LazyOpen { g, v, parent, .. }) = open.pop() {
+        while let Some(Open { g, v, parent, .. }) = open.pop() {
             if self.closed[v as usize] == self.generation {
                 continue;
             }
@@ -446,7 +425,7 @@ impl AStar {
                     self.best_valid[w as usize] = candidate;
                 }
                 let f = candidate + metric.distance(map.pose(w), &goal_pose);
-                open.push(LazyOpen {
+                open.push(Open {
                     f,
                     g: candidate,
                     v: w,
@@ -510,6 +489,7 @@ pub fn dijkstra(map: &Roadmap, start: u32) -> Vec<f64> {
         f: 0.0,
         g: 0.0,
         v: start,
+        parent: NO_PARENT,
     });
     while let Some(Open { f, v, .. }) = heap.pop() {
         if f > dist[v as usize] {
@@ -519,7 +499,12 @@ pub fn dijkstra(map: &Roadmap, start: u32) -> Vec<f64> {
             let d = f + map.edge(e).cost;
             if d < dist[w as usize] {
                 dist[w as usize] = d;
-                heap.push(Open { f: d, g: 0.0, v: w });
+                heap.push(Open {
+                    f: d,
+                    g: 0.0,
+                    v: w,
+                    parent: (v, e),
+                });
             }
         }
     }
@@ -562,6 +547,63 @@ mod tests {
             }
             map.refresh_components();
             prop_assert_eq!(map.maybe_connected(0, goal), dist[goal as usize].is_finite());
+        }
+    }
+
+    /// Knows which edges are secretly invalid.
+    struct Hidden(Vec<bool>);
+
+    impl Evaluator for Hidden {
+        fn vertex(&mut self, _: &mut Roadmap, _: u32) -> bool {
+            true
+        }
+
+        fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
+            match map.edge(e).validity {
+                Validity::Valid => true,
+                Validity::Invalid => false,
+                Validity::Unknown if self.0[e as usize] => {
+                    map.mark_edge_valid(e);
+                    true
+                }
+                Validity::Unknown => {
+                    map.remove_edge(e);
+                    false
+                }
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn lazy_weighted_astar_finds_the_shortest_valid_path(
+            points in proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 2..120),
+            validity in proptest::collection::vec(proptest::bool::weighted(0.7), 2000),
+            k in 1usize..8, goal_pick in 0usize..1000,
+        ) {
+            let metric = Se2Metric::default();
+            let mut lazy = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            for &(x, y, t) in &points {
+                lazy.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+            }
+            let goal = (goal_pick % lazy.vertex_count()) as u32;
+            let mut truth = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            for &(x, y, t) in &points {
+                truth.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+            }
+            for e in 0..truth.edges.len() {
+                if !validity[e % validity.len()] { truth.remove_edge(e as u32); }
+            }
+            let hidden: Vec<bool> = (0..lazy.edges.len()).map(|e| validity[e % validity.len()]).collect();
+            let found = AStar::default().search_lazy(&mut lazy, 0, goal, &metric, &mut Hidden(hidden));
+            let best = dijkstra(&truth, 0)[goal as usize];
+            match found {
+                None => prop_assert!(best.is_infinite()),
+                Some(path) => {
+                    prop_assert!((path.cost - best).abs() < 1e-9, "{} vs {}", path.cost, best);
+                    prop_assert!(path.edges.iter().all(|&e| lazy.edge(e).validity == Validity::Valid || path.vertices.len() == 1));
+                }
+            }
         }
     }
 }

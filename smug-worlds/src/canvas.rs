@@ -1,6 +1,17 @@
 //! Drawing terrain features onto an elevation layer.
 
-use smug_core::{GridGeometry, GridLayer};
+use rand::SeedableRng;
+use smug_core::rng::StageRng;
+use smug_core::{BuildContext, GridGeometry, GridLayer};
+
+/// The RNG of a procedural world: its own `seed` if given, else the config seed's
+/// `world` stream.
+pub(crate) fn world_rng(seed: Option<u64>, ctx: &BuildContext) -> StageRng {
+    match seed {
+        Some(seed) => StageRng::seed_from_u64(seed),
+        None => ctx.rng("world"),
+    }
+}
 
 /// Cells whose centres lie within `radius` of `(cx, cy)`, as index ranges.
 fn cells_near(

@@ -2,7 +2,7 @@
 //! mission file) — small, exact worlds for tests, tutorials and wheeled robots.
 
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Error, GridGeometry, GridLayer, Mission, Pose2, World};
+use smug_core::{BuildContext, Error, GridGeometry, GridLayer, Mission, World};
 use std::path::PathBuf;
 
 /// An axis-aligned box obstacle standing on the floor.
@@ -106,19 +106,7 @@ pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<World, Error>
 
 fn check_mission_inside(mission: &Mission, geometry: &GridGeometry) -> Result<(), Error> {
     let bounds = geometry.bounds();
-    let outside = |p: &Pose2| !bounds.contains(p.x, p.y);
-    let culprit = if outside(&mission.start) {
-        Some("the start pose".to_string())
-    } else if mission.end.as_ref().is_some_and(outside) {
-        Some("the end pose".to_string())
-    } else {
-        mission.targets.iter().find_map(|t| {
-            t.pois
-                .iter()
-                .position(outside)
-                .map(|k| format!("PoI {k} of target `{}`", t.id))
-        })
-    };
+    let culprit = mission.first_pose_outside(&bounds);
     match culprit {
         Some(what) => Err(Error::InvalidInput(format!(
             "{what} lies outside the map bounds {:?}–{:?}",

@@ -2,11 +2,11 @@
 //! floor split into four rooms by walls with doors, shelves along the walls, and
 //! gauges on the walls as targets, each with PoIs in front of it, facing it.
 
-use crate::canvas::{geometry, raise_rectangle};
-use rand::{Rng, SeedableRng};
+use crate::canvas::{geometry, raise_rectangle, world_rng};
+use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{BuildContext, Error, GridLayer, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, Mission, Point3, Pose2, Target, World};
 
 /// Parameters of the indoor world.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -338,13 +338,6 @@ fn place_gauge(
     None
 }
 
-fn world_rng(seed: Option<u64>, ctx: &BuildContext) -> StageRng {
-    match seed {
-        Some(seed) => StageRng::seed_from_u64(seed),
-        None => ctx.rng("world"),
-    }
-}
-
 smug_core::register_plugin!(
     smug_core::registry::WorldStage,
     name = "indoor",
@@ -359,6 +352,7 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::SeedableRng;
 
     #[test]
     fn every_seed_gives_a_complete_world() {

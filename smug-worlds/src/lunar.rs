@@ -3,11 +3,11 @@
 //! on a circle around each, facing it, and small rocks a robot base clears but should
 //! not step on.
 
-use crate::canvas::{add_feature, geometry, raise_feature};
-use rand::{Rng, SeedableRng};
+use crate::canvas::{add_feature, geometry, raise_feature, world_rng};
+use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{BuildContext, Error, GridLayer, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, Mission, Point3, Pose2, Target, World};
 use std::f64::consts::{PI, TAU};
 
 /// Parameters of the lunar world.
@@ -324,13 +324,6 @@ fn scatter_small_rocks(
     }
 }
 
-fn world_rng(seed: Option<u64>, ctx: &BuildContext) -> StageRng {
-    match seed {
-        Some(seed) => StageRng::seed_from_u64(seed),
-        None => ctx.rng("world"),
-    }
-}
-
 smug_core::register_plugin!(
     smug_core::registry::WorldStage,
     name = "lunar",
@@ -345,6 +338,7 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::SeedableRng;
 
     #[test]
     fn paper_sized_world_is_seeded_and_complete() {

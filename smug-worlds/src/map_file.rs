@@ -52,7 +52,7 @@
 
 use crate::mission_file::MissionFileError;
 use serde::{Deserialize, Deserializer, Serialize};
-use smug_core::{BuildContext, Error, GridGeometry, GridLayer, Mission, Pose2, World};
+use smug_core::{BuildContext, Error, GridGeometry, GridLayer, Mission, World};
 use std::path::{Path, PathBuf};
 
 /// `map_server`'s default `occupied_thresh`.
@@ -410,19 +410,7 @@ pub fn check_mission_inside(
     file: &Path,
 ) -> Result<(), MapFileError> {
     let bounds = geometry.bounds();
-    let outside = |p: &Pose2| !bounds.contains(p.x, p.y);
-    let culprit = if outside(&mission.start) {
-        Some("the start pose".to_string())
-    } else if mission.end.as_ref().is_some_and(outside) {
-        Some("the end pose".to_string())
-    } else {
-        mission.targets.iter().find_map(|t| {
-            t.pois
-                .iter()
-                .position(outside)
-                .map(|k| format!("PoI {k} of target `{}`", t.id))
-        })
-    };
+    let culprit = mission.first_pose_outside(&bounds);
     match culprit {
         Some(what) => Err(MapFileError::OutsideMap {
             path: file.to_path_buf(),
