@@ -15,22 +15,6 @@ pub struct CheckArgs {
     set: Vec<String>,
 }
 
-/// Arguments of `smug plan`.
-#[derive(clap::Args, Debug)]
-pub struct PlanArgs {
-    /// The pipeline config (TOML).
-    config: PathBuf,
-    /// Override a config key (see `smug check --help`).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// Output directory for plan.json, plan.csv and plan.svg.
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Print plan.json to stdout instead of a summary.
-    #[arg(long)]
-    json: bool,
-}
-
 fn load(config: &std::path::Path, set: &[String]) -> anyhow::Result<Pipeline> {
     let loaded = LoadedConfig::from_file(config, set)?;
     Ok(Pipeline::assemble(&loaded)?)
@@ -85,14 +69,4 @@ pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
     println!();
     print!("{}", pipeline.resolved_toml());
     Ok(Outcome::Ok)
-}
-
-/// Runs `smug plan`.
-pub fn run_plan(args: PlanArgs) -> anyhow::Result<Outcome> {
-    let _pipeline = load(&args.config, &args.set)?;
-    let _ = (&args.out, args.json);
-    anyhow::bail!(
-        "{}: `smug plan` is not available in this version yet",
-        args.config.display()
-    )
 }

@@ -17,6 +17,7 @@ mod bench;
 mod bench_validity;
 mod check;
 mod p2p;
+mod plan;
 mod plugins;
 mod tsp;
 mod worlds;
@@ -45,7 +46,7 @@ enum Command {
     /// Load and validate a config, assemble its pipeline and print it resolved.
     Check(check::CheckArgs),
     /// Plan a safe multi-goal mission from a config.
-    Plan(check::PlanArgs),
+    Plan(plan::PlanArgs),
     /// Plan point-to-point queries on one shared roadmap.
     P2p(p2p::P2pArgs),
     /// Solve a TSPLIB instance.
@@ -60,7 +61,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
     match cli.command {
         Command::Plugins(args) => plugins::run(args),
         Command::Check(args) => check::run_check(args),
-        Command::Plan(args) => check::run_plan(args),
+        Command::Plan(args) => plan::run(args),
         Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Bench(args) => bench::run(args),

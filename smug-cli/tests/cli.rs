@@ -170,7 +170,7 @@ fn overrides_change_values_and_reject_unknown_keys() {
         ]),
         &[
             "--set planner.params.max_stal=5",
-            "`planner`: missing field `type`",
+            "`planner.params.max_stal`: unknown field",
         ],
     );
     assert_bad_input(
@@ -224,4 +224,61 @@ fn bad_values_and_missing_files_are_errors_not_panics() {
 fn usage_errors_exit_with_2() {
     assert_eq!(smug(&["frobnicate"]).status.code(), Some(2));
     assert_eq!(smug(&["check"]).status.code(), Some(2));
+}
+
+#[test]
+fn plan_writes_json_csv_and_svg() {
+    let out = workspace().join("target").join("cli-test-plan");
+    let _ = std::fs::remove_dir_all(&out);
+    let run = smug(&[
+        "plan",
+        "configs/flat-demo.toml",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    assert!(
+        stdout(&run).contains("planned 3 targets"),
+        "{}",
+        stdout(&run)
+    );
+    for file in ["plan.json", "plan.csv", "plan.svg"] {
+        assert!(
+            out.join(file)
+                .metadata()
+                .map(|m| m.len() > 100)
+                .unwrap_or(false),
+            "{file} missing or empty"
+        );
+    }
+    let json = smug(&[
+        "plan",
+        "configs/flat-demo.toml",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    let plan: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    for key in ["sequence", "pois", "segments", "waypoints", "cost", "stats"] {
+        assert!(plan.get(key).is_some(), "plan.json lacks `{key}`");
+    }
+    assert_eq!(
+        plan["waypoints"][0].as_array().unwrap().len(),
+        4,
+        "waypoints are [x, y, z, yaw]"
+    );
+}
+
+#[test]
+fn an_unreachable_target_exits_with_1_and_is_named() {
+    // valve-c's PoI walled in by a box around it.
+    let text = demo_config().replace(
+        "{ min = [8.0, 3.0], max = [9.0, 8.0], height = 1.0 },",
+        "{ min = [8.0, 3.0], max = [9.0, 8.0], height = 1.0 },\n    { min = [9.0, 3.4], max = [12.0, 3.6], height = 1.0 },\n    { min = [9.0, 6.4], max = [12.0, 6.6], height = 1.0 },\n    { min = [9.0, 3.4], max = [9.2, 6.6], height = 1.0 },\n    { min = [11.8, 3.4], max = [12.0, 6.6], height = 1.0 },",
+    ).replace("type = \"lazy-prm-star\"", "type = \"lazy-prm-star\"\nparams = { max_samples = 800 }").replace("params = { shortcut = true }\n", "");
+    let config = temp_config("walled.toml", &text);
+    let run = smug(&["plan", &config, "--out", "target/cli-test-walled"]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(err.contains("`valve-c`"), "{err}");
 }

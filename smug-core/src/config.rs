@@ -136,6 +136,9 @@ pub struct PipelineConfig {
     pub sequencer: Option<PluginSection>,
     /// PoI selector.
     pub selector: Option<PluginSection>,
+    /// How the mission is run.
+    #[serde(default)]
+    pub plan: crate::mission_run::PlanOptions,
     /// Output files.
     #[serde(default)]
     pub output: OutputConfig,

@@ -1,0 +1,150 @@
+//! `smug plan`: the whole mission, from a config to plan.json, plan.csv and plan.svg.
+
+use crate::Outcome;
+use smug_core::mission_run::Unreachable;
+use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, World};
+use smug_worlds::render::{render_svg, RenderOptions};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `smug plan`.
+#[derive(clap::Args, Debug)]
+pub struct PlanArgs {
+    /// The pipeline config (TOML).
+    config: PathBuf,
+    /// Override a config key (see `smug check --help`).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Override the config's seed.
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Output directory for plan.json, plan.csv and plan.svg (default: the config's
+    /// `output.dir`, else `out`).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print plan.json to stdout instead of a summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `smug plan`.
+pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
+    let mut set = args.set.clone();
+    if let Some(seed) = args.seed {
+        set.push(format!("seed={seed}"));
+    }
+    let loaded = LoadedConfig::from_file(&args.config, &set)?;
+    let mut pipeline = Pipeline::assemble(&loaded)?;
+    let options = pipeline.config.plan;
+    let plan = match plan_mission(&mut pipeline, options) {
+        Ok(plan) => plan,
+        Err(smug_core::Error::Stage { source, .. }) if source.is::<Unreachable>() => {
+            eprintln!("smug: no solution: {source}");
+            return Ok(Outcome::NoSolution);
+        }
+        Err(err) => return Err(err.into()),
+    };
+    let world = pipeline.world.clone().expect("plan_mission needs a world");
+    let out = args
+        .out
+        .clone()
+        .or_else(|| pipeline.config.output.dir.clone())
+        .unwrap_or_else(|| PathBuf::from("out"));
+    write_outputs(&plan, &world, &pipeline, &out)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&plan)?);
+    } else {
+        print_summary(&plan, &pipeline, &out);
+    }
+    Ok(Outcome::Ok)
+}
+
+fn write_outputs(
+    plan: &Plan,
+    world: &World,
+    pipeline: &Pipeline,
+    dir: &Path,
+) -> anyhow::Result<()> {
+    let output = &pipeline.config.output;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
+    let write = |name: &str, text: String| {
+        let path = dir.join(name);
+        std::fs::write(&path, text)
+            .map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
+    };
+    if output.json {
+        write("plan.json", serde_json::to_string_pretty(plan)?)?;
+    }
+    if output.csv {
+        let mut csv = String::from("x,y,z,yaw\n");
+        for w in &plan.waypoints {
+            csv += &format!("{},{},{},{}\n", w.x, w.y, w.z, w.yaw);
+        }
+        write("plan.csv", csv)?;
+    }
+    if output.svg {
+        write("plan.svg", render_svg(world, &render_options(plan, world)))?;
+    }
+    Ok(())
+}
+
+fn render_options(plan: &Plan, world: &World) -> RenderOptions {
+    let highlighted = plan
+        .pois
+        .iter()
+        .filter_map(|c| {
+            world
+                .mission
+                .targets
+                .iter()
+                .position(|t| t.id == c.target)
+                .map(|t| (t, c.index))
+        })
+        .collect();
+    RenderOptions {
+        title: Some(format!(
+            "{}: cost {:.2}, {} targets",
+            world.name,
+            plan.cost,
+            plan.sequence.len()
+        )),
+        paths: vec![plan.waypoints.iter().map(|w| [w.x, w.y]).collect()],
+        highlighted_pois: highlighted,
+        ..RenderOptions::default()
+    }
+}
+
+fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
+    let s = &plan.stats;
+    let b = &s.breakdown;
+    println!(
+        "planned {} targets, cost {:.3}, {} waypoints; {} paths planned, {} validity queries",
+        plan.sequence.len(),
+        plan.cost,
+        plan.waypoints.len(),
+        s.paths_planned,
+        s.validity_queries
+    );
+    println!(
+        "time {:.3} s (sequencing {:.3}, selection {:.3}); planner: A* {:.3}, sampling {:.3}, edge checking {:.3}, vertex checking {:.3}, misc {:.3}",
+        s.stage_times_s.get("total").copied().unwrap_or(0.0),
+        s.stage_times_s.get("sequencing").copied().unwrap_or(0.0),
+        s.stage_times_s.get("selection").copied().unwrap_or(0.0),
+        b.astar_s,
+        b.sampling_s,
+        b.edge_checking_s,
+        b.vertex_checking_s,
+        b.misc_s
+    );
+    if !plan.skipped.is_empty() {
+        println!("skipped unreachable targets: {}", plan.skipped.join(", "));
+    }
+    if !pipeline.dropped_pois.is_empty() {
+        println!(
+            "{} PoIs were not valid for the robot and were left out",
+            pipeline.dropped_pois.len()
+        );
+    }
+    println!("order: {}", plan.sequence.join(" → "));
+    println!("wrote {}/plan.json, plan.csv, plan.svg", out.display());
+}

@@ -1,0 +1,373 @@
+//! Running a whole mission through an assembled pipeline: the ToI order from path
+//! costs between representative poses (sequencer), one PoI per ToI (selector), then
+//! post-processing into SE(3) waypoints. Everything goes through one path oracle, so
+//! every query shares the planner's roadmap.
+
+use crate::error::{Error, Result};
+use crate::mission::Mission;
+use crate::oracle::PathOracle;
+use crate::pipeline::Pipeline;
+use crate::plan::{ChosenPoi, Plan, PlanStats, Segment};
+use crate::pose::{wrap_angle, Pose2, Waypoint};
+use crate::stages::{
+    CostMatrix, MotionValidator, SelectionProblem, StateValidityChecker, TourKind,
+};
+use crate::world::World;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// How the mission is run (the config's `[plan]` section).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlanOptions {
+    /// Leave out targets none of whose PoIs can be reached (and say so) instead of failing.
+    pub skip_unreachable: bool,
+    /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
+    pub keep_headings: bool,
+}
+
+/// Targets that cannot be reached: the plan fails and names them.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("no safe path reaches target(s) {}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "))]
+pub struct Unreachable {
+    /// Ids of the unreachable targets.
+    pub targets: Vec<String>,
+}
+
+/// Where the mission's poses sit in the oracle.
+struct Layout {
+    start: usize,
+    end: usize,
+    /// For each target of the mission, the oracle indices of its PoIs.
+    pois: Vec<Vec<usize>>,
+}
+
+fn register_poses(oracle: &mut PathOracle, mission: &Mission) -> Layout {
+    let start = oracle.add_pose(mission.start);
+    let end = match mission.end {
+        Some(end) => oracle.add_pose(end),
+        None => start,
+    };
+    let pois = mission
+        .targets
+        .iter()
+        .map(|t| t.pois.iter().map(|p| oracle.add_pose(*p)).collect())
+        .collect();
+    Layout { start, end, pois }
+}
+
+/// The PoI nearest the target's centre: the target's stand-in for sequencing.
+fn representative(mission: &Mission, layout: &Layout, target: usize) -> usize {
+    let t = &mission.targets[target];
+    let d = |p: &Pose2| (p.x - t.position.x).hypot(p.y - t.position.y);
+    let best = (0..t.pois.len())
+        .min_by(|&a, &b| d(&t.pois[a]).total_cmp(&d(&t.pois[b])).then(a.cmp(&b)))
+        .unwrap_or(0);
+    layout.pois[target][best]
+}
+
+/// The visiting order of `targets` (indices into the mission).
+fn sequence(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+) -> Result<Vec<usize>> {
+    let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "sequencer",
+    })?;
+    let open = mission.end.is_some();
+    let mut nodes = vec![layout.start];
+    nodes.extend(targets.iter().map(|&t| representative(mission, layout, t)));
+    if open {
+        nodes.push(layout.end);
+    }
+    let n = nodes.len();
+    let mut costs = vec![0.0; n * n];
+    for i in 0..n {
+        for j in i + 1..n {
+            let c = oracle.cost(nodes[i], nodes[j])?;
+            costs[i * n + j] = c;
+            costs[j * n + i] = c;
+        }
+    }
+    let matrix = CostMatrix::from_rows(n, costs)?;
+    let kind = if open {
+        TourKind::OpenTo(n - 1)
+    } else {
+        TourKind::Closed
+    };
+    let tour = sequencer.solve(&matrix, kind)?;
+    Ok(tour
+        .order
+        .iter()
+        .filter(|&&v| v != 0 && !(open && v == n - 1))
+        .map(|&v| targets[v - 1])
+        .collect())
+}
+
+/// Targets none of whose PoIs the start reaches.
+fn unreachable_targets(
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    targets: &[usize],
+) -> Result<Vec<usize>> {
+    let mut unreachable = Vec::new();
+    for &t in targets {
+        let mut reached = false;
+        for &p in &layout.pois[t] {
+            if oracle.cost(layout.start, p)?.is_finite() {
+                reached = true;
+                break;
+            }
+        }
+        if !reached {
+            unreachable.push(t);
+        }
+    }
+    Ok(unreachable)
+}
+
+/// Plans the pipeline's mission: sequencing, PoI selection, post-processing.
+pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+    let started = Instant::now();
+    let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "world",
+    })?;
+    let world = pipeline.world.clone().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "world",
+    })?;
+    let planner = pipeline.planner.take().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "planner",
+    })?;
+    let mut oracle = PathOracle::new(pipeline.metric.clone(), planner);
+    let layout = register_poses(&mut oracle, &mission);
+    let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
+    let mut skipped = Vec::new();
+    let mut times = std::collections::BTreeMap::new();
+    let (order, selection) = loop {
+        let t = Instant::now();
+        let order = sequence(pipeline, &mut oracle, &mission, &layout, &targets)?;
+        *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
+            stage: "smug plan".into(),
+            needed: "selector",
+        })?;
+        let problem = SelectionProblem {
+            start: layout.start,
+            groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
+            end: layout.end,
+        };
+        let selection = selector.select(&mut oracle, &problem);
+        *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+        let selection = match selection {
+            Ok(s) if s.cost.is_finite() => s,
+            other => {
+                let unreachable = unreachable_targets(&mut oracle, &layout, &targets)?;
+                if unreachable.is_empty() {
+                    other?;
+                    return Err(Error::stage(
+                        "smug plan",
+                        Unreachable {
+                            targets: vec!["(the end pose)".into()],
+                        },
+                    ));
+                }
+                let ids: Vec<String> = unreachable
+                    .iter()
+                    .map(|&t| mission.targets[t].id.clone())
+                    .collect();
+                if !options.skip_unreachable {
+                    return Err(Error::stage("smug plan", Unreachable { targets: ids }));
+                }
+                skipped.extend(ids);
+                targets.retain(|t| !unreachable.contains(t));
+                continue;
+            }
+        };
+        break (order, selection);
+    };
+    let t = Instant::now();
+    let route = SelectionProblem {
+        start: layout.start,
+        groups: Vec::new(),
+        end: layout.end,
+    }
+    .route(&selection.chosen);
+    let mut plan = assemble_plan(
+        &mut oracle,
+        &mission,
+        &world,
+        &order,
+        &selection.chosen,
+        &route,
+    )?;
+    let (mut poses, fixed) = concatenate(&plan);
+    if !options.keep_headings {
+        align_headings(
+            &mut poses,
+            &fixed,
+            pipeline.state_validity.as_deref(),
+            pipeline.motion_validator.as_deref(),
+        );
+    }
+    plan.waypoints = poses
+        .iter()
+        .map(|p| Waypoint::from_pose(p, world.height_at(p.x, p.y).unwrap_or(f64::NAN)))
+        .collect();
+    plan.cost = selection.cost;
+    plan.skipped = skipped;
+    times.insert("post-processing".into(), t.elapsed().as_secs_f64());
+    times.insert(
+        "total".into(),
+        started.elapsed().as_secs_f64() + pipeline.build_times_s.values().sum::<f64>(),
+    );
+    for (stage, s) in &pipeline.build_times_s {
+        times.insert(format!("build:{stage}"), *s);
+    }
+    plan.stats = stats(&oracle, pipeline, times);
+    Ok(plan)
+}
+
+/// The index of `pose` among the world's original PoIs of target `id`.
+fn original_index(world: &World, id: &str, pose: &Pose2) -> usize {
+    world
+        .mission
+        .targets
+        .iter()
+        .find(|t| t.id == id)
+        .and_then(|t| t.pois.iter().position(|p| p == pose))
+        .unwrap_or(0)
+}
+
+fn assemble_plan(
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    world: &World,
+    order: &[usize],
+    chosen: &[usize],
+    route: &[usize],
+) -> Result<Plan> {
+    let name = |k: usize| -> String {
+        if k == 0 {
+            "start".into()
+        } else if k == route.len() - 1 {
+            if mission.end.is_some() {
+                "end".into()
+            } else {
+                "start".into()
+            }
+        } else {
+            mission.targets[order[k - 1]].id.clone()
+        }
+    };
+    let mut segments = Vec::new();
+    for k in 0..route.len() - 1 {
+        let planned = oracle.path(route[k], route[k + 1])?;
+        let path = planned.path().cloned().ok_or_else(|| {
+            Error::InvalidInput(format!("no path from {} to {}", name(k), name(k + 1)))
+        })?;
+        segments.push(Segment {
+            from: name(k),
+            to: name(k + 1),
+            path,
+        });
+    }
+    let pois = order
+        .iter()
+        .zip(chosen)
+        .map(|(&t, &p)| {
+            let pose = *oracle.pose(p);
+            let id = mission.targets[t].id.clone();
+            ChosenPoi {
+                index: original_index(world, &id, &pose),
+                target: id,
+                pose,
+            }
+        })
+        .collect();
+    Ok(Plan {
+        sequence: order
+            .iter()
+            .map(|&t| mission.targets[t].id.clone())
+            .collect(),
+        pois,
+        segments,
+        ..Plan::default()
+    })
+}
+
+/// The segments' states in order (shared endpoints once) and which of them are fixed
+/// (the start, the PoIs, the end).
+fn concatenate(plan: &Plan) -> (Vec<Pose2>, Vec<bool>) {
+    let mut poses: Vec<Pose2> = Vec::new();
+    let mut fixed = Vec::new();
+    for segment in &plan.segments {
+        for (k, s) in segment.path.states.iter().enumerate() {
+            if k == 0 && !poses.is_empty() {
+                continue;
+            }
+            poses.push(*s);
+            fixed.push(k == 0 || k + 1 == segment.path.states.len());
+        }
+    }
+    (poses, fixed)
+}
+
+/// Turns every free waypoint towards the next one (forward walking) where the checkers
+/// accept the turned state and its motions; fixed waypoints keep their yaw.
+fn align_headings(
+    poses: &mut [Pose2],
+    fixed: &[bool],
+    states: Option<&dyn StateValidityChecker>,
+    motions: Option<&dyn MotionValidator>,
+) {
+    for k in 1..poses.len().saturating_sub(1) {
+        if fixed[k] {
+            continue;
+        }
+        let heading = (poses[k + 1].y - poses[k].y).atan2(poses[k + 1].x - poses[k].x);
+        let turned = Pose2::new(poses[k].x, poses[k].y, wrap_angle(heading));
+        let accepted = states.is_none_or(|c| c.is_valid(&turned))
+            && motions.is_none_or(|m| {
+                m.is_valid_motion(&poses[k - 1], &turned)
+                    && m.is_valid_motion(&turned, &poses[k + 1])
+            });
+        if accepted {
+            poses[k] = turned;
+        }
+    }
+}
+
+fn stats(
+    oracle: &PathOracle,
+    pipeline: &Pipeline,
+    times: std::collections::BTreeMap<String, f64>,
+) -> PlanStats {
+    let planner = oracle.planner().stats();
+    let validity = pipeline
+        .state_validity
+        .as_ref()
+        .map(|c| c.counters())
+        .unwrap_or_default();
+    let mut counters = planner.counters.clone();
+    counters.insert("roadmap_vertices".into(), planner.vertices);
+    counters.insert("roadmap_edges".into(), planner.edges);
+    counters.insert("oracle_cache_hits".into(), oracle.stats().cache_hits);
+    for (k, v) in &validity {
+        counters.insert(format!("validity_{k}"), *v);
+    }
+    PlanStats {
+        paths_planned: oracle.stats().paths_planned,
+        validity_queries: validity.get("checks").copied().unwrap_or(0),
+        stage_times_s: times,
+        breakdown: planner.breakdown,
+        counters,
+    }
+}

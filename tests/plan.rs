@@ -1,0 +1,85 @@
+//! The end-to-end plan is valid: every waypoint passes the validity checker, every
+//! segment the motion validator, one PoI per ToI, from the start back to the start.
+
+use smug_core::{plan_mission, LoadedConfig, Pipeline, PlanOptions};
+use std::path::Path;
+
+use smug_planners as _;
+use smug_samplers as _;
+use smug_selection as _;
+use smug_sequencing as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+fn demo() -> Pipeline {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../configs/flat-demo.toml");
+    Pipeline::assemble(&LoadedConfig::from_file(&path, &[]).unwrap()).unwrap()
+}
+
+#[test]
+fn the_demo_plan_is_valid_and_complete() {
+    let mut pipeline = demo();
+    let plan = plan_mission(&mut pipeline, PlanOptions::default()).unwrap();
+    let mission = pipeline.world.as_ref().unwrap().mission.clone();
+    let states = pipeline.state_validity.clone().unwrap();
+    let motions = pipeline.motion_validator.clone().unwrap();
+
+    let mut ids = plan.sequence.clone();
+    ids.sort();
+    let mut expected: Vec<String> = mission.targets.iter().map(|t| t.id.clone()).collect();
+    expected.sort();
+    assert_eq!(ids, expected, "every target exactly once");
+    assert_eq!(plan.pois.len(), mission.targets.len());
+    for chosen in &plan.pois {
+        let target = mission
+            .targets
+            .iter()
+            .find(|t| t.id == chosen.target)
+            .unwrap();
+        assert_eq!(target.pois[chosen.index], chosen.pose);
+    }
+    let first = plan.waypoints.first().unwrap();
+    let last = plan.waypoints.last().unwrap();
+    assert_eq!(
+        (first.x, first.y, first.yaw),
+        (mission.start.x, mission.start.y, mission.start.yaw)
+    );
+    assert_eq!((last.x, last.y), (mission.start.x, mission.start.y));
+    for w in &plan.waypoints {
+        assert!(states.is_valid(&w.pose()), "invalid waypoint {w:?}");
+        assert!(w.z.is_finite());
+    }
+    for segment in &plan.segments {
+        for pair in segment.path.states.windows(2) {
+            assert!(
+                motions.check_motion(&pair[0], &pair[1]).is_valid(),
+                "invalid motion in {} → {}",
+                segment.from,
+                segment.to
+            );
+        }
+    }
+    for pair in plan.waypoints.windows(2) {
+        assert!(
+            motions
+                .check_motion(&pair[0].pose(), &pair[1].pose())
+                .is_valid(),
+            "invalid waypoint motion {pair:?}"
+        );
+    }
+    let segment_sum: f64 = plan.segments.iter().map(|s| s.path.cost).sum();
+    assert!(
+        (plan.cost - segment_sum).abs() < 1e-6,
+        "cost {} vs segments {segment_sum}",
+        plan.cost
+    );
+    assert!(plan.stats.paths_planned > 0 && plan.stats.validity_queries > 0);
+}
+
+#[test]
+fn plans_are_reproducible_for_a_seed() {
+    let a = plan_mission(&mut demo(), PlanOptions::default()).unwrap();
+    let b = plan_mission(&mut demo(), PlanOptions::default()).unwrap();
+    assert_eq!(a.waypoints, b.waypoints);
+    assert_eq!(a.cost, b.cost);
+}
