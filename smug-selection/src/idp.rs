@@ -1,0 +1,164 @@
+//! `idp`: Iterative DP — DP over lower bounds, planning only the legs it chooses.
+
+use crate::dp_core::solve_layers;
+use crate::error::{check_groups, unreachable_error};
+use serde::{Deserialize, Serialize};
+use smug_core::{PathOracle, PoiSelector, Result, Selection, SelectionProblem};
+
+/// Parameters of the iterative DP selector (none).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IdpParams {}
+
+/// Iterative DP: leg costs are the planned cost when planned, else the straight-line
+/// lower bound; repeat the DP and plan the chosen route's unplanned legs until the DP
+/// chooses a route whose legs are all planned. That route is optimal for the paths the
+/// oracle gives (lower bounds never exceed true costs), so on a shared, fixed roadmap IDP
+/// returns DP's cost while planning far fewer paths.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct IdpSelector {
+    _params: IdpParams,
+}
+
+impl IdpSelector {
+    /// A selector with `params`.
+    pub fn new(params: IdpParams) -> Self {
+        Self { _params: params }
+    }
+}
+
+impl PoiSelector for IdpSelector {
+    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+        check_groups(problem)?;
+        idp(oracle, problem)
+    }
+}
+
+/// Runs iterative DP (groups must be non-empty). Terminates: every iteration but the
+/// last plans at least one new leg between consecutive layers, and there are finitely many.
+pub(crate) fn idp(oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+    let mut best: Option<Selection> = None;
+    loop {
+        let (chosen, _) = solve_layers(problem, |i, j| Ok(oracle.cost_or_bound(i, j)))?;
+        let mut planned_new = false;
+        for leg in problem.route(&chosen).windows(2) {
+            if !oracle.is_planned(leg[0], leg[1]) {
+                oracle.cost(leg[0], leg[1])?;
+                planned_new = true;
+            }
+        }
+        // Every leg is planned now: this is the route's true cost.
+        let cost = problem.route_cost(&chosen, |i, j| oracle.cost(i, j))?;
+        // `<=`: among equals keep the latest, the DP's final (provably optimal) choice.
+        if best.as_ref().is_none_or(|b| cost <= b.cost) {
+            best = Some(Selection { chosen, cost });
+        }
+        if !planned_new {
+            break;
+        }
+    }
+    match best {
+        Some(s) if s.cost.is_finite() => Ok(s),
+        _ => Err(unreachable_error(oracle, problem)),
+    }
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::SelectorStage,
+    name = "idp",
+    summary = "iterative DP over lower bounds, planning only the chosen legs (optimal, lazy)",
+    params = IdpParams,
+    build = |params, _ctx| Ok(Box::new(IdpSelector::new(params))),
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_support::{detour_oracle, selection_error, straight_oracle};
+    use crate::{DpSelector, SelectionError};
+
+    #[test]
+    fn matches_dp_with_fewer_plans() {
+        let poses = [
+            (0.0, 0.0),
+            (5.0, 5.0),
+            (1.0, 1.0),
+            (7.0, 0.5),
+            (2.0, 0.0),
+            (4.0, 4.0),
+            (3.0, -1.0),
+            (0.0, 8.0),
+            (-2.0, 1.0),
+        ];
+        let problem = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1, 2, 3], vec![4, 5, 6], vec![7, 8]],
+            end: 0,
+        };
+        let mut o_dp = detour_oracle(&poses);
+        let mut o_idp = detour_oracle(&poses);
+        let dp = DpSelector::default().select(&mut o_dp, &problem).unwrap();
+        let idp = IdpSelector::default().select(&mut o_idp, &problem).unwrap();
+        assert!((dp.cost - idp.cost).abs() < 1e-9, "{dp:?} vs {idp:?}");
+        assert_eq!(o_dp.stats().paths_planned, 3 + 9 + 6 + 2);
+        assert!(o_idp.stats().paths_planned < o_dp.stats().paths_planned);
+    }
+
+    #[test]
+    fn avoids_detours_and_reports_unreachable_groups() {
+        let mut o = detour_oracle(&[(0.0, 0.0), (7.0, 0.0), (0.0, 8.0)]);
+        let problem = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1, 2]],
+            end: 0,
+        };
+        let s = IdpSelector::default().select(&mut o, &problem).unwrap();
+        assert_eq!(s.chosen, vec![2]);
+
+        // Group 0 = {(9, 0)} is unreachable from the start.
+        let mut o = straight_oracle(&[(0.0, 0.0), (9.0, 0.0), (1.0, 1.0)]);
+        let problem = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1], vec![2]],
+            end: 0,
+        };
+        let err = IdpSelector::default().select(&mut o, &problem).unwrap_err();
+        assert_eq!(
+            selection_error(&err),
+            Some(SelectionError::Unreachable { group: 0 })
+        );
+    }
+
+    #[test]
+    fn open_routes_with_an_unreachable_end() {
+        let mut o = straight_oracle(&[(0.0, 0.0), (1.0, 0.0), (9.0, 5.0)]);
+        let with_group = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1]],
+            end: 2,
+        };
+        let err = IdpSelector::default()
+            .select(&mut o, &with_group)
+            .unwrap_err();
+        assert_eq!(
+            selection_error(&err),
+            Some(SelectionError::Unreachable { group: 0 })
+        );
+        let direct = SelectionProblem {
+            start: 0,
+            groups: vec![],
+            end: 2,
+        };
+        let err = IdpSelector::default().select(&mut o, &direct).unwrap_err();
+        assert_eq!(selection_error(&err), Some(SelectionError::EndUnreachable));
+        let empty_group = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1], vec![]],
+            end: 0,
+        };
+        assert!(matches!(
+            IdpSelector::default().select(&mut o, &empty_group),
+            Err(smug_core::Error::InvalidInput(_))
+        ));
+    }
+}
