@@ -48,6 +48,38 @@ fn plugins_lists_every_stage_and_the_builtin_plugins() {
 }
 
 #[test]
+fn every_shipped_mission_config_plans() {
+    for entry in std::fs::read_dir(workspace().join("configs")).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        if !text.contains("[selector]") && !path.ends_with("lunar-full-collision.toml") {
+            continue; // a fragment or a pipeline without PoI selection
+        }
+        let out = workspace()
+            .join("target/cli-test-configs/plans")
+            .join(path.file_stem().unwrap());
+        let run = smug(&[
+            "plan",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(
+            run.status.code(),
+            Some(0),
+            "{}: {}",
+            path.display(),
+            stderr(&run)
+        );
+        assert!(
+            out.join("plan.json").exists(),
+            "{}: no plan.json",
+            path.display()
+        );
+    }
+}
+
+#[test]
 fn every_shipped_pipeline_config_checks() {
     for entry in std::fs::read_dir(workspace().join("configs")).unwrap() {
         let path = entry.unwrap().path();

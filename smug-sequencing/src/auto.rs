@@ -27,7 +27,7 @@ impl Default for AutoParams {
     fn default() -> Self {
         let ls = LocalSearchParams::default();
         Self {
-            threshold: 13,
+            threshold: 16,
             time_limit_s: ls.time_limit_s,
             max_iterations: ls.max_iterations,
             neighbours: ls.neighbours,
@@ -90,7 +90,7 @@ impl Sequencer for Auto {
 smug_core::register_plugin!(
     smug_core::registry::SequencerStage,
     name = "auto",
-    summary = "held-karp up to `threshold` nodes (default 13), local-search above",
+    summary = "held-karp up to `threshold` nodes (default 16: 15 targets, a start and an end), local-search above",
     params = AutoParams,
     build = |params, ctx| Ok(Box::new(Auto::new(params, ctx.rng("sequencer"))?)),
 );
