@@ -51,6 +51,9 @@ fn plugins_lists_every_stage_and_the_builtin_plugins() {
 fn every_shipped_mission_config_plans() {
     for entry in std::fs::read_dir(workspace().join("configs")).unwrap() {
         let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
         let text = std::fs::read_to_string(&path).unwrap();
         if !text.contains("[selector]") && !path.ends_with("lunar-full-collision.toml") {
             continue; // a fragment or a pipeline without PoI selection
@@ -83,6 +86,9 @@ fn every_shipped_mission_config_plans() {
 fn every_shipped_pipeline_config_checks() {
     for entry in std::fs::read_dir(workspace().join("configs")).unwrap() {
         let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
         let text = std::fs::read_to_string(&path).unwrap();
         if !text.contains("[world]") {
             continue; // a fragment such as a robot profile
@@ -313,4 +319,23 @@ fn an_unreachable_target_exits_with_1_and_is_named() {
     let err = stderr(&run);
     assert_eq!(run.status.code(), Some(1), "{err}");
     assert!(err.contains("`valve-c`"), "{err}");
+    let skip = smug(&[
+        "plan",
+        &config,
+        "--out",
+        "target/cli-test-walled",
+        "--set",
+        "plan.skip_unreachable=true",
+    ]);
+    assert_eq!(skip.status.code(), Some(0), "{}", stderr(&skip));
+    assert!(
+        stdout(&skip).contains("skipped unreachable targets: valve-c"),
+        "{}",
+        stdout(&skip)
+    );
+    assert!(
+        stdout(&skip).contains("planned 2 targets"),
+        "{}",
+        stdout(&skip)
+    );
 }

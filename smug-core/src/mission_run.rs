@@ -16,10 +16,23 @@ use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
+/// Which pose stands in for a target when the visiting order is computed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Representative {
+    /// The PoI nearest the target's centre.
+    #[default]
+    NearestPoi,
+    /// The target's first PoI.
+    FirstPoi,
+}
+
 /// How the mission is run (the config's `[plan]` section).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlanOptions {
+    /// The pose that stands in for each target when sequencing.
+    pub representative: Representative,
     /// Leave out targets none of whose PoIs can be reached (and say so) instead of failing.
     pub skip_unreachable: bool,
     /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
@@ -56,9 +69,17 @@ fn register_poses(oracle: &mut PathOracle, mission: &Mission) -> Layout {
     Layout { start, end, pois }
 }
 
-/// The PoI nearest the target's centre: the target's stand-in for sequencing.
-fn representative(mission: &Mission, layout: &Layout, target: usize) -> usize {
+/// The target's stand-in for sequencing.
+fn representative(
+    mission: &Mission,
+    layout: &Layout,
+    target: usize,
+    rule: Representative,
+) -> usize {
     let t = &mission.targets[target];
+    if rule == Representative::FirstPoi {
+        return layout.pois[target][0];
+    }
     let d = |p: &Pose2| (p.x - t.position.x).hypot(p.y - t.position.y);
     let best = (0..t.pois.len())
         .min_by(|&a, &b| d(&t.pois[a]).total_cmp(&d(&t.pois[b])).then(a.cmp(&b)))
@@ -73,6 +94,7 @@ fn sequence(
     mission: &Mission,
     layout: &Layout,
     targets: &[usize],
+    rule: Representative,
 ) -> Result<Vec<usize>> {
     let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
         stage: "smug plan".into(),
@@ -80,7 +102,11 @@ fn sequence(
     })?;
     let open = mission.end.is_some();
     let mut nodes = vec![layout.start];
-    nodes.extend(targets.iter().map(|&t| representative(mission, layout, t)));
+    nodes.extend(
+        targets
+            .iter()
+            .map(|&t| representative(mission, layout, t, rule)),
+    );
     if open {
         nodes.push(layout.end);
     }
@@ -152,7 +178,14 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     let mut times = std::collections::BTreeMap::new();
     let (order, selection) = loop {
         let t = Instant::now();
-        let order = sequence(pipeline, &mut oracle, &mission, &layout, &targets)?;
+        let order = sequence(
+            pipeline,
+            &mut oracle,
+            &mission,
+            &layout,
+            &targets,
+            options.representative,
+        )?;
         *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
         let t = Instant::now();
         let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
