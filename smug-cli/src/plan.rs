@@ -33,9 +33,13 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         set.push(format!("seed={seed}"));
     }
     let loaded = LoadedConfig::from_file(&args.config, &set)?;
+    let progress = Progress::start("building the world and the checkers");
     let mut pipeline = Pipeline::assemble(&loaded)?;
+    progress.stage("planning: sequencing the targets, selecting the poses of interest");
     let options = pipeline.config.plan;
-    let plan = match plan_mission(&mut pipeline, options) {
+    let planned = plan_mission(&mut pipeline, options);
+    progress.finish();
+    let plan = match planned {
         Ok(plan) => plan,
         Err(smug_core::Error::Stage { source, .. }) if source.is::<Unreachable>() => {
             eprintln!("smug: no solution: {source}");
@@ -56,6 +60,34 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         print_summary(&plan, &pipeline, &out);
     }
     Ok(Outcome::Ok)
+}
+
+/// A spinner on stderr naming the running stage, shown only in a terminal.
+struct Progress(Option<indicatif::ProgressBar>);
+
+impl Progress {
+    fn start(stage: &str) -> Self {
+        use std::io::IsTerminal;
+        if !std::io::stderr().is_terminal() {
+            return Self(None);
+        }
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.enable_steady_tick(std::time::Duration::from_millis(100));
+        bar.set_message(stage.to_string());
+        Self(Some(bar))
+    }
+
+    fn stage(&self, stage: &str) {
+        if let Some(bar) = &self.0 {
+            bar.set_message(stage.to_string());
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.0 {
+            bar.finish_and_clear();
+        }
+    }
 }
 
 fn write_outputs(
