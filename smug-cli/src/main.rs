@@ -85,7 +85,18 @@ fn one_line(err: &anyhow::Error) -> String {
     message.replace('\n', " ")
 }
 
+/// Restores the default SIGPIPE action, so `smug … | head` ends quietly instead of
+/// panicking on a closed pipe.
+fn die_quietly_on_closed_pipes() {
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to the default before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    die_quietly_on_closed_pipes();
     let cli = Cli::parse();
     match run(cli) {
         Ok(Outcome::Ok) => ExitCode::SUCCESS,

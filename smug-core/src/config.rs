@@ -606,6 +606,10 @@ pub fn apply_override(table: &mut toml::Table, text: &str) -> Result<KeyPath, Co
             }
         };
     }
+    // A new plugin type starts from its own defaults, as with includes.
+    if *leaf == "type" && current.get("type").is_some_and(|old| *old != value) {
+        current.remove("params");
+    }
     current.insert(leaf.to_string(), value);
     Ok(KeyPath::dotted(&segments.join(".")))
 }
@@ -715,6 +719,11 @@ max_stall = 3
         );
         let quoted = load(CONFIG, &["selector.type=\"idp\""]).unwrap();
         assert_eq!(quoted.config.selector.unwrap().kind, "idp");
+        let switched = load(CONFIG, &["planner.type=other"]).unwrap();
+        assert!(
+            switched.config.planner.unwrap().params.is_empty(),
+            "params of the old type leak"
+        );
     }
 
     #[test]
