@@ -14,6 +14,8 @@ pub struct BenchArgs {
 enum BenchCommand {
     /// TSP solvers on the TSPLIB instances: gap to the optimum and time.
     Tsp(crate::tsp::BenchTspArgs),
+    /// LazyPRM* on MovingAI maps: scenarios solved, length against the optimum, time.
+    P2p(crate::bench_p2p::BenchP2pArgs),
     /// State validity checkers: checks per second and distance-field queries.
     Validity(crate::bench_validity::BenchValidityArgs),
 }
@@ -23,5 +25,6 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
     match args.which {
         BenchCommand::Tsp(args) => crate::tsp::run_bench(args),
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
+        BenchCommand::P2p(args) => crate::bench_p2p::run(args),
     }
 }

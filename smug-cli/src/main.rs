@@ -14,6 +14,7 @@ use smug_validity as _;
 use smug_worlds as _;
 
 mod bench;
+mod bench_p2p;
 mod bench_validity;
 mod check;
 mod p2p;
