@@ -60,22 +60,6 @@ struct MapResult {
     roadmap_vertices: u64,
 }
 
-const CONFIG: &str = r#"
-seed = 1
-[cost]
-type = "se2"
-params = { rotation_weight = 0.0 }
-[validity]
-type = "clearance-2d"
-[motion]
-type = "discrete"
-params = { resolution = 0.05, max_inclination = 1e9 }
-[sampler]
-type = "informed"
-[planner]
-type = "lazy-prm-star"
-"#;
-
 fn run_map(
     args: &BenchP2pArgs,
     map: &Path,
@@ -107,9 +91,19 @@ fn run_map(
         },
         &yaml,
     )?;
-    let mut set = args.set.clone();
+    // The `smug p2p` disc robot, without the yaw term (grid paths have no heading).
+    let mut set = vec![
+        "cost.type=se2".to_string(),
+        "cost.params.rotation_weight=0".to_string(),
+    ];
+    set.extend(args.set.iter().cloned());
     set.push(format!("validity.params.radius={}", args.radius));
-    let loaded = LoadedConfig::from_text(CONFIG, "<bench p2p>", Path::new("."), &set)?;
+    let loaded = LoadedConfig::from_text(
+        crate::p2p::DEFAULT_CONFIG,
+        "<bench p2p>",
+        Path::new("."),
+        &set,
+    )?;
     let mut pipeline = Pipeline::assemble_with_world(&loaded, world)?;
     let planner = pipeline
         .planner

@@ -1,4 +1,4 @@
-//! `smug check`, and the pipeline-based commands `plan` and `p2p`.
+//! `smug check`: load, validate and assemble a config, print it resolved.
 
 use crate::Outcome;
 use smug_core::{LoadedConfig, Pipeline};
@@ -15,14 +15,9 @@ pub struct CheckArgs {
     set: Vec<String>,
 }
 
-fn load(config: &std::path::Path, set: &[String]) -> anyhow::Result<Pipeline> {
-    let loaded = LoadedConfig::from_file(config, set)?;
-    Ok(Pipeline::assemble(&loaded)?)
-}
-
 /// Runs `smug check`: load, validate, assemble, print the resolved pipeline.
 pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
-    let pipeline = load(&args.config, &args.set)?;
+    let pipeline = Pipeline::assemble(&LoadedConfig::from_file(&args.config, &args.set)?)?;
     println!("# {}: configuration is valid", args.config.display());
     if let Some(world) = &pipeline.world {
         let m = &world.mission;

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The pipeline `smug p2p` uses when no config is given: a disc robot on the map.
-const DEFAULT_CONFIG: &str = r#"
+pub(crate) const DEFAULT_CONFIG: &str = r#"
 seed = 1
 [validity]
 type = "clearance-2d"

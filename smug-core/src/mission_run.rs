@@ -176,7 +176,7 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
-    let (order, selection) = loop {
+    let (order, problem, selection) = loop {
         let t = Instant::now();
         let order = sequence(
             pipeline,
@@ -197,9 +197,9 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
             groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
             end: layout.end,
         };
-        let selection = selector.select(&mut oracle, &problem);
+        let selected = selector.select(&mut oracle, &problem);
         *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
-        let selection = match selection {
+        let selection = match selected {
             Ok(s) if s.cost.is_finite() => s,
             other => {
                 let unreachable = unreachable_targets(&mut oracle, &layout, &targets)?;
@@ -224,15 +224,10 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
                 continue;
             }
         };
-        break (order, selection);
+        break (order, problem, selection);
     };
     let t = Instant::now();
-    let route = SelectionProblem {
-        start: layout.start,
-        groups: Vec::new(),
-        end: layout.end,
-    }
-    .route(&selection.chosen);
+    let route = problem.route(&selection.chosen);
     let mut plan = assemble_plan(
         &mut oracle,
         &mission,

@@ -172,11 +172,7 @@ impl LazyPrmStar {
     }
 
     fn check_state(&mut self, state: &Pose2) -> bool {
-        let started = Instant::now();
-        let valid = self.states.is_valid(state);
-        self.counts.vertex_checks += 1;
-        self.counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
-        valid
+        timed_state_check(self.states.as_ref(), &mut self.counts, state)
     }
 
     /// Adds a sample as a vertex (checked first unless vertices are lazy); true if added.
@@ -205,19 +201,12 @@ impl LazyPrmStar {
     /// The vertex of a query endpoint (added if new), checked; `None` when invalid.
     fn terminal(&mut self, pose: &Pose2) -> Option<u32> {
         if let Some(v) = self.roadmap.find(pose) {
-            return match self.roadmap.vertex_validity(v) {
-                Validity::Valid => Some(v),
-                Validity::Invalid => None,
-                Validity::Unknown => {
-                    if self.check_state(pose) {
-                        self.roadmap.mark_vertex_valid(v);
-                        Some(v)
-                    } else {
-                        self.roadmap.remove_vertex(v);
-                        None
-                    }
-                }
+            let mut checks = Checks {
+                states: self.states.as_ref(),
+                motions: self.motions.as_ref(),
+                counts: &mut self.counts,
             };
+            return checks.vertex(&mut self.roadmap, v).then_some(v);
         }
         if !self.check_state(pose) {
             return None;
@@ -365,7 +354,7 @@ impl LazyPrmStar {
             .map(|&v| *self.roadmap.pose(v))
             .collect();
         let states = if self.params.shortcut {
-            shortcut(&states, self.motions.as_ref(), self.metric.as_ref())
+            shortcut(&states, self.motions.as_ref())
         } else {
             states
         };
@@ -417,6 +406,19 @@ impl PointToPointPlanner for LazyPrmStar {
     }
 }
 
+/// A state check, counted and timed as vertex checking.
+fn timed_state_check(
+    states: &dyn StateValidityChecker,
+    counts: &mut Counts,
+    state: &Pose2,
+) -> bool {
+    let started = Instant::now();
+    let valid = states.is_valid(state);
+    counts.vertex_checks += 1;
+    counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
+    valid
+}
+
 /// The checks the searches run, with their counters.
 struct Checks<'a> {
     states: &'a dyn StateValidityChecker,
@@ -430,10 +432,7 @@ impl Evaluator for Checks<'_> {
             Validity::Valid => true,
             Validity::Invalid => false,
             Validity::Unknown => {
-                let started = Instant::now();
-                let valid = self.states.is_valid(map.pose(v));
-                self.counts.vertex_checks += 1;
-                self.counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
+                let valid = timed_state_check(self.states, self.counts, map.pose(v));
                 if valid {
                     map.mark_vertex_valid(v);
                 } else {

@@ -2,18 +2,13 @@
 //! the motion validator accepts. Under a metric the cost never rises (triangle
 //! inequality), and every new segment is checked, so the path stays valid.
 
-use smug_core::{CostMetric, MotionValidator, Pose2};
+use smug_core::{MotionValidator, Pose2};
 
 /// The shortcut path through `states` (same endpoints).
-pub fn shortcut(
-    states: &[Pose2],
-    motions: &dyn MotionValidator,
-    metric: &dyn CostMetric,
-) -> Vec<Pose2> {
+pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     if states.len() <= 2 {
         return states.to_vec();
     }
-    let _ = metric;
     let mut kept = vec![states[0]];
     let mut i = 0;
     while i + 1 < states.len() {
