@@ -12,6 +12,8 @@ pub struct BenchArgs {
 
 #[derive(Subcommand, Debug)]
 enum BenchCommand {
+    /// The paper's experiments (Tables I–IV) with the paper's numbers beside ours.
+    Paper(crate::bench_paper::BenchPaperArgs),
     /// TSP solvers on the TSPLIB instances: gap to the optimum and time.
     Tsp(crate::tsp::BenchTspArgs),
     /// LazyPRM* on MovingAI maps: scenarios solved, length against the optimum, time.
@@ -23,6 +25,7 @@ enum BenchCommand {
 /// Runs `smug bench`.
 pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
     match args.which {
+        BenchCommand::Paper(args) => crate::bench_paper::run(args),
         BenchCommand::Tsp(args) => crate::tsp::run_bench(args),
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),

@@ -14,7 +14,10 @@ use smug_validity as _;
 use smug_worlds as _;
 
 mod bench;
+mod bench_output;
 mod bench_p2p;
+mod bench_paper;
+mod bench_paper_report;
 mod bench_validity;
 mod check;
 mod p2p;

@@ -1,0 +1,267 @@
+//! `smug bench paper`: the paper's experiments (Tables I–IV) on the procedural worlds,
+//! N seeds each, with the paper's numbers beside ours (report in `bench_paper_report`).
+
+use crate::bench_output::write_report;
+use crate::Outcome;
+use serde::Serialize;
+use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, TimeBreakdown};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `smug bench paper`.
+#[derive(clap::Args, Debug)]
+pub struct BenchPaperArgs {
+    /// Runs (seeds 1..=N) per experiment.
+    #[arg(long, default_value_t = 10)]
+    runs: u64,
+    /// A smoke version in about a minute: 2 runs, scalability up to 12 ToIs only.
+    #[arg(long)]
+    quick: bool,
+    /// Only these tables (comma-separated: 1, 2, 3, 4; 3 comes with 2).
+    #[arg(long, value_delimiter = ',')]
+    tables: Vec<u8>,
+    /// A new world per seed (default: the world of seed 1 for every run, as the
+    /// paper's 10 runs on one world; the planner's seed still changes).
+    #[arg(long)]
+    vary_world: bool,
+    /// The folder with lunar.toml, indoor.toml and lunar-full-collision.toml.
+    #[arg(long, default_value = "configs")]
+    configs: PathBuf,
+    /// Write the Markdown report here (else stdout only).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write every raw run as JSON here (default: beside `--out`, as `.json`).
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+/// One experiment: a config, overrides, and where it goes in the report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Experiment {
+    /// Stable key, e.g. `lunar/idp` or `scalability/48/dp`.
+    pub key: String,
+    /// The config file, relative to `--configs`.
+    pub config: String,
+    /// `--set` overrides.
+    pub set: Vec<String>,
+}
+
+/// One planning run's numbers.
+#[derive(Clone, Debug, Serialize)]
+pub struct Run {
+    /// The experiment's key.
+    pub experiment: String,
+    /// The config seed.
+    pub seed: u64,
+    /// Why the run failed, if it did (then the numbers are zero).
+    pub error: Option<String>,
+    /// Plan cost.
+    pub cost: f64,
+    /// Planning time: sequencing + selection + post-processing (what the paper times).
+    pub planning_s: f64,
+    /// End to end, with building the world, traversability and distance field.
+    pub total_s: f64,
+    /// Point-to-point paths planned.
+    pub paths_planned: u64,
+    /// State validity queries.
+    pub validity_queries: u64,
+    /// The planner's time breakdown.
+    pub breakdown: TimeBreakdown,
+    /// Every stage time and counter of the plan.
+    pub stage_times_s: BTreeMap<String, f64>,
+    /// The planner's and checkers' counters.
+    pub counters: BTreeMap<String, u64>,
+}
+
+/// The whole benchmark: settings and raw runs (written as JSON).
+#[derive(Debug, Serialize)]
+pub struct PaperBench {
+    /// Runs per experiment.
+    pub runs: u64,
+    /// Whether every seed had its own world.
+    pub vary_world: bool,
+    /// Whether this was the `--quick` smoke version.
+    pub quick: bool,
+    /// The experiments, in report order.
+    pub experiments: Vec<Experiment>,
+    /// Every run.
+    pub raw: Vec<Run>,
+}
+
+impl PaperBench {
+    /// The successful runs of one experiment.
+    pub fn runs_of<'a>(&'a self, key: &'a str) -> impl Iterator<Item = &'a Run> + 'a {
+        self.raw
+            .iter()
+            .filter(move |r| r.experiment == key && r.error.is_none())
+    }
+}
+
+/// The selectors of Tables I and IV, in the paper's column order.
+pub const SELECTORS: [&str; 3] = ["dp", "idp", "irba"];
+/// The scalability sizes of Table IV (ToIs, 6 PoIs each).
+pub const SCALABILITY: [usize; 4] = [6, 12, 24, 48];
+/// The validity settings of Table II: (key, label, config, overrides).
+pub const VALIDITY: [(&str, &str, &str, &str); 3] = [
+    (
+        "validity/0.3-0.3",
+        "hierarchical 0.3 / 0.3",
+        "lunar.toml",
+        "",
+    ),
+    (
+        "validity/0.3-0.8",
+        "hierarchical 0.3 / 0.8",
+        "lunar.toml",
+        "validity.params.t_high=0.8",
+    ),
+    (
+        "validity/full",
+        "full collision",
+        "lunar-full-collision.toml",
+        "",
+    ),
+];
+
+fn experiment(key: String, config: &str, set: &[&str]) -> Experiment {
+    Experiment {
+        key,
+        config: config.to_string(),
+        set: set
+            .iter()
+            .filter(|s| !s.is_empty())
+            .map(|s| s.to_string())
+            .collect(),
+    }
+}
+
+/// The experiments of the chosen tables, in report order.
+fn experiments(tables: &[u8], quick: bool) -> Vec<Experiment> {
+    let wants = |t: u8| tables.is_empty() || tables.contains(&t);
+    let mut list = Vec::new();
+    if wants(1) {
+        for (world, config) in [("lunar", "lunar.toml"), ("indoor", "indoor.toml")] {
+            for selector in SELECTORS {
+                let set = format!("selector.type={selector}");
+                list.push(experiment(format!("{world}/{selector}"), config, &[&set]));
+            }
+        }
+    }
+    if wants(2) || wants(3) {
+        for (key, _, config, set) in VALIDITY {
+            list.push(experiment(key.to_string(), config, &[set]));
+        }
+    }
+    if wants(4) {
+        let sizes = if quick {
+            &SCALABILITY[..2]
+        } else {
+            &SCALABILITY[..]
+        };
+        for &targets in sizes {
+            for selector in SELECTORS {
+                let set = [
+                    format!("selector.type={selector}"),
+                    format!("world.params.targets={targets}"),
+                    "world.params.pois_per_target=6".to_string(),
+                ];
+                let set: Vec<&str> = set.iter().map(String::as_str).collect();
+                list.push(experiment(
+                    format!("scalability/{targets}/{selector}"),
+                    "lunar.toml",
+                    &set,
+                ));
+            }
+        }
+    }
+    list
+}
+
+/// Plans one experiment with one seed; a planning failure is recorded, not raised.
+fn run_once(exp: &Experiment, seed: u64, configs: &Path, vary_world: bool) -> anyhow::Result<Run> {
+    let mut set = exp.set.clone();
+    set.push(format!("seed={seed}"));
+    if !vary_world {
+        set.push("world.params.seed=1".to_string());
+    }
+    let loaded = LoadedConfig::from_file(&configs.join(&exp.config), &set)?;
+    let mut pipeline = Pipeline::assemble(&loaded)?;
+    let options = pipeline.config.plan;
+    Ok(match plan_mission(&mut pipeline, options) {
+        Ok(plan) => run_from_plan(exp, seed, &plan),
+        Err(err) => Run {
+            error: Some(err.to_string()),
+            ..run_from_plan(exp, seed, &Plan::default())
+        },
+    })
+}
+
+fn run_from_plan(exp: &Experiment, seed: u64, plan: &Plan) -> Run {
+    let s = &plan.stats;
+    let time = |key: &str| s.stage_times_s.get(key).copied().unwrap_or(0.0);
+    Run {
+        experiment: exp.key.clone(),
+        seed,
+        error: None,
+        cost: plan.cost,
+        planning_s: time("sequencing") + time("selection") + time("post-processing"),
+        total_s: time("total"),
+        paths_planned: s.paths_planned,
+        validity_queries: s.validity_queries,
+        breakdown: s.breakdown,
+        stage_times_s: s.stage_times_s.clone(),
+        counters: s.counters.clone(),
+    }
+}
+
+/// A progress bar over all runs on stderr (hidden when stderr is not a terminal).
+fn progress_bar(total: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(total);
+    let style = indicatif::ProgressStyle::with_template(
+        "{elapsed_precise} [{bar:30}] {pos}/{len} runs, eta {eta}: {msg}",
+    )
+    .map(|s| s.progress_chars("=> "));
+    if let Ok(style) = style {
+        bar.set_style(style);
+    }
+    bar
+}
+
+/// Runs every experiment `runs` times (seeds 1..=runs).
+pub fn run_experiments(
+    list: Vec<Experiment>,
+    runs: u64,
+    configs: &Path,
+    vary_world: bool,
+    quick: bool,
+) -> anyhow::Result<PaperBench> {
+    let bar = progress_bar(list.len() as u64 * runs);
+    let mut raw = Vec::new();
+    for exp in &list {
+        for seed in 1..=runs {
+            bar.set_message(format!("{} seed {seed}", exp.key));
+            raw.push(run_once(exp, seed, configs, vary_world)?);
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    Ok(PaperBench {
+        runs,
+        vary_world,
+        quick,
+        experiments: list,
+        raw,
+    })
+}
+
+/// Runs `smug bench paper`.
+pub fn run(args: BenchPaperArgs) -> anyhow::Result<Outcome> {
+    let runs = if args.quick { 2 } else { args.runs.max(1) };
+    let list = experiments(&args.tables, args.quick);
+    let bench = run_experiments(list, runs, &args.configs, args.vary_world, args.quick)?;
+    let checks = crate::bench_paper_report::checks(&bench);
+    let report = crate::bench_paper_report::markdown(&bench, &checks);
+    let raw = serde_json::json!({ "bench": bench, "checks": checks });
+    write_report(&report, &raw, args.out.as_deref(), args.json.as_deref())?;
+    Ok(Outcome::Ok)
+}
