@@ -33,7 +33,7 @@ pub struct BenchValidityArgs {
     /// Write the Markdown report here (else stdout only).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here.
+    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
     #[arg(long)]
     json: Option<PathBuf>,
 }
@@ -134,14 +134,7 @@ pub fn run(args: BenchValidityArgs) -> anyhow::Result<Outcome> {
     ));
 
     let report = markdown(&args, &world.name, &rows);
-    print!("{report}");
-    if let Some(path) = &args.out {
-        std::fs::write(path, &report).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    }
-    if let Some(path) = &args.json {
-        std::fs::write(path, serde_json::to_string_pretty(&rows)?)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    }
+    crate::bench_output::write_report(&report, &rows, args.out.as_deref(), args.json.as_deref())?;
     Ok(Outcome::Ok)
 }
 

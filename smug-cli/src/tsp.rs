@@ -6,7 +6,6 @@
 //! TSPLIB's (integer distances, e.g. EUC_2D rounded to the nearest integer).
 
 use crate::Outcome;
-use anyhow::Context;
 use serde::Serialize;
 use smug_core::TourKind;
 use smug_sequencing::bench::{load_suite, run_instance, BenchInstance, BenchResult};
@@ -121,7 +120,7 @@ pub struct BenchTspArgs {
     /// Also write the Markdown report to this file.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Write every run (with its tour) as JSON to this file.
+    /// Write every run (with its tour) as JSON here (default: beside `--out`, as `.json`).
     #[arg(long)]
     pub json: Option<PathBuf>,
 }
@@ -165,14 +164,12 @@ pub fn run_bench(args: BenchTspArgs) -> anyhow::Result<Outcome> {
         }
     }
     let report = markdown_report(&dir, &args, &results);
-    print!("{report}");
-    if let Some(path) = &args.out {
-        std::fs::write(path, &report).with_context(|| format!("writing {}", path.display()))?;
-    }
-    if let Some(path) = &args.json {
-        let json = serde_json::to_string_pretty(&results)?;
-        std::fs::write(path, json).with_context(|| format!("writing {}", path.display()))?;
-    }
+    crate::bench_output::write_report(
+        &report,
+        &results,
+        args.out.as_deref(),
+        args.json.as_deref(),
+    )?;
     Ok(Outcome::Ok)
 }
 

@@ -10,7 +10,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::{ChosenPoi, Plan, PlanStats, Segment};
 use crate::pose::{wrap_angle, Pose2, Waypoint};
 use crate::stages::{
-    CostMatrix, MotionValidator, SelectionProblem, StateValidityChecker, TourKind,
+    CostMatrix, MotionValidator, SelectionProblem, Sequencer, StateValidityChecker, Tour, TourKind,
 };
 use crate::world::World;
 use serde::{Deserialize, Serialize};
@@ -27,6 +27,21 @@ pub enum Representative {
     FirstPoi,
 }
 
+/// How the sequencer's ToI cost matrix is filled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SequencingCosts {
+    /// Plan only the legs the tour uses: solve on lower bounds (straight-line metric
+    /// costs) where no path is planned yet, plan the tour's unplanned legs, repeat until
+    /// the tour uses planned legs only. With an exact solver the order is optimal for
+    /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
+    /// applied to sequencing).
+    Lazy,
+    /// Plan a path between every pair of representatives (the paper's way).
+    #[default]
+    Full,
+}
+
 /// How the mission is run (the config's `[plan]` section).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -37,6 +52,8 @@ pub struct PlanOptions {
     pub skip_unreachable: bool,
     /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
     pub keep_headings: bool,
+    /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
+    pub sequencing_costs: SequencingCosts,
 }
 
 /// Targets that cannot be reached: the plan fails and names them.
@@ -95,6 +112,7 @@ fn sequence(
     layout: &Layout,
     targets: &[usize],
     rule: Representative,
+    costs: SequencingCosts,
 ) -> Result<Vec<usize>> {
     let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
         stage: "smug plan".into(),
@@ -111,6 +129,26 @@ fn sequence(
         nodes.push(layout.end);
     }
     let n = nodes.len();
+    let kind = if open {
+        TourKind::OpenTo(n - 1)
+    } else {
+        TourKind::Closed
+    };
+    let tour = match costs {
+        SequencingCosts::Full => sequencer.solve(&full_matrix(oracle, &nodes)?, kind)?,
+        SequencingCosts::Lazy => lazy_tour(sequencer.as_ref(), oracle, &nodes, kind)?,
+    };
+    Ok(tour
+        .order
+        .iter()
+        .filter(|&&v| v != 0 && !(open && v == n - 1))
+        .map(|&v| targets[v - 1])
+        .collect())
+}
+
+/// Path costs between every pair of `nodes` (symmetric: each pair planned once).
+fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
+    let n = nodes.len();
     let mut costs = vec![0.0; n * n];
     for i in 0..n {
         for j in i + 1..n {
@@ -119,19 +157,52 @@ fn sequence(
             costs[j * n + i] = c;
         }
     }
-    let matrix = CostMatrix::from_rows(n, costs)?;
-    let kind = if open {
-        TourKind::OpenTo(n - 1)
-    } else {
-        TourKind::Closed
+    CostMatrix::from_rows(n, costs)
+}
+
+/// The tour over `nodes` on planned costs where known and lower bounds elsewhere,
+/// re-solved after planning its unplanned legs until it uses planned legs only (or a
+/// planned leg has no path: then the selection finds out which target is unreachable).
+fn lazy_tour(
+    sequencer: &dyn Sequencer,
+    oracle: &mut PathOracle,
+    nodes: &[usize],
+    kind: TourKind,
+) -> Result<Tour> {
+    let n = nodes.len();
+    loop {
+        let matrix = CostMatrix::from_fn(n, |i, j| {
+            if i == j {
+                0.0
+            } else {
+                oracle.cost_or_bound(nodes[i], nodes[j])
+            }
+        })?;
+        let tour = sequencer.solve(&matrix, kind)?;
+        let unplanned: Vec<(usize, usize)> = tour_legs(&tour, kind)
+            .map(|(a, b)| (nodes[a], nodes[b]))
+            .filter(|&(a, b)| !oracle.is_planned(a, b))
+            .collect();
+        if unplanned.is_empty() {
+            return Ok(tour);
+        }
+        let mut dead_end = false;
+        for (a, b) in unplanned {
+            dead_end |= !oracle.cost(a, b)?.is_finite();
+        }
+        if dead_end {
+            return Ok(tour);
+        }
+    }
+}
+
+/// The legs `(from, to)` of a tour, the return leg of a closed tour included.
+fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let closing = match kind {
+        TourKind::Closed => tour.order.last().map(|&last| (last, tour.order[0])),
+        TourKind::OpenTo(_) => None,
     };
-    let tour = sequencer.solve(&matrix, kind)?;
-    Ok(tour
-        .order
-        .iter()
-        .filter(|&&v| v != 0 && !(open && v == n - 1))
-        .map(|&v| targets[v - 1])
-        .collect())
+    tour.order.windows(2).map(|w| (w[0], w[1])).chain(closing)
 }
 
 /// Targets none of whose PoIs the start reaches.
@@ -185,6 +256,7 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
             &layout,
             &targets,
             options.representative,
+            options.sequencing_costs,
         )?;
         *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
         let t = Instant::now();

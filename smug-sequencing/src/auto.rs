@@ -13,10 +13,10 @@ pub struct AutoParams {
     /// Largest instance (in nodes, the start included) solved exactly by Held-Karp;
     /// at most 20.
     pub threshold: usize,
-    /// Local search: wall-time budget in seconds (0 = none; then set `max_iterations`).
+    /// Local search: wall-time budget in seconds (0 = none).
     pub time_limit_s: f64,
     /// Local search: budget of perturbation rounds; unset = no limit.
-    pub max_iterations: Option<u64>,
+    pub max_iterations: u64,
     /// Local search: candidate legs per node.
     pub neighbours: usize,
     /// Local search: first tour, `"greedy"` or `"nearest-neighbour"`.

@@ -38,7 +38,7 @@ pub const SOLVER_NAMES: [&str; 4] = ["auto", "held-karp", "local-search", "brute
 pub struct SolverOptions {
     /// Local search wall-time budget in seconds (0 = none).
     pub time_limit_s: f64,
-    /// Local search budget of perturbation rounds.
+    /// Local search budget of perturbation rounds (`None`: no limit).
     pub max_iterations: Option<u64>,
     /// Seed (the solver's generator is derived from it as a pipeline would).
     pub seed: u64,
@@ -47,7 +47,7 @@ pub struct SolverOptions {
 impl Default for SolverOptions {
     fn default() -> Self {
         Self {
-            time_limit_s: LocalSearchParams::default().time_limit_s,
+            time_limit_s: 1.0,
             max_iterations: None,
             seed: 0,
         }
@@ -63,7 +63,7 @@ pub fn solver_by_name(
     let rng = smug_core::rng::stage_rng(options.seed, "sequencer");
     let local = LocalSearchParams {
         time_limit_s: options.time_limit_s,
-        max_iterations: options.max_iterations,
+        max_iterations: options.max_iterations.unwrap_or(0),
         ..LocalSearchParams::default()
     };
     Ok(match name {

@@ -47,7 +47,7 @@ fn held_karp() -> HeldKarp {
 fn local_search(iterations: u64) -> LocalSearch {
     let params = LocalSearchParams {
         time_limit_s: 0.0,
-        max_iterations: Some(iterations),
+        max_iterations: iterations,
         ..LocalSearchParams::default()
     };
     LocalSearch::with_seed(params, 11).unwrap()
@@ -84,7 +84,7 @@ proptest! {
     fn every_solver_returns_a_valid_tour((costs, _) in matrix(30, true), open: bool, pick in 0usize..100) {
         let kind = kind_for(costs.len(), open, pick);
         let auto = Auto::new(
-            AutoParams { time_limit_s: 0.0, max_iterations: Some(20), ..AutoParams::default() },
+            AutoParams { time_limit_s: 0.0, max_iterations: 20, ..AutoParams::default() },
             smug_core::rng::stage_rng(5, "sequencer"),
         ).unwrap();
         let mut solvers: Vec<Box<dyn Sequencer>> = vec![Box::new(local_search(20)), Box::new(auto)];
@@ -107,7 +107,7 @@ proptest! {
         let construction = if nearest { Construction::NearestNeighbour } else { Construction::Greedy };
         let params = LocalSearchParams {
             time_limit_s: 0.0,
-            max_iterations: Some(30),
+            max_iterations: 30,
             construction,
             ..LocalSearchParams::default()
         };

@@ -47,7 +47,11 @@ fn bad_parameters_are_rejected_with_their_name() {
     let cases = [
         ("held-karp", "max_node = 5", "max_node"),
         ("held-karp", "max_nodes = 40", "max_nodes"),
-        ("local-search", "time_limit_s = 0.0", "max_iterations"),
+        (
+            "local-search",
+            "time_limit_s = 0.0\nmax_iterations = 0",
+            "max_iterations",
+        ),
         ("local-search", "neighbours = 1", "neighbours"),
         ("local-search", "construction = \"random\"", "random"),
         ("auto", "threshold = 25", "threshold"),

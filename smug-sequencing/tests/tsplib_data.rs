@@ -120,7 +120,7 @@ fn held_karp_solves_br17_exactly() {
 fn deterministic(iterations: u64) -> LocalSearchParams {
     LocalSearchParams {
         time_limit_s: 0.0,
-        max_iterations: Some(iterations),
+        max_iterations: iterations,
         ..LocalSearchParams::default()
     }
 }

@@ -45,22 +45,27 @@ const KICK_MAX_BLOCK: usize = 50;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LocalSearchParams {
-    /// Wall-time budget in seconds; 0 = no time limit (then `max_iterations` is needed).
+    /// Wall-time budget in seconds; 0 = no time limit (the default: then the result
+    /// depends only on the seed).
     pub time_limit_s: f64,
-    /// Budget of perturbation rounds (double bridge + local search); unset = no limit.
-    /// With `time_limit_s = 0`, the result depends only on the seed.
-    pub max_iterations: Option<u64>,
+    /// Budget of perturbation rounds (double bridge + local search); 0 = no limit.
+    pub max_iterations: u64,
     /// Candidate legs per node: the K cheapest (at least 3).
     pub neighbours: usize,
     /// First tour: `"greedy"` or `"nearest-neighbour"`.
     pub construction: Construction,
 }
 
+/// Default budget of perturbation rounds: optimal on eil51 after 100 rounds and on
+/// kroA100 after 1000 (`smug tsp --time-limit 0 --iterations N`), in about 0.1 s.
+const DEFAULT_ITERATIONS: u64 = 1000;
+
 impl Default for LocalSearchParams {
+    /// An iteration budget and no time limit, so that a seed fixes the result.
     fn default() -> Self {
         Self {
-            time_limit_s: 1.0,
-            max_iterations: None,
+            time_limit_s: 0.0,
+            max_iterations: DEFAULT_ITERATIONS,
             neighbours: 10,
             construction: Construction::Greedy,
         }
@@ -71,7 +76,8 @@ impl LocalSearchParams {
     /// The stopping rule: the time budget, the iteration budget, or both.
     pub fn termination(&self) -> Termination {
         let time = (self.time_limit_s > 0.0).then_some(self.time_limit_s);
-        Termination::from_budgets(time, self.max_iterations)
+        let iterations = (self.max_iterations > 0).then_some(self.max_iterations);
+        Termination::from_budgets(time, iterations)
     }
 
     /// Checks the values; the message names the offending parameter.
@@ -82,8 +88,10 @@ impl LocalSearchParams {
                 self.time_limit_s
             ));
         }
-        if self.time_limit_s == 0.0 && self.max_iterations.is_none() {
-            return Err("time_limit_s = 0 needs max_iterations, or the search never stops".into());
+        if self.time_limit_s == 0.0 && self.max_iterations == 0 {
+            return Err(
+                "time_limit_s = 0 and max_iterations = 0: the search would never stop".into(),
+            );
         }
         if self.neighbours < 3 {
             return Err(format!(
