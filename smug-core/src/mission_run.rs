@@ -471,3 +471,111 @@ fn stats(
         counters,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metric::Se2Metric;
+    use crate::path::Path;
+    use crate::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
+    use proptest::prelude::*;
+    use std::sync::Arc;
+
+    /// Answers every query with a straight path whose cost is the metric distance
+    /// times a fixed detour factor of the pair (≥ 1, symmetric).
+    struct DetourPlanner {
+        poses: Vec<Pose2>,
+        detours: Vec<f64>,
+        metric: Se2Metric,
+    }
+
+    impl DetourPlanner {
+        fn index(&self, pose: &Pose2) -> usize {
+            self.poses.iter().position(|p| p == pose).unwrap()
+        }
+    }
+
+    impl PointToPointPlanner for DetourPlanner {
+        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+            let (i, j) = (self.index(start), self.index(goal));
+            let n = self.poses.len();
+            let factor = self.detours[i.min(j) * n + i.max(j)];
+            let mut path = Path::new(vec![*start, *goal], &self.metric);
+            path.cost *= factor;
+            Ok(PlannerOutcome::Exact(path))
+        }
+
+        fn stats(&self) -> PlannerStats {
+            PlannerStats::default()
+        }
+    }
+
+    /// The best tour by trying every order (small n only).
+    struct Exhaustive;
+
+    impl Sequencer for Exhaustive {
+        fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour> {
+            let n = costs.len();
+            let mut rest: Vec<usize> = (1..n).collect();
+            let mut best = Tour {
+                order: vec![],
+                cost: f64::INFINITY,
+            };
+            permute(&mut rest, 0, &mut |p| {
+                let order: Vec<usize> = std::iter::once(0).chain(p.iter().copied()).collect();
+                let cost = costs.tour_cost(&order, kind);
+                if cost < best.cost {
+                    best = Tour { order, cost };
+                }
+            });
+            Ok(best)
+        }
+    }
+
+    fn permute(items: &mut [usize], k: usize, visit: &mut impl FnMut(&[usize])) {
+        if k == items.len() {
+            return visit(items);
+        }
+        for i in k..items.len() {
+            items.swap(k, i);
+            permute(items, k + 1, visit);
+            items.swap(k, i);
+        }
+    }
+
+    fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
+        let metric = Se2Metric::default();
+        let planner = DetourPlanner {
+            poses: poses.to_vec(),
+            detours,
+            metric,
+        };
+        let mut oracle = PathOracle::new(Arc::new(metric), Box::new(planner));
+        let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
+        (oracle, nodes)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        /// With an exact solver and admissible lower bounds, the lazy tour costs what
+        /// the full matrix's tour costs, from no more planned paths.
+        #[test]
+        fn lazy_sequencing_is_exact_with_an_exact_solver(
+            points in prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), 3..7),
+            detours in prop::collection::vec(1.0..2.0f64, 49),
+            open in any::<bool>(),
+        ) {
+            let poses: Vec<Pose2> = points.iter().map(|&(x, y, yaw)| Pose2::new(x, y, yaw)).collect();
+            let n = poses.len();
+            let kind = if open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
+            let (mut full_oracle, nodes) = oracle(&poses, detours.clone());
+            let full = Exhaustive.solve(&full_matrix(&mut full_oracle, &nodes).unwrap(), kind).unwrap();
+            let (mut lazy_oracle, nodes) = oracle(&poses, detours);
+            let lazy = lazy_tour(&Exhaustive, &mut lazy_oracle, &nodes, kind).unwrap();
+            let true_cost = full_matrix(&mut full_oracle, &nodes).unwrap().tour_cost(&lazy.order, kind);
+            prop_assert!((true_cost - full.cost).abs() < 1e-9, "lazy {true_cost} vs full {}", full.cost);
+            prop_assert!((lazy.cost - true_cost).abs() < 1e-9, "the lazy tour's legs are all planned");
+            prop_assert!(lazy_oracle.stats().paths_planned <= full_oracle.stats().paths_planned);
+        }
+    }
+}
