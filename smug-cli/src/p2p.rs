@@ -165,10 +165,15 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         .iter()
         .filter(|q| q.status == "exact")
         .count();
-    let mean_cost =
-        results.queries.iter().filter_map(|q| q.cost).sum::<f64>() / exact.max(1) as f64;
+    let mean_cost = match exact {
+        0 => "—".to_string(),
+        n => format!(
+            "{:.3}",
+            results.queries.iter().filter_map(|q| q.cost).sum::<f64>() / n as f64
+        ),
+    };
     println!(
-        "{} queries: {exact} exact, {} without a path; mean cost {mean_cost:.3}; {:.3} s; roadmap {} vertices",
+        "{} queries: {exact} exact, {} without a path; mean cost {mean_cost}; {:.3} s; roadmap {} vertices",
         results.queries.len(),
         results.queries.len() - exact,
         results.total_time_s,
