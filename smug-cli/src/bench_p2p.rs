@@ -1,5 +1,6 @@
 //! `smug bench p2p`: LazyPRM* on MovingAI maps — scenarios solved, path length against
-//! the optimal octile length, time — with a disc robot and yaw weight 0.
+//! the optimal octile length, time — with a disc robot and yaw weight 0; and PoI-to-PoI
+//! queries on the lunar world (`bench_p2p_lunar`).
 
 use crate::Outcome;
 use serde::Serialize;
@@ -29,9 +30,16 @@ pub struct BenchP2pArgs {
     /// The MovingAI data folder.
     #[arg(long, default_value = "../shared/data/movingai")]
     data: PathBuf,
-    /// Only these maps (file stems, comma-separated), e.g. `random-32-32-10,arena2`.
+    /// Only these maps (file stems, comma-separated, `lunar` for the lunar world), e.g.
+    /// `lunar,random-32-32-10,arena2`.
     #[arg(long, value_delimiter = ',')]
     maps: Vec<String>,
+    /// The lunar world's config (its world, checkers and planner).
+    #[arg(long, default_value = "configs/lunar.toml")]
+    lunar_config: PathBuf,
+    /// PoI-to-PoI queries on the lunar world.
+    #[arg(long, default_value_t = 100)]
+    lunar_queries: usize,
     /// Scenarios per map, spread evenly over the scenario file.
     #[arg(long, default_value_t = 50)]
     scenarios: usize,
@@ -44,7 +52,7 @@ pub struct BenchP2pArgs {
     /// Write the Markdown report here.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here.
+    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
     #[arg(long)]
     json: Option<PathBuf>,
 }
@@ -136,12 +144,23 @@ fn run_map(
 
 /// Runs `smug bench p2p`.
 pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
+    let wants = |name: &str| args.maps.is_empty() || args.maps.iter().any(|m| m == name);
+    let lunar = if wants("lunar") {
+        eprintln!("lunar: {} queries", args.lunar_queries);
+        Some(crate::bench_p2p_lunar::run(
+            &args.lunar_config,
+            &[],
+            args.lunar_queries,
+        )?)
+    } else {
+        None
+    };
     let scratch = std::env::temp_dir().join(format!("smug-bench-p2p-{}", std::process::id()));
     std::fs::create_dir_all(&scratch)?;
     let mut results = Vec::new();
     for (map, scen) in MAPS {
         let stem = smug_worlds::map_file::file_stem(Path::new(map));
-        if !args.maps.is_empty() && !args.maps.contains(&stem) {
+        if !wants(&stem) {
             continue;
         }
         results.push(run_map(
@@ -152,24 +171,29 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
         )?);
     }
     std::fs::remove_dir_all(&scratch).ok();
-    let mut report = format!(
-        "# Point-to-point benchmark (MovingAI)\n\nLazyPRM*, disc radius {} cell, yaw weight 0, {} scenarios per map.\n\n\
+    let mut report = String::from("# Point-to-point benchmark\n\n");
+    if let Some(lunar) = &lunar {
+        report += &crate::bench_p2p_lunar::markdown(lunar);
+    }
+    if !results.is_empty() {
+        report += &movingai_markdown(&args, &results);
+    }
+    let raw = serde_json::json!({ "lunar": lunar, "movingai": results });
+    crate::bench_output::write_report(&report, &raw, args.out.as_deref(), args.json.as_deref())?;
+    Ok(Outcome::Ok)
+}
+
+fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
+    let mut md = format!(
+        "## MovingAI maps\n\nLazyPRM*, disc radius {} cell, yaw weight 0, {} scenarios per map.\n\n\
          | map | solved | mean length / optimal octile | time (s) | roadmap vertices |\n|---|---:|---:|---:|---:|\n",
         args.radius, args.scenarios
     );
-    for r in &results {
-        report += &format!(
+    for r in results {
+        md += &format!(
             "| {} | {}/{} | {:.4} | {:.2} | {} |\n",
             r.map, r.solved, r.scenarios, r.length_ratio, r.time_s, r.roadmap_vertices
         );
     }
-    print!("{report}");
-    if let Some(path) = &args.out {
-        std::fs::write(path, &report).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    }
-    if let Some(path) = &args.json {
-        std::fs::write(path, serde_json::to_string_pretty(&results)?)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    }
-    Ok(Outcome::Ok)
+    md
 }

@@ -16,6 +16,7 @@ use smug_worlds as _;
 mod bench;
 mod bench_output;
 mod bench_p2p;
+mod bench_p2p_lunar;
 mod bench_paper;
 mod bench_paper_report;
 mod bench_validity;
