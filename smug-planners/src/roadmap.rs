@@ -5,6 +5,7 @@ use crate::nn::XyGrid;
 use smug_core::{Bounds2, CostMetric, Pose2};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
+use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
 
 /// What is known about a vertex or an edge.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,9 +33,14 @@ pub struct Edge {
 
 /// The roadmap graph.
 pub struct Roadmap {
+    /// Unique among the roadmaps of this process (keys [`AStar`]'s heuristic cache).
+    id: u64,
     poses: Vec<Pose2>,
     vertex_validity: Vec<Validity>,
     adjacency: Vec<Vec<(u32, u32)>>,
+    /// The costs of the edges in `adjacency`, in the same order (read by the searches
+    /// without touching the edge array).
+    adjacent_costs: Vec<Vec<f64>>,
     edges: Vec<Edge>,
     grid: XyGrid,
     by_pose: HashMap<[u64; 3], u32>,
@@ -46,11 +52,14 @@ pub struct Roadmap {
 impl Roadmap {
     /// An empty roadmap over `bounds`.
     pub fn new(bounds: Bounds2) -> Self {
+        static NEXT_ID: AtomicU64 = AtomicU64::new(0);
         let [w, h] = bounds.extent();
         Self {
+            id: NEXT_ID.fetch_add(1, AtomicOrdering::Relaxed),
             poses: Vec::new(),
             vertex_validity: Vec::new(),
             adjacency: Vec::new(),
+            adjacent_costs: Vec::new(),
             edges: Vec::new(),
             grid: XyGrid::new(bounds, (w.max(h) / 8.0).max(1e-3)),
             by_pose: HashMap::new(),
@@ -122,6 +131,8 @@ impl Roadmap {
         self.poses.push(pose);
         self.vertex_validity.push(validity);
         self.adjacency.push(Vec::with_capacity(neighbours.len()));
+        self.adjacent_costs
+            .push(Vec::with_capacity(neighbours.len()));
         self.components.push();
         self.grid.insert(id, &pose, &self.poses);
         self.by_pose.insert(pose_key(&pose), id);
@@ -141,6 +152,8 @@ impl Roadmap {
         });
         self.adjacency[a as usize].push((b, e));
         self.adjacency[b as usize].push((a, e));
+        self.adjacent_costs[a as usize].push(cost);
+        self.adjacent_costs[b as usize].push(cost);
         self.components.union(a, b);
         self.live_edges += 1;
     }
@@ -157,6 +170,7 @@ impl Roadmap {
             let list = &mut self.adjacency[v as usize];
             if let Some(k) = list.iter().position(|&(_, id)| id == e) {
                 list.swap_remove(k);
+                self.adjacent_costs[v as usize].swap_remove(k);
             }
         }
         self.live_edges -= 1;
@@ -203,6 +217,16 @@ impl Roadmap {
     /// Neighbours of `v` with edge ids.
     pub fn neighbours(&self, v: u32) -> &[(u32, u32)] {
         &self.adjacency[v as usize]
+    }
+
+    /// Neighbours of `v` as `(neighbour, edge id, edge cost)`, in [`Roadmap::neighbours`]
+    /// order, without looking the costs up in the edge array.
+    fn neighbours_with_costs(&self, v: u32) -> impl Iterator<Item = (u32, u32, f64)> + '_ {
+        let v = v as usize;
+        self.adjacency[v]
+            .iter()
+            .zip(&self.adjacent_costs[v])
+            .map(|(&(w, e), &cost)| (w, e, cost))
     }
 }
 
@@ -266,8 +290,14 @@ pub struct GraphPath {
     pub cost: f64,
 }
 
-/// An open-list entry: a vertex, its cost so far and estimate, and (for the lazy
-/// search) the parent edge it is reached through.
+/// The open-list order: smallest `f` first, then larger `g` (deeper), then smaller id.
+/// A strict total order, so every correct priority queue pops the same sequence.
+fn open_order((f, g, v): (f64, f64, u32), (of, og, ov): (f64, f64, u32)) -> Ordering {
+    of.total_cmp(&f).then(g.total_cmp(&og)).then(ov.cmp(&v))
+}
+
+/// An open-list entry of the lazy search and of Dijkstra: a vertex, its cost so far
+/// and estimate, and the parent edge it is reached through.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Open {
     f: f64,
@@ -291,12 +321,7 @@ impl Eq for Open {}
 
 impl Ord for Open {
     fn cmp(&self, other: &Self) -> Ordering {
-        // Min-heap on f, then larger g first (deeper), then smaller id.
-        other
-            .f
-            .total_cmp(&self.f)
-            .then(self.g.total_cmp(&other.g))
-            .then(other.v.cmp(&self.v))
+        open_order((self.f, self.g, self.v), (other.f, other.g, other.v))
     }
 }
 
@@ -306,17 +331,142 @@ impl PartialOrd for Open {
     }
 }
 
+/// An open-list entry of the optimistic search (its parent is in the vertex record):
+/// 24 bytes, `f` and `g` stored as integers ordered like `f64::total_cmp` so that the
+/// heap compares integers (the order is [`open_order`]'s).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Candidate {
+    f_key: u64,
+    g_key: u64,
+    v: u32,
+}
+
+impl Candidate {
+    fn new(f: f64, g: f64, v: u32) -> Self {
+        Self {
+            f_key: total_order_key(f),
+            g_key: total_order_key(g),
+            v,
+        }
+    }
+
+    /// The cost so far.
+    fn g(&self) -> f64 {
+        from_total_order_key(self.g_key)
+    }
+}
+
+impl Ord for Candidate {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .f_key
+            .cmp(&self.f_key)
+            .then(self.g_key.cmp(&other.g_key))
+            .then(other.v.cmp(&self.v))
+    }
+}
+
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// An integer with the order `f64::total_cmp` gives `x`: negative numbers have every
+/// bit flipped (larger magnitudes first), the others only their sign bit.
+fn total_order_key(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | 1 << 63
+    }
+}
+
+/// The inverse of [`total_order_key`].
+fn from_total_order_key(key: u64) -> f64 {
+    f64::from_bits(if key >> 63 == 1 {
+        key & !(1 << 63)
+    } else {
+        !key
+    })
+}
+
+/// What a search knows about one vertex, packed into 32 aligned bytes so that relaxing
+/// an edge touches one cache line (the roadmap's vertices are visited in random order).
+#[derive(Clone, Copy, Debug)]
+#[repr(align(32))]
+struct VertexRecord {
+    /// Cost so far. The lazy search keeps here the best cost through a checked-valid
+    /// edge while the vertex is open, then its cost once closed.
+    g: f64,
+    /// The heuristic, valid when `h_stamp` equals [`AStar`]'s current heuristic stamp.
+    h: f64,
+    /// The vertex and edge it is reached through.
+    parent: (u32, u32),
+    /// [`Marks::open`] of the search that opened it, or [`Marks::closed`] once closed.
+    mark: u32,
+    /// The heuristic stamp `h` was computed for.
+    h_stamp: u32,
+}
+
+impl Default for VertexRecord {
+    fn default() -> Self {
+        Self {
+            g: f64::INFINITY,
+            h: 0.0,
+            parent: NO_PARENT,
+            mark: 0,
+            h_stamp: 0,
+        }
+    }
+}
+
+/// The record marks of the current search (stamps instead of clearing the records).
+#[derive(Clone, Copy, Debug)]
+struct Marks {
+    /// Seen (opened) in this search.
+    open: u32,
+    /// Expanded (closed) in this search.
+    closed: u32,
+}
+
+/// What the cached heuristic values depend on: the roadmap, the goal and the metric
+/// (by address and weights).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct HeuristicKey {
+    roadmap: u64,
+    goal: u32,
+    metric_address: usize,
+    metric_weights: (u64, u64),
+}
+
+impl HeuristicKey {
+    fn new(map: &Roadmap, goal: u32, metric: &dyn CostMetric) -> Self {
+        let (w_t, w_r) = metric.lower_bound_weights();
+        Self {
+            roadmap: map.id,
+            goal,
+            metric_address: metric as *const dyn CostMetric as *const () as usize,
+            metric_weights: (w_t.to_bits(), w_r.to_bits()),
+        }
+    }
+}
+
 /// A* with buffers reused across searches (generation stamps instead of clearing).
+///
+/// The heuristic `metric(v, goal)` of each vertex is computed once and kept while the
+/// searches go to the same goal on the same roadmap with the same metric (LazyPRM*
+/// searches each query's roadmap many times); vertex poses never change, so the cached
+/// values are exactly the ones recomputing would give.
 #[derive(Default)]
 pub struct AStar {
-    g: Vec<f64>,
-    parent: Vec<(u32, u32)>,
-    seen: Vec<u32>,
-    closed: Vec<u32>,
+    records: Vec<VertexRecord>,
     generation: u32,
-    heap: BinaryHeap<Open>,
+    heuristic_key: Option<HeuristicKey>,
+    h_stamp: u32,
+    heap: BinaryHeap<Candidate>,
     lazy_heap: BinaryHeap<Open>,
-    best_valid: Vec<f64>,
     /// Vertices expanded over all searches.
     pub expansions: u64,
 }
@@ -331,42 +481,53 @@ impl AStar {
         goal: u32,
         metric: &dyn CostMetric,
     ) -> Option<GraphPath> {
-        self.prepare(map.vertex_count());
+        let marks = self.prepare(map, goal, metric);
         let goal_pose = *map.pose(goal);
-        let h = |v: u32| metric.distance(map.pose(v), &goal_pose);
-        self.open(start, 0.0, NO_PARENT);
-        self.heap.push(Open {
-            f: h(start),
-            g: 0.0,
-            v: start,
-            parent: NO_PARENT,
-        });
-        while let Some(Open { g, v, .. }) = self.heap.pop() {
-            if self.closed[v as usize] == self.generation || g > self.g[v as usize] {
+        let f_start = self.heuristic(map, start, &goal_pose, metric);
+        let record = &mut self.records[start as usize];
+        (record.mark, record.g, record.parent) = (marks.open, 0.0, NO_PARENT);
+        self.heap.push(Candidate::new(f_start, 0.0, start));
+        while let Some(candidate) = self.heap.pop() {
+            let (g, v) = (candidate.g(), candidate.v);
+            let record = &mut self.records[v as usize];
+            if record.mark == marks.closed || g > record.g {
                 continue;
             }
             if v == goal {
                 return Some(self.trace(start, goal));
             }
-            self.closed[v as usize] = self.generation;
+            record.mark = marks.closed;
             self.expansions += 1;
-            for &(w, e) in map.neighbours(v) {
-                if self.closed[w as usize] == self.generation {
-                    continue;
-                }
-                let candidate = g + map.edge(e).cost;
-                if self.seen[w as usize] != self.generation || candidate < self.g[w as usize] {
-                    self.open(w, candidate, (v, e));
-                    self.heap.push(Open {
-                        f: candidate + h(w),
-                        g: candidate,
-                        v: w,
-                        parent: (v, e),
-                    });
-                }
-            }
+            self.relax_neighbours(map, v, g, &goal_pose, metric, marks);
         }
         None
+    }
+
+    /// Opens (or reopens, cheaper) every neighbour of `v`, reached at cost `g`, that is
+    /// not closed, and pushes it on the open list.
+    fn relax_neighbours(
+        &mut self,
+        map: &Roadmap,
+        v: u32,
+        g: f64,
+        goal_pose: &Pose2,
+        metric: &dyn CostMetric,
+        marks: Marks,
+    ) {
+        for (w, e, cost) in map.neighbours_with_costs(v) {
+            let record = &mut self.records[w as usize];
+            if record.mark == marks.closed {
+                continue;
+            }
+            let candidate = g + cost;
+            if record.mark != marks.open || candidate < record.g {
+                (record.mark, record.g, record.parent) = (marks.open, candidate, (v, e));
+                let h = cached_heuristic(record, self.h_stamp, || {
+                    metric.distance(map.pose(w), goal_pose)
+                });
+                self.heap.push(Candidate::new(candidate + h, candidate, w));
+            }
+        }
     }
 
     /// Lazy Weighted A* (Cohen, Phillips & Likhachev 2014): one search that checks an
@@ -380,11 +541,11 @@ impl AStar {
         metric: &dyn CostMetric,
         evaluator: &mut dyn Evaluator,
     ) -> Option<GraphPath> {
-        self.prepare(map.vertex_count());
+        let marks = self.prepare(map, goal, metric);
         let goal_pose = *map.pose(goal);
         let mut open = std::mem::take(&mut self.lazy_heap);
         open.clear();
-        let h0 = metric.distance(map.pose(start), &goal_pose);
+        let h0 = self.heuristic(map, start, &goal_pose, metric);
         open.push(Open {
             f: h0,
             g: 0.0,
@@ -393,7 +554,7 @@ impl AStar {
         });
         let mut found = None;
         while let Some(Open { g, v, parent, .. }) = open.pop() {
-            if self.closed[v as usize] == self.generation {
+            if self.records[v as usize].mark == marks.closed {
                 continue;
             }
             let (_, e) = parent;
@@ -403,61 +564,106 @@ impl AStar {
             if !reachable {
                 continue;
             }
-            self.closed[v as usize] = self.generation;
-            self.g[v as usize] = g;
-            self.parent[v as usize] = parent;
+            let record = &mut self.records[v as usize];
+            (record.mark, record.g, record.parent) = (marks.closed, g, parent);
             if v == goal {
                 found = Some(self.trace(start, goal));
                 break;
             }
             self.expansions += 1;
-            for &(w, e2) in map.neighbours(v) {
-                if self.closed[w as usize] == self.generation {
-                    continue;
-                }
-                let candidate = g + map.edge(e2).cost;
-                let known = self.seen[w as usize] == self.generation;
-                if known && candidate >= self.best_valid[w as usize] {
-                    continue;
-                }
-                if map.edge(e2).validity == Validity::Valid {
-                    self.seen[w as usize] = self.generation;
-                    self.best_valid[w as usize] = candidate;
-                }
-                let f = candidate + metric.distance(map.pose(w), &goal_pose);
-                open.push(Open {
-                    f,
-                    g: candidate,
-                    v: w,
-                    parent: (v, e2),
-                });
-            }
+            self.push_lazy_successors(&mut open, map, v, g, &goal_pose, metric, marks);
         }
         self.lazy_heap = open;
         found
     }
 
-    fn prepare(&mut self, n: usize) {
-        if self.g.len() < n {
-            self.g.resize(n, f64::INFINITY);
-            self.parent.resize(n, (u32::MAX, u32::MAX));
-            self.seen.resize(n, 0);
-            self.closed.resize(n, 0);
-            self.best_valid.resize(n, f64::INFINITY);
-        }
-        self.heap.clear();
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.seen.iter_mut().for_each(|s| *s = 0);
-            self.closed.iter_mut().for_each(|s| *s = 0);
-            self.generation = 1;
+    /// Pushes every neighbour of `v` (reached at cost `g`) that is not closed and not
+    /// already reached as cheaply through a checked-valid edge.
+    #[allow(clippy::too_many_arguments)]
+    fn push_lazy_successors(
+        &mut self,
+        open: &mut BinaryHeap<Open>,
+        map: &Roadmap,
+        v: u32,
+        g: f64,
+        goal_pose: &Pose2,
+        metric: &dyn CostMetric,
+        marks: Marks,
+    ) {
+        for (w, e, cost) in map.neighbours_with_costs(v) {
+            let record = &mut self.records[w as usize];
+            if record.mark == marks.closed {
+                continue;
+            }
+            let candidate = g + cost;
+            let known = record.mark == marks.open;
+            if known && candidate >= record.g {
+                continue;
+            }
+            if map.edge(e).validity == Validity::Valid {
+                (record.mark, record.g) = (marks.open, candidate);
+            }
+            let h = cached_heuristic(record, self.h_stamp, || {
+                metric.distance(map.pose(w), goal_pose)
+            });
+            open.push(Open {
+                f: candidate + h,
+                g: candidate,
+                v: w,
+                parent: (v, e),
+            });
         }
     }
 
-    fn open(&mut self, v: u32, g: f64, parent: (u32, u32)) {
-        self.seen[v as usize] = self.generation;
-        self.g[v as usize] = g;
-        self.parent[v as usize] = parent;
+    /// Sizes the records for `map`, starts a new search generation (and a new heuristic
+    /// stamp when the goal, roadmap or metric changed); returns the search's marks.
+    fn prepare(&mut self, map: &Roadmap, goal: u32, metric: &dyn CostMetric) -> Marks {
+        let n = map.vertex_count();
+        if self.records.len() < n {
+            self.records.resize(n, VertexRecord::default());
+        }
+        self.heap.clear();
+        let key = HeuristicKey::new(map, goal, metric);
+        if self.heuristic_key != Some(key) {
+            self.heuristic_key = Some(key);
+            self.next_heuristic_stamp();
+        }
+        self.next_generation()
+    }
+
+    /// Advances the search generation, clearing the marks when the stamps run out.
+    fn next_generation(&mut self) -> Marks {
+        self.generation += 1;
+        if self.generation > u32::MAX / 2 - 1 {
+            self.records.iter_mut().for_each(|r| r.mark = 0);
+            self.generation = 1;
+        }
+        Marks {
+            open: 2 * self.generation,
+            closed: 2 * self.generation + 1,
+        }
+    }
+
+    /// Invalidates every cached heuristic value.
+    fn next_heuristic_stamp(&mut self) {
+        self.h_stamp = self.h_stamp.wrapping_add(1);
+        if self.h_stamp == 0 {
+            self.records.iter_mut().for_each(|r| r.h_stamp = 0);
+            self.h_stamp = 1;
+        }
+    }
+
+    /// The heuristic of `v` (cached).
+    fn heuristic(
+        &mut self,
+        map: &Roadmap,
+        v: u32,
+        goal_pose: &Pose2,
+        metric: &dyn CostMetric,
+    ) -> f64 {
+        cached_heuristic(&mut self.records[v as usize], self.h_stamp, || {
+            metric.distance(map.pose(v), goal_pose)
+        })
     }
 
     fn trace(&self, start: u32, goal: u32) -> GraphPath {
@@ -465,7 +671,7 @@ impl AStar {
         let mut edges = Vec::new();
         let mut v = goal;
         while v != start {
-            let (p, e) = self.parent[v as usize];
+            let (p, e) = self.records[v as usize].parent;
             vertices.push(p);
             edges.push(e);
             v = p;
@@ -475,9 +681,18 @@ impl AStar {
         GraphPath {
             vertices,
             edges,
-            cost: self.g[goal as usize],
+            cost: self.records[goal as usize].g,
         }
     }
+}
+
+/// The record's heuristic if computed under `stamp`, else `compute()` (then stored).
+fn cached_heuristic(record: &mut VertexRecord, stamp: u32, compute: impl FnOnce() -> f64) -> f64 {
+    if record.h_stamp != stamp {
+        record.h = compute();
+        record.h_stamp = stamp;
+    }
+    record.h
 }
 
 /// Dijkstra distances from `start` over the live edges (for tests and diagnostics).
@@ -495,8 +710,8 @@ pub fn dijkstra(map: &Roadmap, start: u32) -> Vec<f64> {
         if f > dist[v as usize] {
             continue;
         }
-        for &(w, e) in map.neighbours(v) {
-            let d = f + map.edge(e).cost;
+        for (w, e, cost) in map.neighbours_with_costs(v) {
+            let d = f + cost;
             if d < dist[w as usize] {
                 dist[w as usize] = d;
                 heap.push(Open {
@@ -547,6 +762,38 @@ mod tests {
             }
             map.refresh_components();
             prop_assert_eq!(map.maybe_connected(0, goal), dist[goal as usize].is_finite());
+        }
+    }
+
+    #[test]
+    fn total_order_keys_order_like_total_cmp_and_round_trip() {
+        let values = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -1.5,
+            -f64::MIN_POSITIVE,
+            -0.0,
+            0.0,
+            f64::MIN_POSITIVE,
+            1e-300,
+            1.0,
+            1.0 + f64::EPSILON,
+            1e300,
+            f64::INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for a in values {
+            assert_eq!(
+                from_total_order_key(total_order_key(a)).to_bits(),
+                a.to_bits()
+            );
+            for b in values {
+                assert_eq!(total_order_key(a).cmp(&total_order_key(b)), a.total_cmp(&b));
+                let (ca, cb) = (Candidate::new(a, b, 1), Candidate::new(b, a, 2));
+                let expected = open_order((a, b, 1), (b, a, 2));
+                assert_eq!(ca.cmp(&cb), expected, "{a} {b}");
+            }
         }
     }
 

@@ -3,12 +3,13 @@
 //! checker is tested against.
 
 use crate::robot_box::{PlacedBox, RobotBox};
-use crate::volumes::Volumes;
+use crate::volumes::{box_inside, SharedVolumes, Volumes};
+use crate::volumetric::shared_volumes;
 use parry3d::math::{Pose, Vector};
 use parry3d::query::intersection_test;
 use parry3d::shape::Cuboid;
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Error, Pose2, StateValidityChecker, World};
+use smug_core::{BuildContext, Error, Pose2, StateValidityChecker, VoxelGrid, World};
 use std::sync::Arc;
 
 /// Parameters of the exact checker (none).
@@ -19,13 +20,20 @@ pub struct ExactParams {}
 /// Box-vs-voxel-cubes validity with parry3d.
 pub struct ExactChecker {
     world: Arc<World>,
-    volumes: Arc<Volumes>,
+    volumes: SharedVolumes,
     robot: RobotBox,
 }
 
 impl ExactChecker {
     /// A checker for `robot` in `world` over its `volumes`.
     pub fn new(world: Arc<World>, volumes: Arc<Volumes>, robot: RobotBox) -> Self {
+        let volumes = SharedVolumes::ready(world.clone(), volumes);
+        Self::with_shared_volumes(world, volumes, robot)
+    }
+
+    /// A checker for `robot` in `world` over `volumes` that may not be derived yet (it
+    /// needs only their occupancy, derived on the first check).
+    pub fn with_shared_volumes(world: Arc<World>, volumes: SharedVolumes, robot: RobotBox) -> Self {
         Self {
             world,
             volumes,
@@ -33,8 +41,8 @@ impl ExactChecker {
         }
     }
 
-    fn collides(&self, placed: &PlacedBox) -> bool {
-        let g = self.volumes.geometry();
+    fn collides(&self, occupancy: &VoxelGrid<bool>, placed: &PlacedBox) -> bool {
+        let g = &occupancy.geometry;
         let (min, max) = placed.aabb();
         let half = placed.half.map(|h| h as f32);
         let robot = Cuboid::new(Vector::new(half[0], half[1], half[2]));
@@ -53,7 +61,7 @@ impl ExactChecker {
         for k in range(2) {
             for j in range(1) {
                 for i in range(0) {
-                    if !*self.volumes.occupancy.get([i, j, k]) {
+                    if !*occupancy.get([i, j, k]) {
                         continue;
                     }
                     let v = g.center_of([i, j, k]);
@@ -77,17 +85,22 @@ impl StateValidityChecker for ExactChecker {
             return false;
         };
         let (min, max) = placed.aabb();
-        self.volumes.contains_box(min, max) && !self.collides(&placed)
+        let occupancy = self.volumes.occupancy();
+        box_inside(&occupancy.geometry, min, max) && !self.collides(occupancy, &placed)
     }
 }
 
-/// Builds the checker for the context's world and robot.
+/// Builds the checker for the context's world and robot, deriving the occupancy now
+/// (shared with the world's other checkers; the distance field is not needed).
 pub fn build_exact(ctx: &BuildContext) -> Result<ExactChecker, Error> {
-    let world = ctx.world()?;
     let robot = RobotBox::from_robot(ctx.robot());
-    let volumes =
-        Volumes::from_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))?;
-    Ok(ExactChecker::new(world, Arc::new(volumes), robot))
+    let volumes = shared_volumes(ctx, &robot)?;
+    volumes.occupancy();
+    Ok(ExactChecker::with_shared_volumes(
+        ctx.world()?,
+        volumes,
+        robot,
+    ))
 }
 
 smug_core::register_plugin!(

@@ -101,28 +101,8 @@ impl GeometricEstimator {
 
     /// The terrain features around cell `(i, j)`; `None` without enough data.
     pub fn features(&self, elevation: &GridLayer, i: usize, j: usize) -> Option<TerrainFeatures> {
-        let g = elevation.geometry;
-        let z0 = elevation.get(i, j);
-        if z0.is_nan() {
-            return None;
-        }
-        let reach = (self.window_radius / g.resolution).floor() as isize;
-        let mut fit = PlaneFit::default();
-        for dj in -reach..=reach {
-            for di in -reach..=reach {
-                let (x, y) = (di as f64 * g.resolution, dj as f64 * g.resolution);
-                let (ci, cj) = (i as isize + di, j as isize + dj);
-                let inside =
-                    ci >= 0 && cj >= 0 && (ci as usize) < g.size[0] && (cj as usize) < g.size[1];
-                if inside && x.hypot(y) <= self.window_radius + 1e-9 {
-                    let z = elevation.get(ci as usize, cj as usize);
-                    if !z.is_nan() {
-                        fit.add(x, y, (z - z0) as f64);
-                    }
-                }
-            }
-        }
-        fit.features()
+        let window = Window::new(self.window_radius, elevation.geometry.resolution);
+        window.features(elevation, i, j)
     }
 
     /// The traversability score of some features.
@@ -149,8 +129,88 @@ impl GeometricEstimator {
     }
 }
 
+/// The fitting window: the cell offsets within the radius, as runs of consecutive
+/// offsets along x, row by row — the cells (and the order) of the plain double loop
+/// over the bounding square, with the distance test done once instead of per cell.
+#[derive(Clone, Debug)]
+struct Window {
+    runs: Vec<WindowRun>,
+    /// `x` offset (metres) of each `di`, indexed by `di + reach`.
+    x: Vec<f64>,
+    reach: isize,
+}
+
+/// Consecutive window offsets `di_lo..=di_hi` in row `dj`.
+#[derive(Clone, Copy, Debug)]
+struct WindowRun {
+    dj: isize,
+    y: f64,
+    di_lo: isize,
+    di_hi: isize,
+}
+
+impl Window {
+    /// The cells within `radius` (metres) of a cell on a grid of `resolution`.
+    fn new(radius: f64, resolution: f64) -> Self {
+        let reach = (radius / resolution).floor() as isize;
+        let offset = |d: isize| d as f64 * resolution;
+        let mut runs: Vec<WindowRun> = Vec::new();
+        for dj in -reach..=reach {
+            for di in -reach..=reach {
+                if offset(di).hypot(offset(dj)) > radius + 1e-9 {
+                    continue;
+                }
+                match runs.last_mut() {
+                    Some(run) if run.dj == dj && run.di_hi + 1 == di => run.di_hi = di,
+                    _ => runs.push(WindowRun {
+                        dj,
+                        y: offset(dj),
+                        di_lo: di,
+                        di_hi: di,
+                    }),
+                }
+            }
+        }
+        Self {
+            runs,
+            x: (-reach..=reach).map(offset).collect(),
+            reach,
+        }
+    }
+
+    /// The terrain features around cell `(i, j)`; `None` without enough data.
+    fn features(&self, elevation: &GridLayer, i: usize, j: usize) -> Option<TerrainFeatures> {
+        let [nx, ny] = elevation.geometry.size;
+        let z0 = elevation.get(i, j);
+        if z0.is_nan() {
+            return None;
+        }
+        let (i, j) = (i as isize, j as isize);
+        let mut fit = PlaneFit::default();
+        for run in &self.runs {
+            let cj = j + run.dj;
+            if cj < 0 || cj >= ny as isize {
+                continue;
+            }
+            let lo = (i + run.di_lo).max(0);
+            let hi = (i + run.di_hi).min(nx as isize - 1);
+            if lo > hi {
+                continue;
+            }
+            let row = &elevation.data[cj as usize * nx..][..nx];
+            let cells = &row[lo as usize..=hi as usize];
+            let xs = &self.x[(lo - i + self.reach) as usize..=(hi - i + self.reach) as usize];
+            for (&z, &x) in cells.iter().zip(xs) {
+                if !z.is_nan() {
+                    fit.add(x, run.y, (z - z0) as f64);
+                }
+            }
+        }
+        fit.features()
+    }
+}
+
 /// Least-squares fit of `z = a + b·x + c·y`, accumulated point by point.
-#[derive(Default)]
 struct PlaneFit {
     n: f64,
     sx: f64,
@@ -162,8 +222,29 @@ struct PlaneFit {
     sxz: f64,
     syz: f64,
     szz: f64,
-    low: Option<f64>,
-    high: Option<f64>,
+    /// The lowest `z` added (`INFINITY` before any number).
+    low: f64,
+    /// The highest `z` added (`-INFINITY` before any number).
+    high: f64,
+}
+
+impl Default for PlaneFit {
+    fn default() -> Self {
+        Self {
+            n: 0.0,
+            sx: 0.0,
+            sy: 0.0,
+            sz: 0.0,
+            sxx: 0.0,
+            sxy: 0.0,
+            syy: 0.0,
+            sxz: 0.0,
+            syz: 0.0,
+            szz: 0.0,
+            low: f64::INFINITY,
+            high: f64::NEG_INFINITY,
+        }
+    }
 }
 
 impl PlaneFit {
@@ -178,13 +259,21 @@ impl PlaneFit {
         self.sxz += x * z;
         self.syz += y * z;
         self.szz += z * z;
-        self.low = Some(self.low.map_or(z, |l| l.min(z)));
-        self.high = Some(self.high.map_or(z, |h| h.max(z)));
+        self.low = self.low.min(z);
+        self.high = self.high.max(z);
     }
 
     /// Solves the 3×3 normal equations (Cramer's rule); flat when under-determined.
     fn features(&self) -> Option<TerrainFeatures> {
-        let step = self.high? - self.low?;
+        if self.n == 0.0 {
+            return None;
+        }
+        // No number among the heights (all NaN): no step either.
+        let step = if self.low > self.high {
+            f64::NAN
+        } else {
+            self.high - self.low
+        };
         let m = [
             [self.n, self.sx, self.sy],
             [self.sx, self.sxx, self.sxy],
@@ -229,8 +318,10 @@ fn det3(m: [[f64; 3]; 3]) -> f64 {
 impl TraversabilityEstimator for GeometricEstimator {
     fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
         let elevation = &world.elevation;
+        let window = Window::new(self.window_radius, elevation.geometry.resolution);
         Ok(GridLayer::from_fn(elevation.geometry, |i, j| {
-            self.features(elevation, i, j)
+            window
+                .features(elevation, i, j)
                 .map_or(f32::NAN, |f| self.score(&f) as f32)
         }))
     }
@@ -255,6 +346,160 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
     use smug_core::{GridGeometry, Mission, Pose2};
+
+    /// The original accumulation (heights' range as options), verbatim.
+    #[derive(Default)]
+    struct ReferenceFit {
+        n: f64,
+        sx: f64,
+        sy: f64,
+        sz: f64,
+        sxx: f64,
+        sxy: f64,
+        syy: f64,
+        sxz: f64,
+        syz: f64,
+        szz: f64,
+        low: Option<f64>,
+        high: Option<f64>,
+    }
+
+    impl ReferenceFit {
+        fn add(&mut self, x: f64, y: f64, z: f64) {
+            self.n += 1.0;
+            self.sx += x;
+            self.sy += y;
+            self.sz += z;
+            self.sxx += x * x;
+            self.sxy += x * y;
+            self.syy += y * y;
+            self.sxz += x * z;
+            self.syz += y * z;
+            self.szz += z * z;
+            self.low = Some(self.low.map_or(z, |l| l.min(z)));
+            self.high = Some(self.high.map_or(z, |h| h.max(z)));
+        }
+
+        /// Solves the 3×3 normal equations (Cramer's rule); flat when under-determined.
+        fn features(&self) -> Option<TerrainFeatures> {
+            let step = self.high? - self.low?;
+            let m = [
+                [self.n, self.sx, self.sy],
+                [self.sx, self.sxx, self.sxy],
+                [self.sy, self.sxy, self.syy],
+            ];
+            let rhs = [self.sz, self.sxz, self.syz];
+            let det = det3(m);
+            let (a, b, c) = if self.n >= 3.0 && det.abs() > 1e-12 {
+                let solve = |k: usize| {
+                    let mut mk = m;
+                    for (row, value) in mk.iter_mut().zip(rhs) {
+                        row[k] = value;
+                    }
+                    det3(mk) / det
+                };
+                (solve(0), solve(1), solve(2))
+            } else {
+                (self.sz / self.n, 0.0, 0.0)
+            };
+            // Σ(z − a − bx − cy)² expanded in the accumulated sums.
+            let sse = self.szz + a * a * self.n + b * b * self.sxx + c * c * self.syy
+                - 2.0 * a * self.sz
+                - 2.0 * b * self.sxz
+                - 2.0 * c * self.syz
+                + 2.0 * a * b * self.sx
+                + 2.0 * a * c * self.sy
+                + 2.0 * b * c * self.sxy;
+            Some(TerrainFeatures {
+                slope: b.hypot(c).atan(),
+                roughness: (sse.max(0.0) / self.n).sqrt(),
+                step,
+            })
+        }
+    }
+
+    /// The straightforward window loop (the distance test per cell of the bounding
+    /// square): the reference the row-run window must match bit for bit.
+    fn reference_features(
+        radius: f64,
+        elevation: &GridLayer,
+        i: usize,
+        j: usize,
+    ) -> Option<TerrainFeatures> {
+        let g = elevation.geometry;
+        let z0 = elevation.get(i, j);
+        if z0.is_nan() {
+            return None;
+        }
+        let reach = (radius / g.resolution).floor() as isize;
+        let mut fit = ReferenceFit::default();
+        for dj in -reach..=reach {
+            for di in -reach..=reach {
+                let (x, y) = (di as f64 * g.resolution, dj as f64 * g.resolution);
+                let (ci, cj) = (i as isize + di, j as isize + dj);
+                let inside =
+                    ci >= 0 && cj >= 0 && (ci as usize) < g.size[0] && (cj as usize) < g.size[1];
+                if inside && x.hypot(y) <= radius + 1e-9 {
+                    let z = elevation.get(ci as usize, cj as usize);
+                    if !z.is_nan() {
+                        fit.add(x, y, (z - z0) as f64);
+                    }
+                }
+            }
+        }
+        fit.features()
+    }
+
+    /// The features' bits (every NaN alike).
+    fn feature_bits(f: Option<TerrainFeatures>) -> Option<[u64; 3]> {
+        let bits = |v: f64| if v.is_nan() { u64::MAX } else { v.to_bits() };
+        f.map(|f| [bits(f.slope), bits(f.roughness), bits(f.step)])
+    }
+
+    #[test]
+    fn lunar_traversability_equals_the_reference_bit_for_bit() {
+        use rand::SeedableRng;
+        use smug_worlds::lunar::{lunar_world, LunarParams};
+        let mut rng = smug_core::rng::StageRng::seed_from_u64(3);
+        let world = lunar_world(&LunarParams::default(), &mut rng).unwrap();
+        let radius = 0.5 * 1.07f64.hypot(0.55); // the ANYmal window
+        let estimator = GeometricEstimator::new(GeometricParams::default(), radius).unwrap();
+        let layer = estimator.estimate(&world).unwrap();
+        let e = &world.elevation;
+        let reference = GridLayer::from_fn(e.geometry, |i, j| {
+            reference_features(radius, e, i, j).map_or(f32::NAN, |f| estimator.score(&f) as f32)
+        });
+        let bits = |l: &GridLayer| l.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&layer), bits(&reference));
+    }
+
+    proptest! {
+        /// Random terrain with holes and a few infinite heights, any window.
+        #[test]
+        fn row_run_window_equals_the_reference_bit_for_bit(
+            nx in 1usize..24, ny in 1usize..24, resolution in 0.05f64..0.3,
+            radius in 0.01f64..2.0, holes in 0.0f64..0.3, seed in any::<u64>(),
+        ) {
+            use rand::{Rng, SeedableRng};
+            let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+            let g = GridGeometry::new([0.0, 0.0], resolution, [nx, ny]).unwrap();
+            let elevation = GridLayer::from_fn(g, |_, _| {
+                match rng.random::<f64>() {
+                    r if r < holes => f32::NAN,
+                    r if r < holes + 0.002 => f32::INFINITY,
+                    _ => rng.random_range(-3.0f32..3.0),
+                }
+            });
+            let window = Window::new(radius, resolution);
+            for j in 0..ny {
+                for i in 0..nx {
+                    let fast = feature_bits(window.features(&elevation, i, j));
+                    let slow = feature_bits(reference_features(radius, &elevation, i, j));
+                    prop_assert_eq!(fast, slow, "cell ({}, {})", i, j);
+                }
+            }
+        }
+    }
 
     fn world_from(f: impl Fn(f64, f64) -> f64) -> World {
         let g = GridGeometry::new([0.0, 0.0], 0.1, [40, 40]).unwrap();

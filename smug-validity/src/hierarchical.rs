@@ -3,12 +3,10 @@
 //! volumetric box check only in between.
 
 use crate::robot_box::RobotBox;
-use crate::volumes::Volumes;
-use crate::volumetric::{VolumetricChecker, VolumetricParams};
+use crate::volumetric::{shared_volumes, VolumetricChecker, VolumetricParams};
 use serde::{Deserialize, Serialize};
 use smug_core::{BuildContext, Counters, Error, GridLayer, Pose2, StateValidityChecker};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
-use std::sync::Arc;
 
 /// Parameters of the hierarchical checker.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -121,18 +119,25 @@ fn build_hierarchical(
         )
     })?;
     let robot = RobotBox::from_robot(ctx.robot());
-    let volumes =
-        Volumes::from_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))?;
-    let volumetric = VolumetricChecker::new(
+    let volumes = shared_volumes(ctx, &robot)?;
+    let volumetric = VolumetricChecker::with_shared_volumes(
         world,
-        Arc::new(volumes),
+        volumes.clone(),
         robot,
         VolumetricParams {
             max_depth: params.max_depth,
             min_size: params.min_size,
         },
     )?;
-    HierarchicalChecker::new(traversability, volumetric, params.t_low, params.t_high)
+    let checker =
+        HierarchicalChecker::new(traversability, volumetric, params.t_low, params.t_high)?;
+    if params.t_low < params.t_high {
+        // States in the band need the volumes: derive them now, as part of the build.
+        // With t_low = t_high only a traversability of exactly the threshold does, so
+        // they are derived on first use, if ever.
+        volumes.volumes();
+    }
+    Ok(checker)
 }
 
 smug_core::register_plugin!(
@@ -142,3 +147,51 @@ smug_core::register_plugin!(
     params = HierarchicalParams,
     build = |params, ctx| Ok(Box::new(build_hierarchical(params, ctx)?)),
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::volumes::SharedVolumes;
+    use smug_core::{GridGeometry, Mission, RobotConfig, World};
+    use std::sync::Arc;
+
+    fn flat_world(traversability: f32) -> Arc<World> {
+        let g = GridGeometry::new([0.0, 0.0], 0.1, [40, 40]).unwrap();
+        let mission = Mission {
+            start: Pose2::new(1.0, 1.0, 0.0),
+            end: None,
+            targets: vec![],
+        };
+        let mut world = World::new("flat", GridLayer::filled(g, 0.0), mission);
+        world.traversability = Some(GridLayer::filled(g, traversability));
+        Arc::new(world)
+    }
+
+    #[test]
+    fn volumes_are_derived_when_the_band_is_open_and_shared_by_the_checkers() {
+        let world = flat_world(0.5);
+        let ctx = BuildContext::new(1, RobotConfig::default()).with_world(world.clone());
+        let headroom = RobotBox::from_robot(ctx.robot()).headroom();
+        let fastest = build_hierarchical(HierarchicalParams::default(), &ctx).unwrap();
+        for k in 0..20 {
+            assert!(fastest.is_valid(&Pose2::new(0.8 + 0.1 * k as f64, 2.0, 0.0)));
+        }
+        let shared = SharedVolumes::for_world(&world, headroom).unwrap();
+        assert!(
+            !shared.is_derived(),
+            "t_low = t_high never needs the volumes"
+        );
+        let banded = HierarchicalParams {
+            t_high: 0.8,
+            ..Default::default()
+        };
+        let checker = build_hierarchical(banded, &ctx).unwrap();
+        assert!(
+            shared.is_derived(),
+            "derived by the build, for every checker"
+        );
+        assert!(checker.is_valid(&Pose2::new(2.0, 2.0, 0.0)));
+        assert_eq!(checker.counters()["volumetric_checks"], 1);
+        assert_eq!(fastest.counters()["esdf_queries"], 0);
+    }
+}

@@ -29,7 +29,7 @@ pub use exact::ExactChecker;
 pub use geometric::GeometricEstimator;
 pub use hierarchical::HierarchicalChecker;
 pub use robot_box::RobotBox;
-pub use volumes::Volumes;
+pub use volumes::{SharedVolumes, Volumes};
 pub use volumetric::VolumetricChecker;
 
 /// Errors of the validity crate.

@@ -2,11 +2,16 @@
 //! elevation layer: every voxel whose centre lies at or below the terrain (or in a
 //! column without data) is occupied. The union of occupied voxel cubes is the
 //! geometry both box checkers test against.
+//!
+//! The checkers built for one world share its derived volumes ([`SharedVolumes`]):
+//! derived once, on first use, so a checker that never needs them (the hierarchical
+//! checker with `t_low = t_high`) never pays for them.
 
 use crate::edt::squared_edt_3d;
 use crate::ValidityError;
 use smug_core::{VoxelGeometry, VoxelGrid, World};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
 
 /// Largest voxel count derived automatically (≈ 1.6 GB of distances).
 const MAX_VOXELS: usize = 400_000_000;
@@ -79,11 +84,134 @@ impl Volumes {
 
     /// True when the axis-aligned box `[min, max]` lies inside the grid.
     pub fn contains_box(&self, min: [f64; 3], max: [f64; 3]) -> bool {
-        let g = &self.occupancy.geometry;
-        (0..3).all(|a| {
-            min[a] >= g.origin[a] && max[a] <= g.origin[a] + g.size[a] as f64 * g.resolution
-        })
+        box_inside(&self.occupancy.geometry, min, max)
     }
+}
+
+/// True when the axis-aligned box `[min, max]` lies inside the voxel grid `g`.
+pub(crate) fn box_inside(g: &VoxelGeometry, min: [f64; 3], max: [f64; 3]) -> bool {
+    (0..3).all(|a| min[a] >= g.origin[a] && max[a] <= g.origin[a] + g.size[a] as f64 * g.resolution)
+}
+
+/// The volumes of one world, derived on first use (occupancy alone, or occupancy and
+/// distance field) and shared by every checker built for that world with the same
+/// headroom, for as long as one of them lives.
+#[derive(Clone, Debug)]
+pub struct SharedVolumes(Arc<VolumeSource>);
+
+/// What the volumes are derived from, and what has been derived so far.
+#[derive(Debug)]
+struct VolumeSource {
+    world: Arc<World>,
+    headroom: f64,
+    /// The occupancy geometry to voxelise the elevation into; `None` when the world
+    /// carries its own occupancy and distance field.
+    derived_geometry: Option<VoxelGeometry>,
+    /// The occupancy alone, when asked for before the volumes.
+    occupancy: OnceLock<VoxelGrid<bool>>,
+    volumes: OnceLock<Arc<Volumes>>,
+}
+
+impl SharedVolumes {
+    /// The shared volumes of `world` with `headroom` metres of free space above the
+    /// terrain (the ones already shared for it, else new ones). Fails, without deriving
+    /// anything, when the world cannot give volumes (see [`Volumes::from_world`]).
+    pub fn for_world(world: &Arc<World>, headroom: f64) -> Result<Self, ValidityError> {
+        let derived_geometry = match (&world.occupancy, &world.esdf) {
+            (Some(occupancy), Some(esdf)) if occupancy.geometry != esdf.geometry => {
+                return Err(ValidityError::Map(
+                    "the world's occupancy and ESDF grids differ in geometry".into(),
+                ))
+            }
+            (Some(_), Some(_)) => None,
+            _ => Some(occupancy_geometry(world, headroom)?),
+        };
+        Ok(Self(shared_source(world, headroom, derived_geometry)))
+    }
+
+    /// Volumes computed already (not shared with other checkers).
+    pub fn ready(world: Arc<World>, volumes: Arc<Volumes>) -> Self {
+        Self(Arc::new(VolumeSource {
+            world,
+            headroom: f64::NAN,
+            derived_geometry: None,
+            occupancy: OnceLock::new(),
+            volumes: OnceLock::from(volumes),
+        }))
+    }
+
+    /// The volumes (derived now if not yet).
+    pub fn volumes(&self) -> &Arc<Volumes> {
+        let source = &self.0;
+        source
+            .volumes
+            .get_or_init(|| Arc::new(source.derive_volumes()))
+    }
+
+    /// The occupancy (derived now if not yet; the distance field is not needed).
+    pub fn occupancy(&self) -> &VoxelGrid<bool> {
+        let source = &self.0;
+        match source.volumes.get() {
+            Some(volumes) => &volumes.occupancy,
+            None => source.occupancy.get_or_init(|| source.derive_occupancy()),
+        }
+    }
+
+    /// True once the volumes (with the distance field) have been derived.
+    pub fn is_derived(&self) -> bool {
+        self.0.volumes.get().is_some()
+    }
+}
+
+impl VolumeSource {
+    fn derive_occupancy(&self) -> VoxelGrid<bool> {
+        match (self.derived_geometry, &self.world.occupancy) {
+            (Some(geometry), _) => voxelise(&self.world, geometry),
+            (None, Some(occupancy)) => occupancy.clone(),
+            (None, None) => unreachable!("volumes without a source are built ready"),
+        }
+    }
+
+    fn derive_volumes(&self) -> Volumes {
+        if let (None, Some(occupancy), Some(esdf)) = (
+            self.derived_geometry,
+            &self.world.occupancy,
+            &self.world.esdf,
+        ) {
+            return Volumes::new(occupancy.clone(), esdf.clone());
+        }
+        let occupancy = match self.occupancy.get() {
+            Some(occupancy) => occupancy.clone(),
+            None => self.derive_occupancy(),
+        };
+        Volumes::from_occupancy(occupancy)
+    }
+}
+
+/// The live volume source of `world` and `headroom`, or a new one (registered).
+fn shared_source(
+    world: &Arc<World>,
+    headroom: f64,
+    derived_geometry: Option<VoxelGeometry>,
+) -> Arc<VolumeSource> {
+    static SOURCES: Mutex<Vec<Weak<VolumeSource>>> = Mutex::new(Vec::new());
+    let mut sources = SOURCES.lock().unwrap_or_else(PoisonError::into_inner);
+    sources.retain(|source| source.strong_count() > 0);
+    let same = |source: &Arc<VolumeSource>| {
+        Arc::ptr_eq(&source.world, world) && source.headroom.to_bits() == headroom.to_bits()
+    };
+    if let Some(found) = sources.iter().filter_map(Weak::upgrade).find(same) {
+        return found;
+    }
+    let source = Arc::new(VolumeSource {
+        world: world.clone(),
+        headroom,
+        derived_geometry,
+        occupancy: OnceLock::new(),
+        volumes: OnceLock::new(),
+    });
+    sources.push(Arc::downgrade(&source));
+    source
 }
 
 /// Voxelises the terrain: ground and everything below it occupied, columns without
@@ -92,6 +220,12 @@ pub fn occupancy_from_elevation(
     world: &World,
     headroom: f64,
 ) -> Result<VoxelGrid<bool>, ValidityError> {
+    Ok(voxelise(world, occupancy_geometry(world, headroom)?))
+}
+
+/// The voxel grid [`occupancy_from_elevation`] fills: the elevation's cells, from two
+/// voxels below the lowest terrain to `headroom` above the highest.
+fn occupancy_geometry(world: &World, headroom: f64) -> Result<VoxelGeometry, ValidityError> {
     let elevation = &world.elevation;
     let (low, high) = elevation
         .data
@@ -117,8 +251,15 @@ pub fn occupancy_from_elevation(
             world.name
         )));
     }
-    let geometry = VoxelGeometry::new([g.origin[0], g.origin[1], z0], res, [nx, ny, nz])
-        .map_err(ValidityError::Map)?;
+    VoxelGeometry::new([g.origin[0], g.origin[1], z0], res, [nx, ny, nz])
+        .map_err(ValidityError::Map)
+}
+
+/// Fills `geometry` (from [`occupancy_geometry`]) with the terrain of `world`.
+fn voxelise(world: &World, geometry: VoxelGeometry) -> VoxelGrid<bool> {
+    let elevation = &world.elevation;
+    let (z0, res) = (geometry.origin[2], geometry.resolution);
+    let [nx, ny, nz] = geometry.size;
     let mut grid = VoxelGrid::filled(geometry, false);
     for j in 0..ny {
         for i in 0..nx {
@@ -133,7 +274,7 @@ pub fn occupancy_from_elevation(
             }
         }
     }
-    Ok(grid)
+    grid
 }
 
 /// The signed distance field of `occupancy` in metres.
@@ -152,4 +293,64 @@ pub fn signed_distance_field(occupancy: &VoxelGrid<bool>) -> VoxelGrid<f32> {
         })
         .collect();
     VoxelGrid { geometry: g, data }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smug_core::{GridGeometry, GridLayer, Mission, Pose2};
+
+    /// A small world of bumps and a hole (no data).
+    fn bumpy_world() -> Arc<World> {
+        let g = GridGeometry::new([0.0, 0.0], 0.1, [24, 20]).unwrap();
+        let mut elevation = GridLayer::from_fn(g, |i, j| ((i * 7 + j * 3) % 5) as f32 * 0.04);
+        elevation.set(3, 4, f32::NAN);
+        let mission = Mission {
+            start: Pose2::new(1.0, 1.0, 0.0),
+            end: None,
+            targets: vec![],
+        };
+        Arc::new(World::new("bumps", elevation, mission))
+    }
+
+    #[test]
+    fn shared_volumes_are_derived_once_on_first_use_as_from_world_derives_them() {
+        let world = bumpy_world();
+        let (a, b) = (
+            SharedVolumes::for_world(&world, 0.5).unwrap(),
+            SharedVolumes::for_world(&world, 0.5).unwrap(),
+        );
+        let other_headroom = SharedVolumes::for_world(&world, 0.7).unwrap();
+        let direct = Volumes::from_world(&world, 0.5).unwrap();
+        assert!(!a.is_derived());
+        assert_eq!(a.occupancy(), &direct.occupancy);
+        assert!(
+            !b.is_derived(),
+            "the occupancy alone does not need the distance field"
+        );
+        let volumes = a.volumes().clone();
+        assert!(b.is_derived() && Arc::ptr_eq(&volumes, b.volumes()));
+        assert!(!other_headroom.is_derived());
+        assert_eq!(volumes.occupancy, direct.occupancy);
+        assert_eq!(volumes.esdf, direct.esdf);
+        let equal_world = Arc::new((*world).clone());
+        assert!(!SharedVolumes::for_world(&equal_world, 0.5)
+            .unwrap()
+            .is_derived());
+    }
+
+    #[test]
+    fn shared_volumes_live_as_long_as_a_holder() {
+        let world = bumpy_world();
+        SharedVolumes::for_world(&world, 0.5).unwrap().volumes();
+        assert!(!SharedVolumes::for_world(&world, 0.5).unwrap().is_derived());
+    }
+
+    #[test]
+    fn a_world_without_elevation_fails_before_deriving() {
+        let world = bumpy_world();
+        let mut empty = (*world).clone();
+        empty.elevation.data.iter_mut().for_each(|v| *v = f32::NAN);
+        assert!(SharedVolumes::for_world(&Arc::new(empty), 0.5).is_err());
+    }
 }

@@ -7,7 +7,7 @@
 //! outer sphere decides. Unknown space (outside the grid, no terrain data) is invalid.
 
 use crate::robot_box::{PlacedBox, RobotBox};
-use crate::volumes::Volumes;
+use crate::volumes::{SharedVolumes, Volumes};
 use serde::{Deserialize, Serialize};
 use smug_core::{BuildContext, Counters, Error, Pose2, StateValidityChecker, World};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
@@ -36,10 +36,12 @@ impl Default for VolumetricParams {
 /// Box-vs-ESDF validity by sphere subdivision.
 pub struct VolumetricChecker {
     world: Arc<World>,
-    volumes: Arc<Volumes>,
+    volumes: SharedVolumes,
     robot: RobotBox,
     params: VolumetricParams,
     checks: AtomicU64,
+    /// Distance-field queries of this checker (the volumes may be shared).
+    esdf_queries: AtomicU64,
 }
 
 impl VolumetricChecker {
@@ -47,6 +49,18 @@ impl VolumetricChecker {
     pub fn new(
         world: Arc<World>,
         volumes: Arc<Volumes>,
+        robot: RobotBox,
+        params: VolumetricParams,
+    ) -> Result<Self, Error> {
+        let volumes = SharedVolumes::ready(world.clone(), volumes);
+        Self::with_shared_volumes(world, volumes, robot, params)
+    }
+
+    /// A checker for `robot` in `world` over `volumes` that may not be derived yet
+    /// (they are on the first check that needs them).
+    pub fn with_shared_volumes(
+        world: Arc<World>,
+        volumes: SharedVolumes,
         robot: RobotBox,
         params: VolumetricParams,
     ) -> Result<Self, Error> {
@@ -62,24 +76,27 @@ impl VolumetricChecker {
             robot,
             params,
             checks: AtomicU64::new(0),
+            esdf_queries: AtomicU64::new(0),
         })
     }
 
-    /// The distance field it queries (shared, for counting).
+    /// The distance field it queries (derived now if not yet).
     pub fn volumes(&self) -> &Arc<Volumes> {
-        &self.volumes
+        self.volumes.volumes()
     }
 
     /// True when the sub-box with half extents `half` at body offset `offset` is free.
     fn sub_box_free(
         &self,
+        volumes: &Volumes,
         placed: &PlacedBox,
         offset: [f64; 3],
         half: [f64; 3],
         depth: u32,
     ) -> bool {
         let center = placed.to_world(offset);
-        let Some(distance) = self.volumes.distance_lower_bound(center) else {
+        self.esdf_queries.fetch_add(1, Relaxed);
+        let Some(distance) = volumes.distance_lower_bound(center) else {
             return false;
         };
         let outer = (half[0] * half[0] + half[1] * half[1] + half[2] * half[2]).sqrt();
@@ -99,7 +116,7 @@ impl VolumetricChecker {
         [-1.0, 1.0].iter().all(|side| {
             let mut o = offset;
             o[axis] += side * sub[axis];
-            self.sub_box_free(placed, o, sub, depth + 1)
+            self.sub_box_free(volumes, placed, o, sub, depth + 1)
         })
     }
 }
@@ -115,27 +132,36 @@ impl StateValidityChecker for VolumetricChecker {
             return false;
         };
         let (min, max) = placed.aabb();
-        self.volumes.contains_box(min, max) && self.sub_box_free(&placed, [0.0; 3], placed.half, 0)
+        let volumes = self.volumes.volumes();
+        volumes.contains_box(min, max)
+            && self.sub_box_free(volumes, &placed, [0.0; 3], placed.half, 0)
     }
 
     fn counters(&self) -> Counters {
         Counters::from([
             ("checks".to_string(), self.checks.load(Relaxed)),
-            ("esdf_queries".to_string(), self.volumes.queries()),
+            ("esdf_queries".to_string(), self.esdf_queries.load(Relaxed)),
         ])
     }
 }
 
-/// Builds the checker for the context's world and robot (deriving the volumes).
+/// The volumes of the context's world for `robot`, shared with the other checkers of
+/// that world (derived on first use).
+pub(crate) fn shared_volumes(ctx: &BuildContext, robot: &RobotBox) -> Result<SharedVolumes, Error> {
+    SharedVolumes::for_world(&ctx.world()?, robot.headroom())
+        .map_err(|e| Error::stage("validity", e))
+}
+
+/// Builds the checker for the context's world and robot, deriving the volumes now
+/// (every check needs them; shared with the world's other checkers).
 pub fn build_volumetric(
     params: VolumetricParams,
     ctx: &BuildContext,
 ) -> Result<VolumetricChecker, Error> {
-    let world = ctx.world()?;
     let robot = RobotBox::from_robot(ctx.robot());
-    let volumes =
-        Volumes::from_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))?;
-    VolumetricChecker::new(world, Arc::new(volumes), robot, params)
+    let volumes = shared_volumes(ctx, &robot)?;
+    volumes.volumes();
+    VolumetricChecker::with_shared_volumes(ctx.world()?, volumes, robot, params)
 }
 
 smug_core::register_plugin!(
