@@ -100,14 +100,27 @@ impl DiscreteMotionValidator {
         let Some((world, limit)) = &self.terrain else {
             return true;
         };
-        let horizontal = p.xy_distance(q);
-        if horizontal <= 1e-12 {
+        let heights = (world.height_at(p.x, p.y), world.height_at(q.x, q.y));
+        slope_ok(p.xy_distance(q), heights, *limit)
+    }
+
+    /// [`Self::inclination_ok`] for every pair of consecutive states of the
+    /// `n`-segment motion `a → b`, looking each state's height up once.
+    fn slopes_ok(&self, a: &Pose2, b: &Pose2, n: usize) -> bool {
+        let Some((world, limit)) = &self.terrain else {
             return true;
+        };
+        let mut p = *a;
+        let mut zp = world.height_at(p.x, p.y);
+        for k in 1..=n {
+            let q = self.state_at(a, b, k, n);
+            let zq = world.height_at(q.x, q.y);
+            if !slope_ok(p.xy_distance(&q), (zp, zq), *limit) {
+                return false;
+            }
+            (p, zp) = (q, zq);
         }
-        match (world.height_at(p.x, p.y), world.height_at(q.x, q.y)) {
-            (Some(zp), Some(zq)) => (zq - zp).abs() / horizontal <= *limit,
-            _ => false,
-        }
+        true
     }
 
     /// Interior state indices `1..n` in bisection order (midpoints first).
@@ -127,14 +140,23 @@ impl DiscreteMotionValidator {
     }
 }
 
+/// True when the slope between two states `horizontal` apart with heights `(zp, zq)`
+/// is at most `limit` (no horizontal move: always; a height off the map: never).
+fn slope_ok(horizontal: f64, (zp, zq): (Option<f64>, Option<f64>), limit: f64) -> bool {
+    if horizontal <= 1e-12 {
+        return true;
+    }
+    match (zp, zq) {
+        (Some(zp), Some(zq)) => (zq - zp).abs() / horizontal <= limit,
+        _ => false,
+    }
+}
+
 impl MotionValidator for DiscreteMotionValidator {
     fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
         self.motions_checked.fetch_add(1, Relaxed);
         let n = self.segment_count(a, b);
-        let slopes_ok = (0..n).all(|k| {
-            self.inclination_ok(&self.state_at(a, b, k, n), &self.state_at(a, b, k + 1, n))
-        });
-        slopes_ok
+        self.slopes_ok(a, b, n)
             && self.is_valid_state(b)
             && self.is_valid_state(a)
             && Self::bisection_order(n).all(|k| self.is_valid_state(&self.state_at(a, b, k, n)))
