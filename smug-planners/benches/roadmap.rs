@@ -138,14 +138,14 @@ fn astar(c: &mut Criterion) {
     group.bench_function(format!("search/n={N}"), |b| {
         b.iter(|| {
             for &(s, g) in &pairs {
-                black_box(search.search(&map, s, g, &metric));
+                black_box(search.search(&map, s, g, &metric, f64::INFINITY));
             }
         })
     });
     group.bench_function(format!("search_lazy/n={N}/10%-invalid-edges"), |b| {
         b.iter(|| {
             for &(s, g) in &pairs {
-                black_box(search.search_lazy(&mut map, s, g, &metric, &mut hidden));
+                black_box(search.search_lazy(&mut map, s, g, &metric, &mut hidden, f64::INFINITY));
             }
         })
     });

@@ -235,17 +235,20 @@ impl LazyPrmStar {
         valid
     }
 
-    /// One A* search on the optimistic roadmap (no checks).
-    fn optimistic_search(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+    /// One A* search on the optimistic roadmap (no checks), within `bound`.
+    fn optimistic_search(&mut self, s: u32, g: u32, bound: f64) -> Option<GraphPath> {
         let started = Instant::now();
-        let found = self.astar.search(&self.roadmap, s, g, self.metric.as_ref());
+        let found = self
+            .astar
+            .search(&self.roadmap, s, g, self.metric.as_ref(), bound);
         self.counts.searches += 1;
         self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
         found
     }
 
-    /// One Lazy Weighted A* search; its checking time is booked as checking, not search.
-    fn lazy_weighted_search(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+    /// One Lazy Weighted A* search within `bound`; its checking time is booked as
+    /// checking, not search.
+    fn lazy_weighted_search(&mut self, s: u32, g: u32, bound: f64) -> Option<GraphPath> {
         let started = Instant::now();
         let checking_before =
             self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
@@ -254,9 +257,14 @@ impl LazyPrmStar {
             motions: self.motions.as_ref(),
             counts: &mut self.counts,
         };
-        let found =
-            self.astar
-                .search_lazy(&mut self.roadmap, s, g, self.metric.as_ref(), &mut checks);
+        let found = self.astar.search_lazy(
+            &mut self.roadmap,
+            s,
+            g,
+            self.metric.as_ref(),
+            &mut checks,
+            bound,
+        );
         self.counts.searches += 1;
         let checking = self.counts.breakdown.edge_checking_s
             + self.counts.breakdown.vertex_checking_s
@@ -266,7 +274,11 @@ impl LazyPrmStar {
     }
 
     /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
-    fn attempt(&mut self, s: u32, g: u32) -> Option<GraphPath> {
+    /// `best_cost` is the cost of a valid path known to be in the roadmap (valid edges
+    /// are never removed), so no search needs to open a vertex estimated above it.
+    fn attempt(&mut self, s: u32, g: u32, best_cost: f64) -> Option<GraphPath> {
+        // Slack for sums of the same edges in another order.
+        let bound = best_cost * (1.0 + 1e-9);
         let lazy_sp_rounds = match self.params.search {
             SearchMode::LazySp => u32::MAX,
             SearchMode::LazyWeighted => 0,
@@ -275,10 +287,10 @@ impl LazyPrmStar {
         let mut rounds = 0;
         let found = loop {
             if rounds >= lazy_sp_rounds {
-                break self.lazy_weighted_search(s, g);
+                break self.lazy_weighted_search(s, g, bound);
             }
             rounds += 1;
-            match self.optimistic_search(s, g) {
+            match self.optimistic_search(s, g, bound) {
                 None => break None,
                 Some(path) if self.validate(&path) => break Some(path),
                 Some(_) => {}
@@ -296,7 +308,7 @@ impl LazyPrmStar {
             Termination::from_budgets(self.params.time_limit, Some(self.params.max_samples));
         let mut clock = budget.start();
         let mut best = if self.roadmap.maybe_connected(s, g) {
-            self.attempt(s, g)
+            self.attempt(s, g, f64::INFINITY)
         } else {
             None
         };
@@ -328,7 +340,7 @@ impl LazyPrmStar {
                 continue;
             }
             since_attempt = 0;
-            let found = self.attempt(s, g);
+            let found = self.attempt(s, g, best.as_ref().map_or(f64::INFINITY, |b| b.cost));
             if found.is_none() && best.is_none() {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
             }

@@ -6,7 +6,6 @@
 
 use smug_core::{Bounds2, CostMetric, Pose2};
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 /// Points per bucket the grid aims for; it is rebuilt finer as points arrive.
 const TARGET_PER_BUCKET: f64 = 2.0;
@@ -34,6 +33,102 @@ impl PartialOrd for Neighbour {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
+}
+
+/// The `k` smallest neighbours: candidates are gathered, and cut down to the `k`
+/// smallest (by selection, no sorting) whenever the search finishes a ring, which
+/// gives the bound the next ring is pruned with. Candidates are kept as one integer
+/// each, ordered like [`Neighbour`] (distance by `total_cmp`, then id).
+struct KBest {
+    k: usize,
+    keys: Vec<u128>,
+    /// The k-th smallest distance at the last cut (infinite before there were k).
+    worst: f64,
+    /// `worst²`, rounded up a little so that a squared test never rejects a candidate
+    /// that the exact comparison keeps.
+    worst_squared: f64,
+}
+
+impl KBest {
+    fn new(k: usize) -> Self {
+        Self {
+            k,
+            keys: Vec::with_capacity(4 * k + 16),
+            worst: f64::INFINITY,
+            worst_squared: f64::INFINITY,
+        }
+    }
+
+    /// True once `k` candidates were kept at a cut (the bounds are finite).
+    fn is_full(&self) -> bool {
+        self.worst.is_finite()
+    }
+
+    /// The k-th smallest distance at the last cut (infinite before there were k).
+    fn worst(&self) -> f64 {
+        self.worst
+    }
+
+    /// [`KBest::worst`] squared (a bound compared without a square root).
+    fn worst_squared(&self) -> f64 {
+        self.worst_squared
+    }
+
+    /// Keeps `candidate` unless it is farther than the k-th smallest at the last cut
+    /// (ties are kept: the id decides them at the next cut).
+    fn offer(&mut self, candidate: Neighbour) {
+        if candidate.distance <= self.worst {
+            let key = (total_order_key(candidate.distance) as u128) << 32 | candidate.id as u128;
+            self.keys.push(key);
+        }
+    }
+
+    /// Keeps only the `k` smallest candidates and updates the bounds.
+    fn cut(&mut self) {
+        if self.keys.len() < self.k {
+            return;
+        }
+        if self.keys.len() > self.k {
+            self.keys.select_nth_unstable(self.k - 1);
+            self.keys.truncate(self.k);
+        }
+        let worst = from_total_order_key((self.keys.iter().max().expect("k ≥ 1") >> 32) as u64);
+        self.worst = worst;
+        self.worst_squared = worst * worst * (1.0 + 1e-12);
+    }
+
+    /// The `k` smallest, nearest first.
+    fn into_sorted(mut self) -> Vec<Neighbour> {
+        self.cut();
+        self.keys.sort_unstable();
+        self.keys
+            .iter()
+            .map(|&key| Neighbour {
+                distance: from_total_order_key((key >> 32) as u64),
+                id: key as u32,
+            })
+            .collect()
+    }
+}
+
+/// An integer with the order `f64::total_cmp` gives `x`: negative numbers have every
+/// bit flipped (larger magnitudes first), the others only their sign bit.
+pub(crate) fn total_order_key(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | 1 << 63
+    }
+}
+
+/// The inverse of [`total_order_key`].
+pub(crate) fn from_total_order_key(key: u64) -> f64 {
+    f64::from_bits(if key >> 63 == 1 {
+        key & !(1 << 63)
+    } else {
+        !key
+    })
 }
 
 /// Buckets of vertex ids over the map bounds.
@@ -131,46 +226,57 @@ impl XyGrid {
         w_t: f64,
         exclude: Option<u32>,
     ) -> Vec<Neighbour> {
-        let mut heap: BinaryHeap<Neighbour> = BinaryHeap::with_capacity(k + 1);
+        let mut best = KBest::new(k);
         if k == 0 {
-            return Vec::new();
+            return best.into_sorted();
         }
-        let consider = |id: u32, heap: &mut BinaryHeap<Neighbour>| {
+        let consider = |id: u32, best: &mut KBest| {
             if Some(id) == exclude {
                 return;
             }
-            let candidate = Neighbour {
-                distance: metric.distance(q, &poses[id as usize]),
-                id,
-            };
-            if heap.len() < k {
-                heap.push(candidate);
-            } else if candidate < *heap.peek().expect("full heap") {
-                heap.pop();
-                heap.push(candidate);
+            let p = &poses[id as usize];
+            // The xy lower bound rejects most candidates without the full metric.
+            let (dx, dy) = (q.x - p.x, q.y - p.y);
+            if w_t * w_t * (dx * dx + dy * dy) > best.worst_squared() {
+                return;
             }
+            best.offer(Neighbour {
+                distance: metric.distance(q, p),
+                id,
+            });
         };
         if !self.inside(q) {
             self.buckets
                 .iter()
                 .flatten()
-                .for_each(|&id| consider(id, &mut heap));
-            return heap.into_sorted_vec();
+                .for_each(|&id| consider(id, &mut best));
+            return best.into_sorted();
         }
         let [ci, cj] = self.bucket_of(q);
         let max_ring = self.size[0].max(self.size[1]);
         for ring in 0..=max_ring {
-            if heap.len() == k
-                && w_t * self.ring_lower_bound(q, [ci, cj], ring)
-                    > heap.peek().expect("full").distance
-            {
+            if best.is_full() && w_t * self.ring_lower_bound(q, [ci, cj], ring) > best.worst() {
                 break;
             }
-            self.for_ring(ci, cj, ring, |bucket| {
-                bucket.iter().for_each(|&id| consider(id, &mut heap))
+            self.for_ring(ci, cj, ring, |[i, j], bucket| {
+                if bucket.is_empty()
+                    || best.is_full() && w_t * self.bucket_lower_bound(q, [i, j]) > best.worst()
+                {
+                    return;
+                }
+                bucket.iter().for_each(|&id| consider(id, &mut best))
             });
+            best.cut();
         }
-        heap.into_sorted_vec()
+        best.into_sorted()
+    }
+
+    /// A lower bound of the xy distance from `q` to any point in bucket `(i, j)`.
+    fn bucket_lower_bound(&self, q: &Pose2, [i, j]: [usize; 2]) -> f64 {
+        let gap = |v: f64, lo: f64| (lo - v).max(v - (lo + self.cell)).max(0.0);
+        let dx = gap(q.x, self.bounds.min[0] + i as f64 * self.cell);
+        let dy = gap(q.y, self.bounds.min[1] + j as f64 * self.cell);
+        (dx * dx + dy * dy).sqrt()
     }
 
     /// A lower bound of the xy distance from `q` to any point in a bucket of `ring`.
@@ -190,13 +296,17 @@ impl XyGrid {
             .max(0.0)
     }
 
-    /// Calls `f` on every bucket at Chebyshev distance exactly `ring` from `(ci, cj)`.
-    fn for_ring(&self, ci: usize, cj: usize, ring: usize, mut f: impl FnMut(&[u32])) {
+    /// Calls `f` on every bucket (with its index) at Chebyshev distance exactly `ring`
+    /// from `(ci, cj)`.
+    fn for_ring(&self, ci: usize, cj: usize, ring: usize, mut f: impl FnMut([usize; 2], &[u32])) {
         let (ci, cj, r) = (ci as isize, cj as isize, ring as isize);
         let (nx, ny) = (self.size[0] as isize, self.size[1] as isize);
         let mut visit = |i: isize, j: isize| {
             if i >= 0 && j >= 0 && i < nx && j < ny {
-                f(&self.buckets[(j * nx + i) as usize]);
+                f(
+                    [i as usize, j as usize],
+                    &self.buckets[(j * nx + i) as usize],
+                );
             }
         };
         if r == 0 {

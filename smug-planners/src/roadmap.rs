@@ -1,7 +1,7 @@
 //! The shared roadmap: vertices with lazily known validity, edges with cached
 //! validity, compact adjacency, connected components and a reusable A*.
 
-use crate::nn::XyGrid;
+use crate::nn::{from_total_order_key, total_order_key, XyGrid};
 use smug_core::{Bounds2, CostMetric, Pose2};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
@@ -130,9 +130,10 @@ impl Roadmap {
             .k_nearest(&pose, k, &self.poses, metric, w_t, None);
         self.poses.push(pose);
         self.vertex_validity.push(validity);
-        self.adjacency.push(Vec::with_capacity(neighbours.len()));
-        self.adjacent_costs
-            .push(Vec::with_capacity(neighbours.len()));
+        // Later vertices connect to this one too: room for about as many again.
+        let capacity = 2 * neighbours.len() + 4;
+        self.adjacency.push(Vec::with_capacity(capacity));
+        self.adjacent_costs.push(Vec::with_capacity(capacity));
         self.components.push();
         self.grid.insert(id, &pose, &self.poses);
         self.by_pose.insert(pose_key(&pose), id);
@@ -372,26 +373,6 @@ impl PartialOrd for Candidate {
     }
 }
 
-/// An integer with the order `f64::total_cmp` gives `x`: negative numbers have every
-/// bit flipped (larger magnitudes first), the others only their sign bit.
-fn total_order_key(x: f64) -> u64 {
-    let bits = x.to_bits();
-    if bits >> 63 == 1 {
-        !bits
-    } else {
-        bits | 1 << 63
-    }
-}
-
-/// The inverse of [`total_order_key`].
-fn from_total_order_key(key: u64) -> f64 {
-    f64::from_bits(if key >> 63 == 1 {
-        key & !(1 << 63)
-    } else {
-        !key
-    })
-}
-
 /// What a search knows about one vertex, packed into 32 aligned bytes so that relaxing
 /// an edge touches one cache line (the roadmap's vertices are visited in random order).
 #[derive(Clone, Copy, Debug)]
@@ -473,13 +454,17 @@ pub struct AStar {
 
 impl AStar {
     /// The cheapest path from `start` to `goal` over the live edges, with the metric
-    /// as (admissible, consistent) heuristic; `None` when disconnected.
+    /// as (admissible, consistent) heuristic; `None` when disconnected or when every
+    /// path costs more than `bound` (`f64::INFINITY`: no bound). Vertices whose
+    /// estimate exceeds `bound` are never opened, so a bound from a known path (the
+    /// cheapest path costs at most that) saves work without changing the result.
     pub fn search(
         &mut self,
         map: &Roadmap,
         start: u32,
         goal: u32,
         metric: &dyn CostMetric,
+        bound: f64,
     ) -> Option<GraphPath> {
         let marks = self.prepare(map, goal, metric);
         let goal_pose = *map.pose(goal);
@@ -498,13 +483,14 @@ impl AStar {
             }
             record.mark = marks.closed;
             self.expansions += 1;
-            self.relax_neighbours(map, v, g, &goal_pose, metric, marks);
+            self.relax_neighbours(map, v, g, &goal_pose, metric, marks, bound);
         }
         None
     }
 
     /// Opens (or reopens, cheaper) every neighbour of `v`, reached at cost `g`, that is
-    /// not closed, and pushes it on the open list.
+    /// not closed and whose estimate is within `bound`, and pushes it on the open list.
+    #[allow(clippy::too_many_arguments)]
     fn relax_neighbours(
         &mut self,
         map: &Roadmap,
@@ -513,6 +499,7 @@ impl AStar {
         goal_pose: &Pose2,
         metric: &dyn CostMetric,
         marks: Marks,
+        bound: f64,
     ) {
         for (w, e, cost) in map.neighbours_with_costs(v) {
             let record = &mut self.records[w as usize];
@@ -521,10 +508,13 @@ impl AStar {
             }
             let candidate = g + cost;
             if record.mark != marks.open || candidate < record.g {
-                (record.mark, record.g, record.parent) = (marks.open, candidate, (v, e));
                 let h = cached_heuristic(record, self.h_stamp, || {
                     metric.distance(map.pose(w), goal_pose)
                 });
+                if candidate + h > bound {
+                    continue;
+                }
+                (record.mark, record.g, record.parent) = (marks.open, candidate, (v, e));
                 self.heap.push(Candidate::new(candidate + h, candidate, w));
             }
         }
@@ -532,7 +522,8 @@ impl AStar {
 
     /// Lazy Weighted A* (Cohen, Phillips & Likhachev 2014): one search that checks an
     /// element only when the vertex it leads to is about to be expanded. Returns the
-    /// cheapest valid path over the live edges (every element on it checked), or `None`.
+    /// cheapest valid path over the live edges (every element on it checked), or `None`
+    /// (also when every valid path costs more than `bound`, as in [`AStar::search`]).
     pub fn search_lazy(
         &mut self,
         map: &mut Roadmap,
@@ -540,6 +531,7 @@ impl AStar {
         goal: u32,
         metric: &dyn CostMetric,
         evaluator: &mut dyn Evaluator,
+        bound: f64,
     ) -> Option<GraphPath> {
         let marks = self.prepare(map, goal, metric);
         let goal_pose = *map.pose(goal);
@@ -571,14 +563,15 @@ impl AStar {
                 break;
             }
             self.expansions += 1;
-            self.push_lazy_successors(&mut open, map, v, g, &goal_pose, metric, marks);
+            self.push_lazy_successors(&mut open, map, v, g, &goal_pose, metric, marks, bound);
         }
         self.lazy_heap = open;
         found
     }
 
-    /// Pushes every neighbour of `v` (reached at cost `g`) that is not closed and not
-    /// already reached as cheaply through a checked-valid edge.
+    /// Pushes every neighbour of `v` (reached at cost `g`) that is not closed, not
+    /// already reached as cheaply through a checked-valid edge, and estimated within
+    /// `bound`.
     #[allow(clippy::too_many_arguments)]
     fn push_lazy_successors(
         &mut self,
@@ -589,6 +582,7 @@ impl AStar {
         goal_pose: &Pose2,
         metric: &dyn CostMetric,
         marks: Marks,
+        bound: f64,
     ) {
         for (w, e, cost) in map.neighbours_with_costs(v) {
             let record = &mut self.records[w as usize];
@@ -600,12 +594,15 @@ impl AStar {
             if known && candidate >= record.g {
                 continue;
             }
-            if map.edge(e).validity == Validity::Valid {
-                (record.mark, record.g) = (marks.open, candidate);
-            }
             let h = cached_heuristic(record, self.h_stamp, || {
                 metric.distance(map.pose(w), goal_pose)
             });
+            if candidate + h > bound {
+                continue;
+            }
+            if map.edge(e).validity == Validity::Valid {
+                (record.mark, record.g) = (marks.open, candidate);
+            }
             open.push(Open {
                 f: candidate + h,
                 g: candidate,
@@ -737,7 +734,7 @@ mod tests {
         fn astar_finds_the_dijkstra_shortest_path(
             points in proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 2..120),
             removed in proptest::collection::vec(0usize..2000, 0..60),
-            k in 1usize..8, goal_pick in 0usize..1000,
+            k in 1usize..8, goal_pick in 0usize..1000, slack in prop_oneof![Just(0.0), 0.0f64..5.0],
         ) {
             let metric = Se2Metric::default();
             let mut map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
@@ -749,7 +746,14 @@ mod tests {
             }
             let goal = (goal_pick % map.vertex_count()) as u32;
             let dist = dijkstra(&map, 0);
-            let found = AStar::default().search(&map, 0, goal, &metric);
+            let found = AStar::default().search(&map, 0, goal, &metric, f64::INFINITY);
+            // A bound at or above the shortest cost changes nothing; below it, no path.
+            let exact = dist[goal as usize];
+            let mut bounded = AStar::default();
+            prop_assert_eq!(bounded.search(&map, 0, goal, &metric, exact * (1.0 + 1e-9) + slack), found.clone());
+            if exact > 0.0 {
+                prop_assert_eq!(bounded.search(&map, 0, goal, &metric, exact * (1.0 - 1e-9) - 1e-9), None);
+            }
             match found {
                 None => prop_assert!(dist[goal as usize].is_infinite()),
                 Some(path) => {
@@ -826,7 +830,7 @@ mod tests {
         fn lazy_weighted_astar_finds_the_shortest_valid_path(
             points in proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 2..120),
             validity in proptest::collection::vec(proptest::bool::weighted(0.7), 2000),
-            k in 1usize..8, goal_pick in 0usize..1000,
+            k in 1usize..8, goal_pick in 0usize..1000, bounded: bool,
         ) {
             let metric = Se2Metric::default();
             let mut lazy = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
@@ -842,8 +846,10 @@ mod tests {
                 if !validity[e % validity.len()] { truth.remove_edge(e as u32); }
             }
             let hidden: Vec<bool> = (0..lazy.edges.len()).map(|e| validity[e % validity.len()]).collect();
-            let found = AStar::default().search_lazy(&mut lazy, 0, goal, &metric, &mut Hidden(hidden));
             let best = dijkstra(&truth, 0)[goal as usize];
+            // A bound from a known valid path (at or above the cheapest) changes nothing.
+            let bound = if bounded { best * (1.0 + 1e-9) } else { f64::INFINITY };
+            let found = AStar::default().search_lazy(&mut lazy, 0, goal, &metric, &mut Hidden(hidden), bound);
             match found {
                 None => prop_assert!(best.is_infinite()),
                 Some(path) => {
