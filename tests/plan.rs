@@ -83,3 +83,21 @@ fn plans_are_reproducible_for_a_seed() {
     assert_eq!(a.waypoints, b.waypoints);
     assert_eq!(a.cost, b.cost);
 }
+
+/// On the lunar mission (IDP on one shared roadmap), skipping attempts that provably
+/// cannot improve gives the same plan as searching every time.
+#[test]
+fn skipping_hopeless_attempts_changes_no_lunar_plan() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../configs/lunar.toml");
+    let plan = |set: &[&str]| {
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        let mut pipeline =
+            Pipeline::assemble(&LoadedConfig::from_file(&path, &set).unwrap()).unwrap();
+        plan_mission(&mut pipeline, PlanOptions::default()).unwrap()
+    };
+    let skipping = plan(&[]);
+    let searching = plan(&["planner.params.skip_hopeless_attempts=false"]);
+    assert_eq!(skipping.waypoints, searching.waypoints);
+    assert_eq!(skipping.cost, searching.cost);
+    assert!(skipping.stats.counters["attempts_skipped"] > 0);
+}

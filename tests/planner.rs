@@ -146,3 +146,22 @@ fn shortcutting_never_raises_cost_nor_breaks_validity() {
             .all(|w| motions.check_motion(&w[0], &w[1]).is_valid()));
     }
 }
+
+/// Skipping attempts that provably cannot improve changes no path, only the work.
+#[test]
+fn skipping_hopeless_attempts_changes_no_path() {
+    let mut skipping = pipeline(&[]);
+    let mut searching = pipeline(&["planner.params.skip_hopeless_attempts=false"]);
+    let mut queries = queries();
+    queries.extend(queries.clone().iter().map(|&(s, g)| (g, s)));
+    for (s, g) in queries {
+        let a = skipping.planner.as_mut().unwrap().plan(&s, &g).unwrap();
+        let b = searching.planner.as_mut().unwrap().plan(&s, &g).unwrap();
+        assert_eq!(a, b, "from {s:?} to {g:?}");
+    }
+    let stats = |p: &Pipeline| p.planner.as_ref().unwrap().stats().counters;
+    let (a, b) = (stats(&skipping), stats(&searching));
+    assert!(a["attempts_skipped"] > 0, "{a:?}");
+    assert_eq!(b["attempts_skipped"], 0);
+    assert!(a["astar_searches"] < b["astar_searches"], "{a:?} vs {b:?}");
+}

@@ -64,6 +64,10 @@ pub struct LazyPrmStarParams {
     pub shortcut: bool,
     /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
     pub search: SearchMode,
+    /// Count an attempt as a stall without searching when no vertex added since the
+    /// previous search can lie on a cheaper path (a bound from that search; exact: the
+    /// plans are the same, only faster). Off only to compare.
+    pub skip_hopeless_attempts: bool,
 }
 
 impl Default for LazyPrmStarParams {
@@ -78,6 +82,7 @@ impl Default for LazyPrmStarParams {
             lazy_vertices: false,
             shortcut: false,
             search: SearchMode::Auto,
+            skip_hopeless_attempts: true,
         }
     }
 }
@@ -90,6 +95,8 @@ struct Counts {
     vertex_checks: u64,
     edge_checks: u64,
     searches: u64,
+    /// Attempts decided without searching (no new vertex could give a cheaper path).
+    attempts_skipped: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -105,6 +112,8 @@ pub struct LazyPrmStar {
     bounds: Bounds2,
     w_t: f64,
     grown: bool,
+    /// Vertices with ids from this one on were added after the latest search.
+    fresh_from: u32,
     counts: Counts,
 }
 
@@ -145,6 +154,7 @@ impl LazyPrmStar {
             bounds,
             w_t,
             grown: false,
+            fresh_from: 0,
             counts: Counts::default(),
         })
     }
@@ -273,12 +283,45 @@ impl LazyPrmStar {
         found
     }
 
+    /// False when no path through a vertex added since the latest search can cost less
+    /// than `best_cost`, the cost of the path that search found to `goal`; the next
+    /// attempt would then find a path costing `best_cost` again, so it need not search.
+    ///
+    /// A cheaper path has a first new vertex `u`, reached from an older neighbour `a`.
+    /// The part up to `a` is an old path, so it costs at least `a`'s settled cost in the
+    /// latest search, or `best_cost − h(a)` if that search never settled `a` (A* with a
+    /// consistent heuristic settles every vertex with `d(s, a) + h(a) < best_cost`); the
+    /// part after `u` costs at least `h(u)`. New edges only join new vertices, and
+    /// removed edges only raise costs, so these bounds hold on the current roadmap.
+    fn fresh_vertices_may_improve(&self, goal: &Pose2, best_cost: f64) -> bool {
+        let metric = self.metric.as_ref();
+        let h = |v: u32| metric.distance(self.roadmap.pose(v), goal);
+        let threshold = best_cost * (1.0 + 1e-9);
+        (self.fresh_from..self.roadmap.vertex_count() as u32).any(|u| {
+            if self.roadmap.vertex_validity(u) == Validity::Invalid {
+                return false;
+            }
+            let h_u = h(u);
+            self.roadmap
+                .neighbours_with_costs(u)
+                .filter(|&(a, _, _)| a < self.fresh_from)
+                .any(|(a, _, cost)| {
+                    let prefix = self
+                        .astar
+                        .settled_cost(a)
+                        .unwrap_or_else(|| best_cost - h(a));
+                    prefix + cost + h_u < threshold
+                })
+        })
+    }
+
     /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
     /// `best_cost` is the cost of a valid path known to be in the roadmap (valid edges
     /// are never removed), so no search needs to open a vertex estimated above it.
     fn attempt(&mut self, s: u32, g: u32, best_cost: f64) -> Option<GraphPath> {
         // Slack for sums of the same edges in another order.
         let bound = best_cost * (1.0 + 1e-9);
+        self.fresh_from = self.roadmap.vertex_count() as u32;
         let lazy_sp_rounds = match self.params.search {
             SearchMode::LazySp => u32::MAX,
             SearchMode::LazyWeighted => 0,
@@ -340,6 +383,13 @@ impl LazyPrmStar {
                 continue;
             }
             since_attempt = 0;
+            if let Some(b) = best.as_ref().filter(|_| self.params.skip_hopeless_attempts) {
+                if !self.fresh_vertices_may_improve(goal, b.cost) {
+                    self.counts.attempts_skipped += 1;
+                    stall += 1;
+                    continue;
+                }
+            }
             let found = self.attempt(s, g, best.as_ref().map_or(f64::INFINITY, |b| b.cost));
             if found.is_none() && best.is_none() {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
@@ -412,6 +462,7 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("vertex_checks".to_string(), c.vertex_checks),
                 ("edge_checks".to_string(), c.edge_checks),
                 ("astar_searches".to_string(), c.searches),
+                ("attempts_skipped".to_string(), c.attempts_skipped),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
         }

@@ -222,7 +222,7 @@ impl Roadmap {
 
     /// Neighbours of `v` as `(neighbour, edge id, edge cost)`, in [`Roadmap::neighbours`]
     /// order, without looking the costs up in the edge array.
-    fn neighbours_with_costs(&self, v: u32) -> impl Iterator<Item = (u32, u32, f64)> + '_ {
+    pub fn neighbours_with_costs(&self, v: u32) -> impl Iterator<Item = (u32, u32, f64)> + '_ {
         let v = v as usize;
         self.adjacency[v]
             .iter()
@@ -453,6 +453,17 @@ pub struct AStar {
 }
 
 impl AStar {
+    /// The cost at which the latest search settled (closed) `v`: its exact shortest
+    /// distance from that search's start over the edges the search saw (unchecked
+    /// ones included); `None` when that search did not settle `v`.
+    pub fn settled_cost(&self, v: u32) -> Option<f64> {
+        let closed = 2 * self.generation + 1;
+        self.records
+            .get(v as usize)
+            .filter(|r| self.generation > 0 && r.mark == closed)
+            .map(|r| r.g)
+    }
+
     /// The cheapest path from `start` to `goal` over the live edges, with the metric
     /// as (admissible, consistent) heuristic; `None` when disconnected or when every
     /// path costs more than `bound` (`f64::INFINITY`: no bound). Vertices whose
