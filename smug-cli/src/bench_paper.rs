@@ -237,8 +237,10 @@ pub fn run_experiments(
 ) -> anyhow::Result<PaperBench> {
     let bar = progress_bar(list.len() as u64 * runs);
     let mut raw = Vec::new();
-    for exp in &list {
-        for seed in 1..=runs {
+    // Seed by seed through every experiment (not experiment by experiment), so that a
+    // drift in the machine's load or clock hits all experiments alike.
+    for seed in 1..=runs {
+        for exp in &list {
             bar.set_message(format!("{} seed {seed}", exp.key));
             raw.push(run_once(exp, seed, configs, vary_world)?);
             bar.inc(1);
