@@ -147,21 +147,21 @@ fn shortcutting_never_raises_cost_nor_breaks_validity() {
     }
 }
 
-/// Skipping attempts that provably cannot improve changes no path, only the work.
+/// Repairing the previous search (incremental attempts) changes no path, only the work.
 #[test]
-fn skipping_hopeless_attempts_changes_no_path() {
-    let mut skipping = pipeline(&[]);
-    let mut searching = pipeline(&["planner.params.skip_hopeless_attempts=false"]);
+fn incremental_attempts_change_no_path() {
+    let mut repairing = pipeline(&[]);
+    let mut searching = pipeline(&["planner.params.incremental_attempts=false"]);
     let mut queries = queries();
     queries.extend(queries.clone().iter().map(|&(s, g)| (g, s)));
     for (s, g) in queries {
-        let a = skipping.planner.as_mut().unwrap().plan(&s, &g).unwrap();
+        let a = repairing.planner.as_mut().unwrap().plan(&s, &g).unwrap();
         let b = searching.planner.as_mut().unwrap().plan(&s, &g).unwrap();
         assert_eq!(a, b, "from {s:?} to {g:?}");
     }
     let stats = |p: &Pipeline| p.planner.as_ref().unwrap().stats().counters;
-    let (a, b) = (stats(&skipping), stats(&searching));
-    assert!(a["attempts_skipped"] > 0, "{a:?}");
-    assert_eq!(b["attempts_skipped"], 0);
+    let (a, b) = (stats(&repairing), stats(&searching));
+    assert!(a["astar_repairs"] > 0, "{a:?}");
+    assert_eq!(b["astar_repairs"], 0);
     assert!(a["astar_searches"] < b["astar_searches"], "{a:?} vs {b:?}");
 }

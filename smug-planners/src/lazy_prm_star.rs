@@ -6,12 +6,14 @@
 //! edges, of the candidate path; remove what is invalid; until a valid path is found or
 //! start and goal are disconnected. Between searches the roadmap grows by samples
 //! (informed once a path is known), each connected to its k nearest neighbours with
-//! `k = ⌈e(1 + 1/3) ln n⌉`. A query stops after `max_stall` solution attempts in a row
+//! `k = ⌈e(1 + 1/3) ln n⌉`. Once a path is known, an attempt repairs the previous
+//! search for the vertices added since (incremental A*) instead of searching the whole
+//! informed region again. A query stops after `max_stall` solution attempts in a row
 //! that improve the best cost by less than `improvement`, when the informed set is
 //! empty (the path is optimal), or at its sample or time budget — an unreachable goal
 //! ends with "no path", never a hang.
 
-use crate::roadmap::{AStar, Evaluator, GraphPath, Roadmap, Validity};
+use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::shortcut;
 use serde::{Deserialize, Serialize};
 use smug_core::{
@@ -64,10 +66,11 @@ pub struct LazyPrmStarParams {
     pub shortcut: bool,
     /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
     pub search: SearchMode,
-    /// Count an attempt as a stall without searching when no vertex added since the
-    /// previous search can lie on a cheaper path (a bound from that search; exact: the
-    /// plans are the same, only faster). Off only to compare.
-    pub skip_hopeless_attempts: bool,
+    /// Once a path is known, an attempt repairs the previous search for the vertices
+    /// added since (incremental A*: only the distances they improve are searched)
+    /// instead of searching again; the paths are the same, found faster. Off only to
+    /// compare.
+    pub incremental_attempts: bool,
 }
 
 impl Default for LazyPrmStarParams {
@@ -82,7 +85,7 @@ impl Default for LazyPrmStarParams {
             lazy_vertices: false,
             shortcut: false,
             search: SearchMode::Auto,
-            skip_hopeless_attempts: true,
+            incremental_attempts: true,
         }
     }
 }
@@ -95,8 +98,8 @@ struct Counts {
     vertex_checks: u64,
     edge_checks: u64,
     searches: u64,
-    /// Attempts decided without searching (no new vertex could give a cheaper path).
-    attempts_skipped: u64,
+    /// Attempts answered by repairing the previous search.
+    repairs: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -283,42 +286,30 @@ impl LazyPrmStar {
         found
     }
 
-    /// False when no path through a vertex added since the latest search can cost less
-    /// than `best_cost`, the cost of the path that search found to `goal`; the next
-    /// attempt would then find a path costing `best_cost` again, so it need not search.
-    ///
-    /// A cheaper path has a first new vertex `u`, reached from an older neighbour `a`.
-    /// The part up to `a` is an old path, so it costs at least `a`'s settled cost in the
-    /// latest search, or `best_cost − h(a)` if that search never settled `a` (A* with a
-    /// consistent heuristic settles every vertex with `d(s, a) + h(a) < best_cost`); the
-    /// part after `u` costs at least `h(u)`. New edges only join new vertices, and
-    /// removed edges only raise costs, so these bounds hold on the current roadmap.
-    fn fresh_vertices_may_improve(&self, goal: &Pose2, best_cost: f64) -> bool {
-        let metric = self.metric.as_ref();
-        let h = |v: u32| metric.distance(self.roadmap.pose(v), goal);
-        let threshold = best_cost * (1.0 + 1e-9);
-        (self.fresh_from..self.roadmap.vertex_count() as u32).any(|u| {
-            if self.roadmap.vertex_validity(u) == Validity::Invalid {
-                return false;
-            }
-            let h_u = h(u);
-            self.roadmap
-                .neighbours_with_costs(u)
-                .filter(|&(a, _, _)| a < self.fresh_from)
-                .any(|(a, _, cost)| {
-                    let prefix = self
-                        .astar
-                        .settled_cost(a)
-                        .unwrap_or_else(|| best_cost - h(a));
-                    prefix + cost + h_u < threshold
-                })
-        })
+    /// The latest search of this query repaired for the vertices added since (see
+    /// [`AStar::repair`]), timed as A*; [`Repair::NoBase`] when that cannot be done.
+    fn repair(&mut self, s: u32, g: u32) -> Repair {
+        if !self.params.incremental_attempts {
+            return Repair::NoBase;
+        }
+        let started = Instant::now();
+        let fresh_from = self.fresh_from;
+        let repaired = self
+            .astar
+            .repair(&self.roadmap, s, g, fresh_from, self.metric.as_ref());
+        if repaired != Repair::NoBase {
+            self.fresh_from = self.roadmap.vertex_count() as u32;
+            self.counts.repairs += 1;
+        }
+        self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
+        repaired
     }
 
     /// Searches and validates until a valid path is found or `s` and `g` are disconnected.
     /// `best_cost` is the cost of a valid path known to be in the roadmap (valid edges
-    /// are never removed), so no search needs to open a vertex estimated above it.
-    fn attempt(&mut self, s: u32, g: u32, best_cost: f64) -> Option<GraphPath> {
+    /// are never removed), so no search needs to open a vertex estimated above it;
+    /// `rounds_done` LazySP rounds of this attempt were already spent (by a repair).
+    fn attempt(&mut self, s: u32, g: u32, best_cost: f64, rounds_done: u32) -> Option<GraphPath> {
         // Slack for sums of the same edges in another order.
         let bound = best_cost * (1.0 + 1e-9);
         self.fresh_from = self.roadmap.vertex_count() as u32;
@@ -327,7 +318,7 @@ impl LazyPrmStar {
             SearchMode::LazyWeighted => 0,
             SearchMode::Auto => AUTO_LAZY_SP_ROUNDS,
         };
-        let mut rounds = 0;
+        let mut rounds = rounds_done;
         let found = loop {
             if rounds >= lazy_sp_rounds {
                 break self.lazy_weighted_search(s, g, bound);
@@ -351,7 +342,7 @@ impl LazyPrmStar {
             Termination::from_budgets(self.params.time_limit, Some(self.params.max_samples));
         let mut clock = budget.start();
         let mut best = if self.roadmap.maybe_connected(s, g) {
-            self.attempt(s, g, f64::INFINITY)
+            self.attempt(s, g, f64::INFINITY, 0)
         } else {
             None
         };
@@ -383,14 +374,21 @@ impl LazyPrmStar {
                 continue;
             }
             since_attempt = 0;
-            if let Some(b) = best.as_ref().filter(|_| self.params.skip_hopeless_attempts) {
-                if !self.fresh_vertices_may_improve(goal, b.cost) {
-                    self.counts.attempts_skipped += 1;
+            let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
+            let repaired = match best {
+                Some(_) => self.repair(s, g),
+                None => Repair::NoBase,
+            };
+            let found = match repaired {
+                Repair::NoCheaper => {
                     stall += 1;
                     continue;
                 }
-            }
-            let found = self.attempt(s, g, best.as_ref().map_or(f64::INFINITY, |b| b.cost));
+                // The repair was this attempt's first search round.
+                Repair::Cheaper(path) if self.validate(&path) => Some(path),
+                Repair::Cheaper(_) => self.attempt(s, g, best_cost, 1),
+                Repair::NoBase => self.attempt(s, g, best_cost, 0),
+            };
             if found.is_none() && best.is_none() {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
             }
@@ -462,7 +460,7 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("vertex_checks".to_string(), c.vertex_checks),
                 ("edge_checks".to_string(), c.edge_checks),
                 ("astar_searches".to_string(), c.searches),
-                ("attempts_skipped".to_string(), c.attempts_skipped),
+                ("astar_repairs".to_string(), c.repairs),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
         }

@@ -47,6 +47,9 @@ pub struct Roadmap {
     components: UnionFind,
     components_stale: bool,
     live_edges: usize,
+    /// Edges and vertices removed so far (a search's distances stay exact while it
+    /// does not change).
+    removals: u64,
 }
 
 impl Roadmap {
@@ -66,6 +69,7 @@ impl Roadmap {
             components: UnionFind::default(),
             components_stale: false,
             live_edges: 0,
+            removals: 0,
         }
     }
 
@@ -175,6 +179,7 @@ impl Roadmap {
             }
         }
         self.live_edges -= 1;
+        self.removals += 1;
         self.components_stale = true;
     }
 
@@ -191,7 +196,13 @@ impl Roadmap {
         let pose = self.poses[v as usize];
         self.grid.remove(v, &pose);
         self.by_pose.remove(&pose_key(&pose));
+        self.removals += 1;
         self.components_stale = true;
+    }
+
+    /// Edges and vertices removed so far.
+    pub fn removals(&self) -> u64 {
+        self.removals
     }
 
     /// True when `a` and `b` may be connected (exact once components are refreshed).
@@ -448,20 +459,52 @@ pub struct AStar {
     h_stamp: u32,
     heap: BinaryHeap<Candidate>,
     lazy_heap: BinaryHeap<Open>,
+    /// What the latest optimistic search (and the repairs since) left in the records.
+    settled: Option<Settled>,
     /// Vertices expanded over all searches.
     pub expansions: u64,
 }
 
+/// What [`AStar::repair`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Repair {
+    /// The cheapest path, cheaper than the one known.
+    Cheaper(GraphPath),
+    /// No path is cheaper than the one known.
+    NoCheaper,
+    /// The records are not a search for this query on this roadmap: search instead.
+    NoBase,
+}
+
+/// The distances a finished [`AStar::search`] from `start` to `goal` leaves behind,
+/// kept exact by [`AStar::repair`]: every vertex `v` with `d(v) + h(v) < cost` is
+/// marked `closed` and its record holds `d(v)`, its shortest distance from `start`
+/// (other `closed` records hold the cost of a real path to them). Valid while the
+/// roadmap only grows (no removal since).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Settled {
+    closed: u32,
+    roadmap: u64,
+    removals: u64,
+    start: u32,
+    goal: u32,
+    cost: f64,
+}
+
 impl AStar {
-    /// The cost at which the latest search settled (closed) `v`: its exact shortest
-    /// distance from that search's start over the edges the search saw (unchecked
-    /// ones included); `None` when that search did not settle `v`.
-    pub fn settled_cost(&self, v: u32) -> Option<f64> {
-        let closed = 2 * self.generation + 1;
-        self.records
-            .get(v as usize)
-            .filter(|r| self.generation > 0 && r.mark == closed)
-            .map(|r| r.g)
+    /// The base [`AStar::repair`] would start from for a query from `start` to `goal`
+    /// on `map`: the latest optimistic search's (and repairs'), if it was between the
+    /// same vertices and nothing was removed since.
+    fn settled_for(&self, map: &Roadmap, start: u32, goal: u32) -> Option<Settled> {
+        self.settled.filter(|b| {
+            (b.roadmap, b.removals, b.start, b.goal) == (map.id, map.removals, start, goal)
+        })
+    }
+
+    /// The cost of the cheapest path from `start` to `goal` that the latest search
+    /// (with the repairs since) found, when it is still exact for `map`.
+    pub fn settled_path_cost(&self, map: &Roadmap, start: u32, goal: u32) -> Option<f64> {
+        self.settled_for(map, start, goal).map(|b| b.cost)
     }
 
     /// The cheapest path from `start` to `goal` over the live edges, with the metric
@@ -478,6 +521,7 @@ impl AStar {
         bound: f64,
     ) -> Option<GraphPath> {
         let marks = self.prepare(map, goal, metric);
+        self.settled = None;
         let goal_pose = *map.pose(goal);
         let f_start = self.heuristic(map, start, &goal_pose, metric);
         let record = &mut self.records[start as usize];
@@ -489,14 +533,127 @@ impl AStar {
             if record.mark == marks.closed || g > record.g {
                 continue;
             }
+            record.mark = marks.closed;
             if v == goal {
+                self.settled = Some(Settled {
+                    closed: marks.closed,
+                    roadmap: map.id,
+                    removals: map.removals,
+                    start,
+                    goal,
+                    cost: g,
+                });
                 return Some(self.trace(start, goal));
             }
-            record.mark = marks.closed;
             self.expansions += 1;
             self.relax_neighbours(map, v, g, &goal_pose, metric, marks, bound);
         }
         None
+    }
+
+    /// After [`AStar::search`] from `start` to `goal` found the cheapest path, with
+    /// vertices only added since (ids from `fresh_from` on): the cheapest path that
+    /// costs less, found by propagating from the new vertices only the distances they
+    /// improve (incremental A*: it searches the improvement, not the whole ellipse
+    /// again), or [`Repair::NoCheaper`]. The distances stay exact for the next repair.
+    /// [`Repair::NoBase`] when the records cannot serve (another query, a removal
+    /// since, a Lazy Weighted A* search since): search instead.
+    pub fn repair(
+        &mut self,
+        map: &Roadmap,
+        start: u32,
+        goal: u32,
+        fresh_from: u32,
+        metric: &dyn CostMetric,
+    ) -> Repair {
+        if self.settled_for(map, start, goal).is_none() {
+            return Repair::NoBase;
+        }
+        let open = self.prepare(map, goal, metric).open;
+        // `prepare` forgets the base when the marks wrap around.
+        let Some(base) = self.settled_for(map, start, goal) else {
+            return Repair::NoBase;
+        };
+        let marks = Marks {
+            open,
+            closed: base.closed,
+        };
+        let goal_pose = *map.pose(goal);
+        for u in fresh_from..map.vertex_count() as u32 {
+            if map.vertex_validity(u) == Validity::Invalid {
+                continue;
+            }
+            for (a, e, cost) in map.neighbours_with_costs(u) {
+                let settled = self.records[a as usize];
+                if a < fresh_from && settled.mark == marks.closed {
+                    self.improve(
+                        map,
+                        (a, settled.g),
+                        (u, e, cost),
+                        &goal_pose,
+                        metric,
+                        marks,
+                        base.cost,
+                    );
+                }
+            }
+        }
+        while let Some(candidate) = self.heap.pop() {
+            let (g, v) = (candidate.g(), candidate.v);
+            let record = &mut self.records[v as usize];
+            if record.mark != marks.open || g > record.g {
+                continue;
+            }
+            record.mark = marks.closed;
+            if v == goal {
+                self.settled = Some(Settled { cost: g, ..base });
+                return Repair::Cheaper(self.trace(start, goal));
+            }
+            self.expansions += 1;
+            for (w, e, cost) in map.neighbours_with_costs(v) {
+                self.improve(
+                    map,
+                    (v, g),
+                    (w, e, cost),
+                    &goal_pose,
+                    metric,
+                    marks,
+                    base.cost,
+                );
+            }
+        }
+        Repair::NoCheaper
+    }
+
+    /// Repair's relaxation: lowers the distance of `w` (reached from `v` at distance
+    /// `g` over edge `e`) when that is cheaper than what its record holds (exact for
+    /// settled vertices, nothing for the others) and could lead to a path cheaper
+    /// than `bound`; then (re)opens it.
+    #[allow(clippy::too_many_arguments)]
+    fn improve(
+        &mut self,
+        map: &Roadmap,
+        (v, g): (u32, f64),
+        (w, e, cost): (u32, u32, f64),
+        goal_pose: &Pose2,
+        metric: &dyn CostMetric,
+        marks: Marks,
+        bound: f64,
+    ) {
+        let record = &mut self.records[w as usize];
+        let known = record.mark == marks.open || record.mark == marks.closed;
+        let candidate = g + cost;
+        if known && candidate >= record.g {
+            return;
+        }
+        let h = cached_heuristic(record, self.h_stamp, || {
+            metric.distance(map.pose(w), goal_pose)
+        });
+        if candidate + h >= bound {
+            return;
+        }
+        (record.mark, record.g, record.parent) = (marks.open, candidate, (v, e));
+        self.heap.push(Candidate::new(candidate + h, candidate, w));
     }
 
     /// Opens (or reopens, cheaper) every neighbour of `v`, reached at cost `g`, that is
@@ -545,6 +702,7 @@ impl AStar {
         bound: f64,
     ) -> Option<GraphPath> {
         let marks = self.prepare(map, goal, metric);
+        self.settled = None;
         let goal_pose = *map.pose(goal);
         let mut open = std::mem::take(&mut self.lazy_heap);
         open.clear();
@@ -645,6 +803,7 @@ impl AStar {
         if self.generation > u32::MAX / 2 - 1 {
             self.records.iter_mut().for_each(|r| r.mark = 0);
             self.generation = 1;
+            self.settled = None;
         }
         Marks {
             open: 2 * self.generation,
@@ -777,6 +936,53 @@ mod tests {
             }
             map.refresh_components();
             prop_assert_eq!(map.maybe_connected(0, goal), dist[goal as usize].is_finite());
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn repairs_find_what_searching_again_finds(
+            points in proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 2..80),
+            batches in proptest::collection::vec(
+                proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 1..6), 1..6),
+            k in 1usize..8, goal_pick in 0usize..1000,
+        ) {
+            let metric = Se2Metric::default();
+            let mut map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            for &(x, y, t) in &points {
+                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+            }
+            let goal = (goal_pick % map.vertex_count()) as u32;
+            let mut incremental = AStar::default();
+            let Some(mut best) = incremental.search(&map, 0, goal, &metric, f64::INFINITY) else {
+                return Ok(());
+            };
+            for batch in batches {
+                let fresh_from = map.vertex_count() as u32;
+                for &(x, y, t) in &batch {
+                    map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                }
+                let again = AStar::default().search(&map, 0, goal, &metric, f64::INFINITY).unwrap();
+                match incremental.repair(&map, 0, goal, fresh_from, &metric) {
+                    Repair::Cheaper(path) => {
+                        prop_assert!(path.cost < best.cost);
+                        prop_assert!((path.cost - again.cost).abs() <= 1e-9 * again.cost);
+                        let sum: f64 = path.edges.iter().map(|&e| map.edge(e).cost).sum();
+                        prop_assert!((sum - path.cost).abs() <= 1e-9 * path.cost.max(1.0));
+                        prop_assert_eq!(path.vertices.first(), Some(&0));
+                        prop_assert_eq!(path.vertices.last(), Some(&goal));
+                        best = path;
+                    }
+                    Repair::NoCheaper => prop_assert!(again.cost >= best.cost * (1.0 - 1e-9)),
+                    Repair::NoBase => prop_assert!(false, "the base was lost"),
+                }
+                prop_assert_eq!(incremental.settled_path_cost(&map, 0, goal), Some(best.cost));
+            }
+            // A removal ends the base: the next attempt must search.
+            if let Some(&e) = best.edges.first() {
+                map.remove_edge(e);
+                prop_assert_eq!(incremental.repair(&map, 0, goal, map.vertex_count() as u32, &metric), Repair::NoBase);
+            }
         }
     }
 
