@@ -14,7 +14,7 @@
 //! ends with "no path", never a hang.
 
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
-use crate::shortcut::shortcut;
+use crate::shortcut::smooth;
 use serde::{Deserialize, Serialize};
 use smug_core::{
     Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionValidator, Path, PlannerOutcome,
@@ -62,7 +62,8 @@ pub struct LazyPrmStarParams {
     /// Check vertices lazily, only when on a candidate path (default: check each
     /// sample when drawn and keep only valid ones, as the reference code does).
     pub lazy_vertices: bool,
-    /// Shortcut returned paths (never raises cost, never makes a path invalid).
+    /// Smooth returned paths: greedy shortcutting and corner cutting (never raises
+    /// cost, never makes a path invalid; see `shortcut::smooth`).
     pub shortcut: bool,
     /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
     pub search: SearchMode,
@@ -414,7 +415,7 @@ impl LazyPrmStar {
             .map(|&v| *self.roadmap.pose(v))
             .collect();
         let states = if self.params.shortcut {
-            shortcut(&states, self.motions.as_ref())
+            smooth(&states, self.motions.as_ref(), self.metric.as_ref())
         } else {
             states
         };

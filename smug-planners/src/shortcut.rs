@@ -1,8 +1,30 @@
-//! Greedy shortcutting: from each kept state, jump to the farthest later state that
-//! the motion validator accepts. Under a metric the cost never rises (triangle
+//! Greedy shortcutting: from each kept state, jump to a far later state that the
+//! motion validator accepts. Under a metric the cost never rises (triangle
 //! inequality), and every new segment is checked, so the path stays valid.
+//!
+//! The jump is found by galloping (try 2, 4, 8… states ahead until a segment is
+//! invalid), then bisecting between the last valid and the first invalid jump: a
+//! handful of checks per kept state, each about as long as the shortcut itself, where
+//! trying every later state from the farthest down costs a check of every long
+//! segment (a long path through clutter has many, all invalid).
+//!
+//! [`smooth`] goes further: it alternates greedy shortcutting with corner cutting —
+//! each interior state `v` between `a` and `b` is replaced by two states on its
+//! segments, `p` on `v → a` and `q` on `v → b` at the largest fraction (found by
+//! bisection) whose segments `a → p → q → b` are all valid — which pulls the path taut
+//! around the obstacles' corners, in its homotopy class: a roadmap path's zigzag
+//! through a door or along a wall becomes nearly the shortest path through it. Both
+//! steps only replace a part of the path by a cheaper one whose segments the motion
+//! validator accepts, so the cost never rises and the path stays valid.
 
-use smug_core::{MotionValidator, Pose2};
+use smug_core::{CostMetric, MotionValidator, Pose2};
+
+/// Rounds of [`smooth`] at most (each: one shortcut pass and one corner-cutting pass).
+const SMOOTH_ROUNDS: usize = 8;
+/// [`smooth`] stops once a round saves less than this share of the path's cost.
+const SMOOTH_TOLERANCE: f64 = 1e-3;
+/// Bisection steps of a corner cut (the cut's fraction is found to `2⁻⁶`).
+const CUT_BISECTIONS: u32 = 6;
 
 /// The shortcut path through `states` (same endpoints).
 pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
@@ -12,12 +34,171 @@ pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     let mut kept = vec![states[0]];
     let mut i = 0;
     while i + 1 < states.len() {
-        let mut j = states.len() - 1;
-        while j > i + 1 && !motions.is_valid_motion(&states[i], &states[j]) {
-            j -= 1;
-        }
-        kept.push(states[j]);
-        i = j;
+        i = farthest_jump(states, i, motions);
+        kept.push(states[i]);
     }
     kept
+}
+
+/// A later state `j > i` with a valid segment `i → j`, found by galloping then
+/// bisecting; `i + 1` when no farther one is found (consecutive states are joined
+/// by the path's own valid segments).
+fn farthest_jump(states: &[Pose2], i: usize, motions: &dyn MotionValidator) -> usize {
+    let last = states.len() - 1;
+    let reaches = |j: usize| motions.is_valid_motion(&states[i], &states[j]);
+    let (mut valid, mut step) = (i + 1, 1);
+    let invalid = loop {
+        if valid == last {
+            return last;
+        }
+        let j = (valid + step).min(last);
+        if !reaches(j) {
+            break j;
+        }
+        valid = j;
+        step *= 2;
+    };
+    bisect_jump(valid, invalid, reaches)
+}
+
+/// The last valid jump found by bisecting between a valid and an invalid one.
+fn bisect_jump(mut valid: usize, mut invalid: usize, reaches: impl Fn(usize) -> bool) -> usize {
+    while invalid - valid > 1 {
+        let mid = valid + (invalid - valid) / 2;
+        if reaches(mid) {
+            valid = mid;
+        } else {
+            invalid = mid;
+        }
+    }
+    valid
+}
+
+/// The path through `states` shortened by rounds of greedy shortcutting and corner
+/// cutting (same endpoints, cost never higher, every new segment checked).
+pub fn smooth(
+    states: &[Pose2],
+    motions: &dyn MotionValidator,
+    metric: &dyn CostMetric,
+) -> Vec<Pose2> {
+    let mut path = shortcut(states, motions);
+    let mut cost = path_cost(&path, metric);
+    for _ in 0..SMOOTH_ROUNDS {
+        let next = shortcut(&cut_corners(&path, motions, metric), motions);
+        let next_cost = path_cost(&next, metric);
+        if next_cost >= cost {
+            break;
+        }
+        let saved = cost - next_cost;
+        path = next;
+        cost = next_cost;
+        if saved < SMOOTH_TOLERANCE * cost {
+            break;
+        }
+    }
+    path
+}
+
+/// The sum of the metric over consecutive states.
+fn path_cost(states: &[Pose2], metric: &dyn CostMetric) -> f64 {
+    states.windows(2).map(|w| metric.distance(&w[0], &w[1])).sum()
+}
+
+/// One pass of corner cutting: every interior state `v` (between the last kept state
+/// `a` and the next state `b`) becomes `p = v + t(a − v)`, `q = v + t(b − v)` with the
+/// largest `t` found by bisection for which `a → p`, `p → q` and `q → b` are valid and
+/// cheaper than `a → v → b`; it stays when no such `t` is found.
+fn cut_corners(
+    states: &[Pose2],
+    motions: &dyn MotionValidator,
+    metric: &dyn CostMetric,
+) -> Vec<Pose2> {
+    if states.len() <= 2 {
+        return states.to_vec();
+    }
+    let mut out = vec![states[0]];
+    for i in 1..states.len() - 1 {
+        let (a, v, b) = (out[out.len() - 1], states[i], states[i + 1]);
+        let corner = metric.distance(&a, &v) + metric.distance(&v, &b);
+        let cut = |t: f64| {
+            let (p, q) = (metric.interpolate(&v, &a, t), metric.interpolate(&v, &b, t));
+            let cost = metric.distance(&a, &p) + metric.distance(&p, &q) + metric.distance(&q, &b);
+            (cost < corner
+                && motions.is_valid_motion(&p, &q)
+                && motions.is_valid_motion(&a, &p)
+                && motions.is_valid_motion(&q, &b))
+            .then_some((p, q))
+        };
+        let (mut lo, mut hi, mut best) = (0.0, 1.0, None);
+        for _ in 0..CUT_BISECTIONS {
+            let mid = 0.5 * (lo + hi);
+            match cut(mid) {
+                Some(pq) => {
+                    best = Some(pq);
+                    lo = mid;
+                }
+                None => hi = mid,
+            }
+        }
+        match best {
+            Some((p, q)) => {
+                out.push(p);
+                out.push(q);
+            }
+            None => out.push(v),
+        }
+    }
+    out.push(states[states.len() - 1]);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smug_core::MotionCheck;
+
+    /// Motions are valid unless they cross the wall `x = 5` above `y = 1`.
+    struct Wall;
+
+    impl MotionValidator for Wall {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            if (a.x - 5.0) * (b.x - 5.0) > 0.0 {
+                return true;
+            }
+            let t = (5.0 - a.x) / (b.x - a.x);
+            a.y + t * (b.y - a.y) < 1.0
+        }
+
+        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+            if self.is_valid_motion(a, b) {
+                MotionCheck::Valid
+            } else {
+                MotionCheck::Invalid { last_valid: None }
+            }
+        }
+    }
+
+    #[test]
+    fn a_detour_around_the_wall_keeps_only_its_corner() {
+        // Up the left side, around the wall's foot, up the right side.
+        let mut states: Vec<Pose2> = (0..=8)
+            .map(|k| Pose2::new(1.0, 8.0 - k as f64, 0.0))
+            .collect();
+        states.push(Pose2::new(5.0, 0.0, 0.0));
+        states.extend((0..=8).map(|k| Pose2::new(9.0, k as f64, 0.0)));
+        let short = shortcut(&states, &Wall);
+        assert_eq!(short.first(), states.first());
+        assert_eq!(short.last(), states.last());
+        assert!(short.len() <= 4, "{short:?}");
+        assert!(short.windows(2).all(|w| Wall.is_valid_motion(&w[0], &w[1])));
+    }
+
+    #[test]
+    fn a_free_path_becomes_one_segment() {
+        let states: Vec<Pose2> = (0..20)
+            .map(|k| Pose2::new(6.0 + 0.1 * k as f64, (k % 3) as f64, 0.0))
+            .collect();
+        let short = shortcut(&states, &Wall);
+        assert_eq!(short, vec![states[0], states[19]]);
+    }
 }
