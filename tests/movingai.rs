@@ -1,6 +1,8 @@
 //! LazyPRM* on a real MovingAI map (random-32-32-10) with a disc robot of radius
-//! 0.25 cell and yaw weight 0: 50 scenarios spread over the file, every one solved,
-//! no path entering a blocked cell, mean length within 5% of the optimal octile length.
+//! 0.25 cell and yaw weight 0, configured by `configs/p2p-grid.toml` (as `smug bench
+//! p2p`, which runs the bigger maps): 50 scenarios spread over the file, every one
+//! solved, no path entering a blocked cell, mean length within 5% of the optimal
+//! octile length.
 
 use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
 use smug_worlds::map_file::load_map;
@@ -11,22 +13,14 @@ use smug_planners as _;
 use smug_samplers as _;
 use smug_validity as _;
 
-const CONFIG: &str = r#"
-seed = 1
-[cost]
-type = "se2"
-params = { rotation_weight = 0.0 }
-[validity]
-type = "clearance-2d"
-params = { radius = 0.25 }
-[motion]
-type = "discrete"
-params = { resolution = 0.05, max_inclination = 1e9 }
-[sampler]
-type = "informed"
-[planner]
-type = "lazy-prm-star"
-"#;
+/// The documented grid config of `smug p2p` and `smug bench p2p`.
+const CONFIG: &str = include_str!("../configs/p2p-grid.toml");
+/// What `smug bench p2p` adds: the SE(2) metric without its yaw term, a 0.25-cell disc.
+const SET: [&str; 3] = [
+    "cost.type=se2",
+    "cost.params.rotation_weight=0",
+    "validity.params.radius=0.25",
+];
 
 fn data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/movingai/mapf")
@@ -55,7 +49,8 @@ fn random_32_32_10_scenarios_are_solved_safely_and_near_optimally() {
         targets: vec![],
     };
     let world = layers.into_world("r10", mission, &yaml).unwrap();
-    let loaded = LoadedConfig::from_text(CONFIG, "movingai.toml", Path::new("."), &[]).unwrap();
+    let set: Vec<String> = SET.iter().map(|s| s.to_string()).collect();
+    let loaded = LoadedConfig::from_text(CONFIG, "p2p-grid.toml", Path::new("."), &set).unwrap();
     let mut pipeline = Pipeline::assemble_with_world(&loaded, world).unwrap();
     let planner = pipeline.planner.as_mut().unwrap();
 

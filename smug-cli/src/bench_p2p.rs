@@ -48,7 +48,7 @@ pub struct BenchP2pArgs {
     /// Disc radius in cells.
     #[arg(long, default_value_t = 0.25)]
     radius: f64,
-    /// Override a planner config key, e.g. `planner.params.shortcut=true`.
+    /// Override a key of `configs/p2p-grid.toml`, e.g. `planner.params.focus=0`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// Write the Markdown report here.
@@ -247,11 +247,18 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
 
 fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
     let mut md = format!(
-        "## MovingAI maps\n\nLazyPRM*, disc radius {} cell, yaw weight 0, {} scenarios per map.\n\n\
+        "## MovingAI maps\n\nLazyPRM* with `configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
+         {} scenarios per map.\n\n\
          | map | solved | paths touching a blocked cell | mean length / optimal octile | \
          worst length / optimal | time (s) | ms per query | roadmap vertices |\n\
          |---|---:|---:|---:|---:|---:|---:|---:|\n",
-        args.radius, args.scenarios
+        if args.set.is_empty() {
+            String::new()
+        } else {
+            format!(" and `{}`", args.set.join(" "))
+        },
+        args.radius,
+        args.scenarios
     );
     for r in results {
         let worst = r

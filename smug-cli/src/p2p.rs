@@ -6,19 +6,9 @@ use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The pipeline `smug p2p` uses when no config is given: a disc robot on the map.
-pub(crate) const DEFAULT_CONFIG: &str = r#"
-seed = 1
-[validity]
-type = "clearance-2d"
-[motion]
-type = "discrete"
-params = { resolution = 0.05, max_inclination = 1e9 }
-[sampler]
-type = "informed"
-[planner]
-type = "lazy-prm-star"
-"#;
+/// The pipeline `smug p2p` and `smug bench p2p` use when no config is given: a disc
+/// robot on an occupancy grid (`configs/p2p-grid.toml`).
+pub(crate) const DEFAULT_CONFIG: &str = include_str!("../../configs/p2p-grid.toml");
 
 /// Arguments of `smug p2p`.
 #[derive(clap::Args, Debug)]

@@ -14,7 +14,7 @@
 //! ends with "no path", never a hang.
 
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
-use crate::shortcut::smooth;
+use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::{
     Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionValidator, Path, PlannerOutcome,
@@ -42,6 +42,77 @@ pub enum SearchMode {
 /// LazySP rounds an `auto` attempt tries before switching to Lazy Weighted A*.
 const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 
+/// Samples a first-path focus gets at least before it widens.
+const MIN_FOCUS_PERIOD: u64 = 100;
+
+/// Samples between improvement attempts once a query has its first path:
+/// `attempt_every`, or `attempt_share` × the samples it drew to find that path if more.
+fn improvement_interval(params: &LazyPrmStarParams, samples_to_first_path: u64) -> u32 {
+    let scaled = (params.attempt_share * samples_to_first_path as f64).ceil();
+    (scaled.min(f64::from(u32::MAX)) as u32).max(params.attempt_every)
+}
+
+/// The focus of a query: the informed set of a provisional cost `(1 + excess) ×` the
+/// straight-line cost, its excess doubling each `period` samples — a region around
+/// the straight line that grows geometrically. While it does not cover the query's
+/// informed set (no path yet, or the best path costs more than the provisional cost),
+/// every other sample is drawn in it, the others in the informed set (the bounds
+/// before a path): a short query on a big map densifies its own neighbourhood first,
+/// and a detour found on a sparse roadmap is challenged where better paths lie.
+#[derive(Clone, Copy, Debug)]
+struct Focus {
+    /// The excess of the provisional cost over the straight-line cost (0: no focus).
+    excess: f64,
+    /// The straight-line cost of the query.
+    lower_bound: f64,
+    /// Samples until the focus widens.
+    left: u64,
+    /// True when the next sample is drawn in the focus.
+    focused: bool,
+}
+
+impl Focus {
+    fn new(excess: f64, lower_bound: f64, period: u64) -> Self {
+        Self {
+            excess,
+            lower_bound,
+            left: period,
+            focused: true,
+        }
+    }
+
+    /// The set of the next sample: the focus every other sample, else the bounds.
+    fn next_set(&mut self, start: &Pose2, goal: &Pose2) -> Option<InformedSet> {
+        self.focused = !self.focused;
+        let active =
+            !self.focused && self.excess > 0.0 && self.lower_bound > 0.0 && self.excess.is_finite();
+        active.then(|| InformedSet {
+            start: *start,
+            goal: *goal,
+            best_cost: (1.0 + self.excess) * self.lower_bound,
+        })
+    }
+
+    /// Counts a sample; true when the focus is due to widen.
+    fn tick(&mut self) -> bool {
+        self.left = self.left.saturating_sub(1);
+        self.left == 0
+    }
+
+    /// True when the focus covers the informed set of a path of cost `cost`: its
+    /// provisional cost is at least `cost` (always with no focus).
+    fn covers(&self, cost: f64) -> bool {
+        !(self.excess > 0.0 && self.excess.is_finite() && self.lower_bound > 0.0)
+            || (1.0 + self.excess) * self.lower_bound >= cost
+    }
+
+    /// Doubles the excess and restarts the count.
+    fn widen(&mut self, period: u64) {
+        self.excess *= 2.0;
+        self.left = period;
+    }
+}
+
 /// Parameters of LazyPRM*.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -51,8 +122,27 @@ pub struct LazyPrmStarParams {
     pub max_stall: u32,
     /// Relative improvement that resets the stall count (0.02: the reference's 0.98 factor).
     pub improvement: f64,
-    /// Valid samples added between solution attempts once a path is known.
+    /// Valid samples added between solution attempts once a path is known (at least).
     pub attempt_every: u32,
+    /// Once a query has its first path, attempts are spaced by `attempt_share` × the
+    /// samples the query drew to find it, if more than `attempt_every`: a query that
+    /// had to grow the roadmap a lot to connect start and goal (a sparse roadmap on a
+    /// cluttered map) gives its improvement rounds a comparable share, instead of
+    /// accepting its first, detouring path after a handful of samples. Queries that
+    /// find their path on the roadmap as it is (a mission's dense shared roadmap) are
+    /// not affected. 0: every `attempt_every` samples (the reference code).
+    pub attempt_share: f64,
+    /// The initial excess of a query's focus: the informed set of a provisional cost
+    /// `(1 + excess) ×` its straight-line cost, the excess doubling every few samples
+    /// (a share of the roadmap, as the wait between failed first attempts). Until the
+    /// focus covers the query's informed set (no path yet, or the best path costs more
+    /// than the provisional cost), every other sample is drawn in it and attempts do
+    /// not count as stalled: a short query on a big map densifies its own
+    /// neighbourhood first, and a detour found on a sparse shared roadmap is not
+    /// accepted before samples near the straight line had their chance. Queries whose
+    /// path costs at most `(1 + focus) ×` the straight line are not affected.
+    /// 0 (default): no focus (the reference code).
+    pub focus: f64,
     /// Samples drawn per query at most (the query's sample budget).
     pub max_samples: u64,
     /// Seconds per query at most (absent: no time budget; runs stay reproducible).
@@ -62,9 +152,12 @@ pub struct LazyPrmStarParams {
     /// Check vertices lazily, only when on a candidate path (default: check each
     /// sample when drawn and keep only valid ones, as the reference code does).
     pub lazy_vertices: bool,
-    /// Smooth returned paths: greedy shortcutting and corner cutting (never raises
-    /// cost, never makes a path invalid; see `shortcut::smooth`).
+    /// Shortcut returned paths (never raises cost, never makes a path invalid).
     pub shortcut: bool,
+    /// Smooth returned paths: rounds of shortcutting and corner cutting, which pull a
+    /// path taut around corners (never raises cost, never makes a path invalid; more
+    /// motion checks than `shortcut` alone, which it implies).
+    pub smooth: bool,
     /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
     pub search: SearchMode,
     /// Once a path is known, an attempt repairs the previous search for the vertices
@@ -80,11 +173,14 @@ impl Default for LazyPrmStarParams {
             max_stall: 3,
             improvement: 0.02,
             attempt_every: 5,
+            attempt_share: 0.0,
+            focus: 0.0,
             max_samples: 20_000,
             time_limit: None,
             initial_samples: 0,
             lazy_vertices: false,
             shortcut: false,
+            smooth: false,
             search: SearchMode::Auto,
             incremental_attempts: true,
         }
@@ -142,6 +238,17 @@ impl LazyPrmStar {
                 "planner",
                 format!("improvement must be in [0, 1), got {}", params.improvement),
             ));
+        }
+        for (name, value) in [
+            ("attempt_share", params.attempt_share),
+            ("focus", params.focus),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(Error::invalid_param(
+                    "planner",
+                    format!("{name} must be finite and ≥ 0, got {value}"),
+                ));
+            }
         }
         if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
@@ -351,25 +458,53 @@ impl LazyPrmStar {
         // Before the first solution, wait longer after each failed attempt (the roadmap
         // must grow by a share of its size), so cluttered maps do not search per sample.
         let mut wait = 1u32;
+        // Once a path is known, samples between attempts (see `attempt_share`).
+        let mut interval = self.params.attempt_every;
+        let mut focus = Focus::new(
+            self.params.focus,
+            self.metric.distance(start, goal),
+            self.focus_period(),
+        );
         let max_stall = self.params.max_stall;
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
         while !clock.is_done() && !stalled(&best, stall) {
-            let informed = best.as_ref().map(|b| InformedSet {
-                start: *start,
-                goal: *goal,
-                best_cost: b.cost,
+            let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
+            let focusing = !focus.covers(best_cost);
+            let focused = if focusing {
+                focus.next_set(start, goal)
+            } else {
+                None
+            };
+            let from_focus = focused.is_some();
+            let informed = focused.or_else(|| {
+                best.as_ref().map(|b| InformedSet {
+                    start: *start,
+                    goal: *goal,
+                    best_cost: b.cost,
+                })
             });
             clock.tick();
             let Some(sample) = self.draw_sample(informed.as_ref()) else {
+                if from_focus {
+                    focus.widen(self.focus_period());
+                    continue; // the focus fell outside the bounds: widen it
+                }
                 break; // the informed set is empty: nothing can improve the path
             };
-            if !self.insert_sample(sample) {
+            let widened = focusing && focus.tick();
+            if widened {
+                focus.widen(self.focus_period());
+            }
+            if !self.insert_sample(sample) && !widened {
                 continue;
             }
             since_attempt += 1;
             let due = match &best {
                 None => since_attempt >= wait && self.roadmap.maybe_connected(s, g),
-                Some(_) => since_attempt >= self.params.attempt_every,
+                // While focusing, once per focus period: the roadmap grows by a share
+                // of its size between searches, as before the first path.
+                Some(_) if focusing => widened,
+                Some(_) => since_attempt >= interval,
             };
             if !due {
                 continue;
@@ -394,8 +529,15 @@ impl LazyPrmStar {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
             }
             if let Some(path) = found {
+                if best.is_none() {
+                    interval = improvement_interval(&self.params, clock.iterations());
+                }
                 let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
-                if path.cost > best_cost * (1.0 - self.params.improvement) {
+                // A round counts as stalled only once the focus covers the informed
+                // set: until then the samples have not yet reached all of it.
+                if path.cost > best_cost * (1.0 - self.params.improvement)
+                    && focus.covers(best_cost)
+                {
                     stall += 1;
                 } else {
                     stall = 0;
@@ -408,14 +550,22 @@ impl LazyPrmStar {
         best
     }
 
+    /// Samples the focus gets before it widens: a share of the roadmap (as the wait
+    /// between failed attempts), at least [`MIN_FOCUS_PERIOD`].
+    fn focus_period(&self) -> u64 {
+        ((self.roadmap.live_vertex_count() / 20) as u64).max(MIN_FOCUS_PERIOD)
+    }
+
     fn to_path(&self, graph_path: &GraphPath) -> Path {
         let states: Vec<Pose2> = graph_path
             .vertices
             .iter()
             .map(|&v| *self.roadmap.pose(v))
             .collect();
-        let states = if self.params.shortcut {
+        let states = if self.params.smooth {
             smooth(&states, self.motions.as_ref(), self.metric.as_ref())
+        } else if self.params.shortcut {
+            shortcut(&states, self.motions.as_ref())
         } else {
             states
         };
@@ -547,3 +697,141 @@ smug_core::register_plugin!(
     params = LazyPrmStarParams,
     build = |params, ctx| Ok(Box::new(build_planner(params, ctx)?)),
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smug_core::{MotionCheck, Se2Metric};
+
+    /// Everything is valid.
+    struct Free;
+
+    impl StateValidityChecker for Free {
+        fn is_valid(&self, _: &Pose2) -> bool {
+            true
+        }
+    }
+
+    impl MotionValidator for Free {
+        fn is_valid_motion(&self, _: &Pose2, _: &Pose2) -> bool {
+            true
+        }
+
+        fn check_motion(&self, _: &Pose2, _: &Pose2) -> MotionCheck {
+            MotionCheck::Valid
+        }
+    }
+
+    /// A fixed pseudo-random sequence in the bounds (64-bit LCG), informed set ignored.
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn unit(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    impl Sampler for Lcg {
+        fn sample(&mut self, b: &Bounds2, _: Option<&InformedSet>) -> Option<Pose2> {
+            let x = b.min[0] + self.unit() * (b.max[0] - b.min[0]);
+            let y = b.min[1] + self.unit() * (b.max[1] - b.min[1]);
+            Some(Pose2::new(x, y, 0.0))
+        }
+    }
+
+    fn planner(params: LazyPrmStarParams) -> Result<LazyPrmStar> {
+        LazyPrmStar::new(
+            params,
+            Box::new(Lcg(7)),
+            Arc::new(Free),
+            Arc::new(Free),
+            Arc::new(Se2Metric::default()),
+            Bounds2 {
+                min: [0.0, 0.0],
+                max: [10.0, 10.0],
+            },
+        )
+    }
+
+    #[test]
+    fn negative_or_non_finite_shares_and_focus_are_rejected() {
+        for bad in [-0.1, f64::INFINITY, f64::NAN] {
+            let share = LazyPrmStarParams {
+                attempt_share: bad,
+                ..LazyPrmStarParams::default()
+            };
+            let focus = LazyPrmStarParams {
+                focus: bad,
+                ..LazyPrmStarParams::default()
+            };
+            assert!(planner(share).is_err(), "attempt_share {bad}");
+            assert!(planner(focus).is_err(), "focus {bad}");
+        }
+    }
+
+    #[test]
+    fn improvement_rounds_scale_with_the_samples_the_first_path_needed() {
+        let params = LazyPrmStarParams {
+            attempt_share: 0.1,
+            ..LazyPrmStarParams::default()
+        };
+        assert_eq!(
+            improvement_interval(&params, 0),
+            5,
+            "a path on the roadmap as is"
+        );
+        assert_eq!(
+            improvement_interval(&params, 30),
+            5,
+            "at least attempt_every"
+        );
+        assert_eq!(improvement_interval(&params, 5_000), 500);
+        let reference = LazyPrmStarParams::default();
+        assert_eq!(
+            improvement_interval(&reference, 5_000),
+            5,
+            "share 0: the reference"
+        );
+    }
+
+    #[test]
+    fn the_focus_alternates_with_the_bounds_and_widens_geometrically() {
+        let (a, b) = (Pose2::new(0.0, 0.0, 0.0), Pose2::new(4.0, 0.0, 0.0));
+        let mut focus = Focus::new(0.5, 4.0, 3);
+        let set = focus.next_set(&a, &b).expect("first sample: the focus");
+        assert!((set.best_cost - 6.0).abs() < 1e-12);
+        assert!(focus.next_set(&a, &b).is_none(), "then the bounds");
+        assert!(
+            !focus.tick() && !focus.tick() && focus.tick(),
+            "due after 3"
+        );
+        focus.widen(3);
+        let set = focus.next_set(&a, &b).unwrap();
+        assert!((set.best_cost - 8.0).abs() < 1e-12, "excess 1.0");
+        let mut off = Focus::new(0.0, 4.0, 3);
+        assert!(
+            (0..4).all(|_| off.next_set(&a, &b).is_none()),
+            "0: no focus"
+        );
+    }
+
+    #[test]
+    fn a_query_in_free_space_finds_the_straight_line_with_every_option() {
+        let params = LazyPrmStarParams {
+            attempt_share: 0.1,
+            focus: 0.5,
+            smooth: true,
+            ..LazyPrmStarParams::default()
+        };
+        let mut p = planner(params).unwrap();
+        let (a, b) = (Pose2::new(1.0, 1.0, 0.0), Pose2::new(9.0, 8.0, 0.0));
+        let outcome = p.plan(&a, &b).unwrap();
+        let path = outcome.exact_path().expect("a path");
+        assert!((path.cost - a.xy_distance(&b)).abs() < 1e-9);
+        assert!(p.stats().counters["samples"] < p.params.max_samples);
+    }
+}

@@ -1,12 +1,12 @@
-//! Greedy shortcutting: from each kept state, jump to a far later state that the
-//! motion validator accepts. Under a metric the cost never rises (triangle
+//! Greedy shortcutting: from each kept state, jump to the farthest later state that
+//! the motion validator accepts. Under a metric the cost never rises (triangle
 //! inequality), and every new segment is checked, so the path stays valid.
 //!
-//! The jump is found by galloping (try 2, 4, 8… states ahead until a segment is
-//! invalid), then bisecting between the last valid and the first invalid jump: a
-//! handful of checks per kept state, each about as long as the shortcut itself, where
-//! trying every later state from the farthest down costs a check of every long
-//! segment (a long path through clutter has many, all invalid).
+//! [`shortcut_galloping`] finds a far jump by galloping instead (try 1, 2, 4… states
+//! ahead until a segment is invalid), then bisecting between the last valid and the
+//! first invalid jump: a handful of checks per kept state, each about as long as the
+//! shortcut itself, where trying every later state from the farthest down costs a
+//! check of every long segment (a long path through clutter has many, all invalid).
 //!
 //! [`smooth`] goes further: it alternates greedy shortcutting with corner cutting —
 //! each interior state `v` between `a` and `b` is replaced by two states on its
@@ -26,8 +26,28 @@ const SMOOTH_TOLERANCE: f64 = 1e-3;
 /// Bisection steps of a corner cut (the cut's fraction is found to `2⁻⁶`).
 const CUT_BISECTIONS: u32 = 6;
 
-/// The shortcut path through `states` (same endpoints).
+/// The shortcut path through `states` (same endpoints): from each kept state, the
+/// farthest later state with a valid segment.
 pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
+    if states.len() <= 2 {
+        return states.to_vec();
+    }
+    let mut kept = vec![states[0]];
+    let mut i = 0;
+    while i + 1 < states.len() {
+        let mut j = states.len() - 1;
+        while j > i + 1 && !motions.is_valid_motion(&states[i], &states[j]) {
+            j -= 1;
+        }
+        kept.push(states[j]);
+        i = j;
+    }
+    kept
+}
+
+/// The shortcut path through `states` (same endpoints), each jump found by galloping
+/// and bisection (far, not always the farthest; few checks on long paths).
+pub fn shortcut_galloping(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     if states.len() <= 2 {
         return states.to_vec();
     }
@@ -81,10 +101,10 @@ pub fn smooth(
     motions: &dyn MotionValidator,
     metric: &dyn CostMetric,
 ) -> Vec<Pose2> {
-    let mut path = shortcut(states, motions);
+    let mut path = shortcut_galloping(states, motions);
     let mut cost = path_cost(&path, metric);
     for _ in 0..SMOOTH_ROUNDS {
-        let next = shortcut(&cut_corners(&path, motions, metric), motions);
+        let next = shortcut_galloping(&cut_corners(&path, motions, metric), motions);
         let next_cost = path_cost(&next, metric);
         if next_cost >= cost {
             break;
@@ -101,7 +121,10 @@ pub fn smooth(
 
 /// The sum of the metric over consecutive states.
 fn path_cost(states: &[Pose2], metric: &dyn CostMetric) -> f64 {
-    states.windows(2).map(|w| metric.distance(&w[0], &w[1])).sum()
+    states
+        .windows(2)
+        .map(|w| metric.distance(&w[0], &w[1]))
+        .sum()
 }
 
 /// One pass of corner cutting: every interior state `v` (between the last kept state
@@ -186,7 +209,7 @@ mod tests {
             .collect();
         states.push(Pose2::new(5.0, 0.0, 0.0));
         states.extend((0..=8).map(|k| Pose2::new(9.0, k as f64, 0.0)));
-        let short = shortcut(&states, &Wall);
+        let short = shortcut_galloping(&states, &Wall);
         assert_eq!(short.first(), states.first());
         assert_eq!(short.last(), states.last());
         assert!(short.len() <= 4, "{short:?}");
@@ -198,7 +221,87 @@ mod tests {
         let states: Vec<Pose2> = (0..20)
             .map(|k| Pose2::new(6.0 + 0.1 * k as f64, (k % 3) as f64, 0.0))
             .collect();
-        let short = shortcut(&states, &Wall);
-        assert_eq!(short, vec![states[0], states[19]]);
+        assert_eq!(
+            shortcut_galloping(&states, &Wall),
+            vec![states[0], states[19]]
+        );
+        assert_eq!(shortcut(&states, &Wall), vec![states[0], states[19]]);
+    }
+
+    #[test]
+    fn smoothing_pulls_the_detour_taut_around_the_wall_foot() {
+        let metric = smug_core::Se2Metric::new(1.0, 0.0).unwrap();
+        let mut states: Vec<Pose2> = (0..=8)
+            .map(|k| Pose2::new(1.0, 8.0 - k as f64, 0.0))
+            .collect();
+        states.push(Pose2::new(5.0, 0.0, 0.0));
+        states.extend((0..=8).map(|k| Pose2::new(9.0, k as f64, 0.0)));
+        let smooth = smooth(&states, &Wall, &metric);
+        let taut = 2.0 * (4.0f64).hypot(7.0); // through the wall's foot (5, 1)
+        let cost = path_cost(&smooth, &metric);
+        assert!(
+            cost >= taut - 1e-9 && cost <= 1.01 * taut,
+            "{cost} vs {taut}"
+        );
+        assert!(smooth
+            .windows(2)
+            .all(|w| Wall.is_valid_motion(&w[0], &w[1])));
+    }
+
+    /// Motions are valid when they keep out of the discs (centre, radius).
+    struct Discs(Vec<([f64; 2], f64)>);
+
+    impl MotionValidator for Discs {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            self.0.iter().all(|&([cx, cy], r)| {
+                let (dx, dy) = (b.x - a.x, b.y - a.y);
+                let len2 = dx * dx + dy * dy;
+                let t = if len2 > 0.0 {
+                    (((cx - a.x) * dx + (cy - a.y) * dy) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                (a.x + t * dx - cx).hypot(a.y + t * dy - cy) > r
+            })
+        }
+
+        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+            if self.is_valid_motion(a, b) {
+                MotionCheck::Valid
+            } else {
+                MotionCheck::Invalid { last_valid: None }
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn smoothing_keeps_the_endpoints_and_validity_and_never_raises_cost(
+            discs in proptest::collection::vec(((1.0..9.0f64, 1.0..9.0f64), 0.2..1.5f64), 0..6),
+            walk in proptest::collection::vec((0.0..10.0f64, 0.0..10.0f64, -3.0..3.0f64), 2..30),
+            yaw_weight in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0..1.0f64],
+        ) {
+            let motions = Discs(discs.into_iter().map(|((x, y), r)| ([x, y], r)).collect());
+            let metric = smug_core::Se2Metric::new(1.0, yaw_weight).unwrap();
+            // A valid input path: the random walk's states, keeping only valid segments.
+            let mut states = vec![Pose2::new(walk[0].0, walk[0].1, walk[0].2)];
+            for &(x, y, yaw) in &walk[1..] {
+                let p = Pose2::new(x, y, yaw);
+                if motions.is_valid_motion(states.last().unwrap(), &p) {
+                    states.push(p);
+                }
+            }
+            for f in [shortcut, shortcut_galloping] {
+                let short = f(&states, &motions);
+                proptest::prop_assert_eq!(short.first(), states.first());
+                proptest::prop_assert_eq!(short.last(), states.last());
+                proptest::prop_assert!(path_cost(&short, &metric) <= path_cost(&states, &metric) + 1e-9);
+            }
+            let smooth = smooth(&states, &motions, &metric);
+            proptest::prop_assert_eq!(smooth.first(), states.first());
+            proptest::prop_assert_eq!(smooth.last(), states.last());
+            proptest::prop_assert!(smooth.windows(2).all(|w| motions.is_valid_motion(&w[0], &w[1])));
+            proptest::prop_assert!(path_cost(&smooth, &metric) <= path_cost(&states, &metric) + 1e-9);
+        }
     }
 }
