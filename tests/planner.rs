@@ -55,9 +55,57 @@ fn queries() -> Vec<(Pose2, Pose2)> {
     ]
 }
 
+/// The settings of `configs/p2p-grid.toml` beyond the planner defaults.
+const GRID_SETTINGS: [&str; 5] = [
+    "sampler.type=bridge",
+    "planner.params.focus=0.5",
+    "planner.params.attempt_share=0.1",
+    "planner.params.smooth=true",
+    "planner.params.shortcut=true",
+];
+
 #[test]
 fn paths_are_valid_and_no_cheaper_than_the_straight_line() {
-    let mut p = pipeline(&[]);
+    check_paths(&[]);
+}
+
+#[test]
+fn with_the_grid_settings_paths_are_valid_and_no_cheaper_than_the_straight_line() {
+    check_paths(&GRID_SETTINGS);
+}
+
+#[test]
+fn with_the_grid_settings_runs_are_reproducible_for_a_seed() {
+    let run = |seed: &str| {
+        let mut settings = GRID_SETTINGS.to_vec();
+        settings.push(seed);
+        let mut p = pipeline(&settings);
+        let planner = p.planner.as_mut().unwrap();
+        queries()
+            .into_iter()
+            .map(|(s, g)| planner.plan(&s, &g).unwrap().exact_path().unwrap().clone())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(run("seed=4"), run("seed=4"));
+}
+
+#[test]
+fn with_the_grid_settings_an_unreachable_goal_ends_with_no_path() {
+    let mut settings = GRID_SETTINGS.to_vec();
+    settings.push("planner.params.max_samples=1500");
+    let mut p = pipeline(&settings);
+    let planner = p.planner.as_mut().unwrap();
+    let inside_box = Pose2::new(10.5, 1.5, 0.0);
+    assert_eq!(
+        planner
+            .plan(&Pose2::new(1.0, 1.0, 0.0), &inside_box)
+            .unwrap(),
+        PlannerOutcome::NoPath
+    );
+}
+
+fn check_paths(settings: &[&str]) {
+    let mut p = pipeline(settings);
     let motions = p.motion_validator.clone().unwrap();
     let metric = p.metric.clone();
     let planner = p.planner.as_mut().unwrap();

@@ -86,7 +86,7 @@ impl Focus {
         self.focused = !self.focused;
         let active =
             !self.focused && self.excess > 0.0 && self.lower_bound > 0.0 && self.excess.is_finite();
-        active.then(|| InformedSet {
+        active.then_some(InformedSet {
             start: *start,
             goal: *goal,
             best_cost: (1.0 + self.excess) * self.lower_bound,
