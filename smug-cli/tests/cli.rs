@@ -169,7 +169,7 @@ fn unknown_plugin_lists_the_known_names() {
         &[
             "`sampler.type`",
             "unknown sampler plugin `informd`",
-            "known sampler plugins: informed, uniform",
+            "known sampler plugins: bridge, informed, uniform",
         ],
     );
 }
