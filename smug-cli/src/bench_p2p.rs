@@ -70,6 +70,8 @@ struct MapResult {
     length_ratio: f64,
     time_s: f64,
     roadmap_vertices: u64,
+    /// The planner's counters and time breakdown after the last query.
+    planner: smug_core::PlannerStats,
     /// Every query, in order.
     queries: Vec<QueryResult>,
 }
@@ -200,6 +202,7 @@ fn run_map(
         },
         time_s: started.elapsed().as_secs_f64(),
         roadmap_vertices: planner.stats().vertices,
+        planner: planner.stats(),
         queries,
     })
 }

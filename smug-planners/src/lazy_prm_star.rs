@@ -16,6 +16,7 @@
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
+use smug_core::pose::angle_distance;
 use smug_core::{
     Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionValidator, Path, PlannerOutcome,
     PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateValidityChecker, Termination,
@@ -65,6 +66,8 @@ struct Focus {
     excess: f64,
     /// The straight-line cost of the query.
     lower_bound: f64,
+    /// The provisional cost from which the focus holds the whole bounds.
+    whole: f64,
     /// Samples until the focus widens.
     left: u64,
     /// True when the next sample is drawn in the focus.
@@ -72,10 +75,11 @@ struct Focus {
 }
 
 impl Focus {
-    fn new(excess: f64, lower_bound: f64, period: u64) -> Self {
+    fn new(excess: f64, lower_bound: f64, whole: f64, period: u64) -> Self {
         Self {
             excess,
             lower_bound,
+            whole,
             left: period,
             focused: true,
         }
@@ -99,11 +103,11 @@ impl Focus {
         self.left == 0
     }
 
-    /// True when the focus covers the informed set of a path of cost `cost`: its
-    /// provisional cost is at least `cost` (always with no focus).
+    /// True when the focus covers the informed set of a path of cost `cost` (or the
+    /// whole bounds): its provisional cost is at least `cost` (always with no focus).
     fn covers(&self, cost: f64) -> bool {
         !(self.excess > 0.0 && self.excess.is_finite() && self.lower_bound > 0.0)
-            || (1.0 + self.excess) * self.lower_bound >= cost
+            || (1.0 + self.excess) * self.lower_bound >= cost.min(self.whole)
     }
 
     /// Doubles the excess and restarts the count.
@@ -463,6 +467,7 @@ impl LazyPrmStar {
         let mut focus = Focus::new(
             self.params.focus,
             self.metric.distance(start, goal),
+            self.whole_bounds_cost(start, goal),
             self.focus_period(),
         );
         let max_stall = self.params.max_stall;
@@ -548,6 +553,19 @@ impl LazyPrmStar {
             }
         }
         best
+    }
+
+    /// A cost whose informed set holds the whole bounds: every corner's sum of
+    /// distances to the foci, weighted, plus the rotational lower bound.
+    fn whole_bounds_cost(&self, start: &Pose2, goal: &Pose2) -> f64 {
+        let (w_t, w_r) = self.metric.lower_bound_weights();
+        let [x0, y0] = self.bounds.min;
+        let [x1, y1] = self.bounds.max;
+        let farthest = [[x0, y0], [x0, y1], [x1, y0], [x1, y1]]
+            .iter()
+            .map(|&[x, y]| (x - start.x).hypot(y - start.y) + (x - goal.x).hypot(y - goal.y))
+            .fold(0.0, f64::max);
+        w_t * farthest + w_r * angle_distance(start.yaw, goal.yaw)
     }
 
     /// Samples the focus gets before it widens: a share of the roadmap (as the wait
@@ -801,7 +819,7 @@ mod tests {
     #[test]
     fn the_focus_alternates_with_the_bounds_and_widens_geometrically() {
         let (a, b) = (Pose2::new(0.0, 0.0, 0.0), Pose2::new(4.0, 0.0, 0.0));
-        let mut focus = Focus::new(0.5, 4.0, 3);
+        let mut focus = Focus::new(0.5, 4.0, 100.0, 3);
         let set = focus.next_set(&a, &b).expect("first sample: the focus");
         assert!((set.best_cost - 6.0).abs() < 1e-12);
         assert!(focus.next_set(&a, &b).is_none(), "then the bounds");
@@ -812,7 +830,10 @@ mod tests {
         focus.widen(3);
         let set = focus.next_set(&a, &b).unwrap();
         assert!((set.best_cost - 8.0).abs() < 1e-12, "excess 1.0");
-        let mut off = Focus::new(0.0, 4.0, 3);
+        assert!(!focus.covers(10.0) && focus.covers(8.0));
+        let small = Focus::new(0.5, 4.0, 5.0, 3);
+        assert!(small.covers(1e9), "the focus holds the whole bounds");
+        let mut off = Focus::new(0.0, 4.0, 100.0, 3);
         assert!(
             (0..4).all(|_| off.next_set(&a, &b).is_none()),
             "0: no focus"
