@@ -522,7 +522,11 @@ impl LazyPrmStar {
             };
             let found = match repaired {
                 Repair::NoCheaper => {
-                    stall += 1;
+                    // As a searched attempt: a stall only once the focus covers the
+                    // informed set.
+                    if focus.covers(best_cost) {
+                        stall += 1;
+                    }
                     continue;
                 }
                 // The repair was this attempt's first search round.
