@@ -198,8 +198,20 @@ fn shortcutting_never_raises_cost_nor_breaks_validity() {
 /// Repairing the previous search (incremental attempts) changes no path, only the work.
 #[test]
 fn incremental_attempts_change_no_path() {
-    let mut repairing = pipeline(&[]);
-    let mut searching = pipeline(&["planner.params.incremental_attempts=false"]);
+    compare_incremental_attempts(&[]);
+}
+
+/// The same with the grid settings (the focus spaces attempts differently).
+#[test]
+fn with_the_grid_settings_incremental_attempts_change_no_path() {
+    compare_incremental_attempts(&GRID_SETTINGS);
+}
+
+fn compare_incremental_attempts(settings: &[&str]) {
+    let mut repairing = pipeline(settings);
+    let mut off = settings.to_vec();
+    off.push("planner.params.incremental_attempts=false");
+    let mut searching = pipeline(&off);
     let mut queries = queries();
     queries.extend(queries.clone().iter().map(|&(s, g)| (g, s)));
     for (s, g) in queries {
@@ -212,4 +224,40 @@ fn incremental_attempts_change_no_path() {
     assert!(a["astar_repairs"] > 0, "{a:?}");
     assert_eq!(b["astar_repairs"], 0);
     assert!(a["astar_searches"] < b["astar_searches"], "{a:?} vs {b:?}");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(12))]
+
+    /// Random queries on one shared roadmap, with the grid settings and a random seed:
+    /// every exact path joins its endpoints by valid motions and costs at least the
+    /// straight line.
+    #[test]
+    fn with_the_grid_settings_random_queries_give_valid_paths_above_the_lower_bound(
+        seed in 1u64..1000,
+        ends in proptest::collection::vec(
+            (0.2..11.8f64, 0.2..7.8f64, -3.0..3.0f64, 0.2..11.8f64, 0.2..7.8f64, -3.0..3.0f64),
+            1..6,
+        ),
+    ) {
+        let seed = format!("seed={seed}");
+        let mut settings = GRID_SETTINGS.to_vec();
+        settings.extend([seed.as_str(), "planner.params.max_samples=1500"]);
+        let mut p = pipeline(&settings);
+        let motions = p.motion_validator.clone().unwrap();
+        let metric = p.metric.clone();
+        let planner = p.planner.as_mut().unwrap();
+        for (sx, sy, syaw, gx, gy, gyaw) in ends {
+            let (start, goal) = (Pose2::new(sx, sy, syaw), Pose2::new(gx, gy, gyaw));
+            if let PlannerOutcome::Exact(path) = planner.plan(&start, &goal).unwrap() {
+                proptest::prop_assert_eq!(path.states.first(), Some(&start));
+                proptest::prop_assert_eq!(path.states.last(), Some(&goal));
+                proptest::prop_assert!(path
+                    .states
+                    .windows(2)
+                    .all(|w| motions.check_motion(&w[0], &w[1]).is_valid()));
+                proptest::prop_assert!(path.cost >= metric.distance(&start, &goal) - 1e-9);
+            }
+        }
+    }
 }
