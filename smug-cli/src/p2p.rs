@@ -19,7 +19,8 @@ pub struct P2pArgs {
     /// Queries, one `sx,sy,syaw,gx,gy,gyaw` per row (a header row is allowed).
     #[arg(long)]
     queries: PathBuf,
-    /// Pipeline config for the planner and validity checker (default: a disc robot).
+    /// Pipeline config for the planner and validity checker (default:
+    /// `configs/p2p-grid.toml`, a disc robot on an occupancy grid).
     #[arg(long)]
     config: Option<PathBuf>,
     /// Override a config key.
