@@ -18,11 +18,12 @@ use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::{
-    Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionValidator, Path, PlannerOutcome,
-    PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateValidityChecker, Termination,
-    TimeBreakdown,
+    Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionCheck, MotionValidator, Path,
+    PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result, Sampler,
+    StateValidityChecker, Termination, TimeBreakdown,
 };
 use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -578,19 +579,24 @@ impl LazyPrmStar {
         ((self.roadmap.live_vertex_count() / 20) as u64).max(MIN_FOCUS_PERIOD)
     }
 
-    fn to_path(&self, graph_path: &GraphPath) -> Path {
+    /// The path of `graph_path`, shortcut or smoothed as configured; the motion checks
+    /// of that post-processing are counted and timed as edge checks.
+    fn post_processed(&mut self, graph_path: &GraphPath) -> Path {
         let states: Vec<Pose2> = graph_path
             .vertices
             .iter()
             .map(|&v| *self.roadmap.pose(v))
             .collect();
+        let motions = CountedMotions::new(self.motions.as_ref());
         let states = if self.params.smooth {
-            smooth(&states, self.motions.as_ref(), self.metric.as_ref())
+            smooth(&states, &motions, self.metric.as_ref())
         } else if self.params.shortcut {
-            shortcut(&states, self.motions.as_ref())
+            shortcut(&states, &motions)
         } else {
             states
         };
+        self.counts.edge_checks += motions.checks.load(Relaxed);
+        self.counts.breakdown.edge_checking_s += motions.nanoseconds.load(Relaxed) as f64 * 1e-9;
         Path::new(states, self.metric.as_ref())
     }
 }
@@ -612,7 +618,7 @@ impl PointToPointPlanner for LazyPrmStar {
                 cost: 0.0,
             }),
             (Some(s), Some(g)) => match self.solve(start, goal, s, g) {
-                Some(path) => PlannerOutcome::Exact(self.to_path(&path)),
+                Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
                 None => PlannerOutcome::NoPath,
             },
         };
@@ -651,6 +657,43 @@ fn timed_state_check(
     counts.vertex_checks += 1;
     counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
     valid
+}
+
+/// A motion validator that counts and times the checks made through it (those of
+/// path post-processing, booked as edge checks).
+struct CountedMotions<'a> {
+    inner: &'a dyn MotionValidator,
+    checks: AtomicU64,
+    nanoseconds: AtomicU64,
+}
+
+impl<'a> CountedMotions<'a> {
+    fn new(inner: &'a dyn MotionValidator) -> Self {
+        Self {
+            inner,
+            checks: AtomicU64::new(0),
+            nanoseconds: AtomicU64::new(0),
+        }
+    }
+
+    fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
+        let started = Instant::now();
+        let result = check();
+        let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
+        self.checks.fetch_add(1, Relaxed);
+        self.nanoseconds.fetch_add(elapsed, Relaxed);
+        result
+    }
+}
+
+impl MotionValidator for CountedMotions<'_> {
+    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.timed(|| self.inner.is_valid_motion(a, b))
+    }
+
+    fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+        self.timed(|| self.inner.check_motion(a, b))
+    }
 }
 
 /// The checks the searches run, with their counters.
