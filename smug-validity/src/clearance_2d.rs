@@ -74,6 +74,41 @@ impl Clearance2dChecker {
         })
     }
 
+    /// A lower bound of the distance from `(x, y)` to the nearest obstacle square, from
+    /// the distance field (`None` off the grid).
+    fn obstacle_distance_bound(&self, x: f64, y: f64) -> Option<f64> {
+        let [i, j] = self.geometry.cell_of(x, y)?;
+        let [cx, cy] = self.geometry.center_of(i, j);
+        Some(
+            self.distance[self.geometry.index(i, j)]
+                - (x - cx).hypot(y - cy)
+                - std::f64::consts::FRAC_1_SQRT_2 * self.geometry.resolution,
+        )
+    }
+
+    /// The distance from `(x, y)` to the nearest obstacle square, exactly when it is
+    /// below `reach`, else `reach` (only the cells within `reach` are looked at).
+    fn obstacle_distance_within(&self, x: f64, y: f64, reach: f64) -> f64 {
+        self.exact_checks.fetch_add(1, Relaxed);
+        let g = &self.geometry;
+        let res = g.resolution;
+        let lo = |v: f64, o: f64| ((v - reach - o) / res).floor().max(0.0) as usize;
+        let hi = |v: f64, o: f64, n: usize| (((v + reach - o) / res).floor() as usize).min(n - 1);
+        let mut nearest = reach;
+        for j in lo(y, g.origin[1])..=hi(y, g.origin[1], g.size[1]) {
+            for i in lo(x, g.origin[0])..=hi(x, g.origin[0], g.size[0]) {
+                if self.obstacles[g.index(i, j)] {
+                    let x0 = g.origin[0] + i as f64 * res;
+                    let y0 = g.origin[1] + j as f64 * res;
+                    let dx = (x0 - x).max(0.0).max(x - (x0 + res));
+                    let dy = (y0 - y).max(0.0).max(y - (y0 + res));
+                    nearest = nearest.min(dx.hypot(dy));
+                }
+            }
+        }
+        nearest
+    }
+
     /// True when the disc at `(x, y)` touches an obstacle cell (checks the cells around it).
     fn touches_obstacle(&self, x: f64, y: f64) -> bool {
         self.exact_checks.fetch_add(1, Relaxed);
@@ -116,6 +151,29 @@ impl StateValidityChecker for Clearance2dChecker {
             - (x - cx).hypot(y - cy)
             - std::f64::consts::FRAC_1_SQRT_2 * self.geometry.resolution;
         bound > r || !self.touches_obstacle(x, y)
+    }
+
+    /// The disc's distance to the map border and to the nearest obstacle square, less
+    /// its radius (exact near obstacles, from the distance field farther away).
+    fn clearance(&self, state: &Pose2) -> Option<f64> {
+        let b = self.geometry.bounds();
+        let (x, y, r) = (state.x, state.y, self.radius);
+        let border = (x - b.min[0])
+            .min(b.max[0] - x)
+            .min(y - b.min[1])
+            .min(b.max[1] - y);
+        let Some(bound) = self.obstacle_distance_bound(x, y) else {
+            return Some(border.min(0.0) - r);
+        };
+        // Far from obstacles the distance field's bound is enough; nearer, the cells
+        // within one cell beyond the disc are measured exactly.
+        let reach = r + self.geometry.resolution;
+        let obstacle = if bound >= reach {
+            bound
+        } else {
+            self.obstacle_distance_within(x, y, reach).max(bound)
+        };
+        Some(border.min(obstacle) - r)
     }
 
     fn counters(&self) -> Counters {
@@ -176,6 +234,30 @@ mod tests {
                 dx.hypot(dy) >= r && !(dx == 0.0 && dy == 0.0)
             });
             prop_assert_eq!(checker.is_valid(&Pose2::new(x, y, 0.0)), inside && clear);
+        }
+
+        #[test]
+        fn clearance_is_a_safe_radius(
+            x in 0.0f64..10.0, y in 0.0f64..10.0, r in 0.0f64..1.5,
+            angle in -3.2f64..3.2, share in 0.0f64..1.0, yaw in -3.0f64..3.0,
+        ) {
+            let w = world();
+            let checker = Clearance2dChecker::new(&w, Clearance2dParams { radius: r, obstacle_height: 1.0 }).unwrap();
+            let p = Pose2::new(x, y, 0.0);
+            let c = checker.clearance(&p).unwrap();
+            // Positive clearance: valid; invalid: no positive clearance.
+            if c > 1e-12 {
+                prop_assert!(checker.is_valid(&p));
+            }
+            if !checker.is_valid(&p) {
+                prop_assert!(c <= 1e-12, "invalid with clearance {}", c);
+            }
+            // Every state within the clearance, with any yaw, is valid.
+            if c > 1e-9 {
+                let d = share * c * (1.0 - 1e-9);
+                let q = Pose2::new(x + d * angle.cos(), y + d * angle.sin(), yaw);
+                prop_assert!(checker.is_valid(&q), "{:?} within {} of {:?}", q, c, p);
+            }
         }
     }
 }

@@ -33,7 +33,22 @@ impl Default for DiscreteMotionParams {
     }
 }
 
-/// Checks straight motions state by state.
+/// With a checker that knows its clearance (a disc robot), motions are traced
+/// continuously; a point closer to contact than this share of the resolution counts as
+/// a contact (0.05 m resolution: 1 mm).
+const MIN_STEP_SHARE: f64 = 0.02;
+
+/// The outcome of tracing a motion through the checker's clearance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Swept {
+    /// Every position on the way is valid.
+    Clear,
+    /// The trace stopped at a contact; the last point it had cleared, as a fraction of
+    /// the motion (`None`: the start itself).
+    Contact { last_clear: Option<f64> },
+}
+
+/// Checks straight motions state by state (continuously for disc robots).
 pub struct DiscreteMotionValidator {
     states: Arc<dyn StateValidityChecker>,
     metric: Arc<dyn CostMetric>,
@@ -123,6 +138,49 @@ impl DiscreteMotionValidator {
         true
     }
 
+    /// Traces the motion `a → b` through the checker's clearance (when it has one):
+    /// from each point, the next one is a clearance further along, so every position on
+    /// the way is covered, not only states at the resolution. A point whose clearance is
+    /// below [`MIN_STEP_SHARE`] × the resolution counts as a contact (grazing motions are
+    /// rejected, conservatively, in a bounded number of steps). `None` when the checker
+    /// has no clearance.
+    fn swept(&self, a: &Pose2, b: &Pose2) -> Option<Swept> {
+        let length = a.xy_distance(b);
+        let min_step = MIN_STEP_SHARE * self.resolution;
+        let (mut travelled, mut last_clear) = (0.0, None);
+        loop {
+            let t = if length > 0.0 {
+                travelled / length
+            } else {
+                0.0
+            };
+            let point = Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.yaw);
+            self.states_checked.fetch_add(1, Relaxed);
+            let clearance = self.states.clearance(&point)?;
+            if clearance.is_nan() || clearance < min_step {
+                return Some(Swept::Contact { last_clear });
+            }
+            if travelled + clearance >= length {
+                return Some(Swept::Clear);
+            }
+            last_clear = Some(t);
+            travelled += clearance;
+        }
+    }
+
+    /// [`Self::swept`] in one direction whatever the order of `a` and `b` (the one
+    /// from the lower `(x, y)`), so that a motion and its reverse get the same verdict:
+    /// where the trace lands, and so which grazing points it meets, depends on where it
+    /// starts.
+    fn swept_either_way(&self, a: &Pose2, b: &Pose2) -> Option<Swept> {
+        let forward = a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)).is_le();
+        if forward {
+            self.swept(a, b)
+        } else {
+            self.swept(b, a)
+        }
+    }
+
     /// Interior state indices `1..n` in bisection order (midpoints first).
     fn bisection_order(n: usize) -> impl Iterator<Item = usize> {
         let mut queue = VecDeque::from([(0usize, n)]);
@@ -156,30 +214,62 @@ impl MotionValidator for DiscreteMotionValidator {
     fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
         self.motions_checked.fetch_add(1, Relaxed);
         let n = self.segment_count(a, b);
-        self.slopes_ok(a, b, n)
-            && self.is_valid_state(b)
+        if !self.slopes_ok(a, b, n) {
+            return false;
+        }
+        if let Some(swept) = self.swept_either_way(a, b) {
+            return swept == Swept::Clear;
+        }
+        self.is_valid_state(b)
             && self.is_valid_state(a)
             && Self::bisection_order(n).all(|k| self.is_valid_state(&self.state_at(a, b, k, n)))
     }
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
         self.motions_checked.fetch_add(1, Relaxed);
-        if !self.is_valid_state(a) {
+        let n = self.segment_count(a, b);
+        // With a continuous trace, states at the resolution only check the slopes, up
+        // to the contact the trace found.
+        let (contact, states_decide) = match self.swept_either_way(a, b) {
+            Some(Swept::Clear) => (None, false),
+            // Where the contact is, seen from `a` (at `a` itself when only the trace
+            // from the other end meets a grazing point).
+            Some(Swept::Contact { .. }) => match self.swept(a, b) {
+                Some(Swept::Contact { last_clear }) => (Some(last_clear), false),
+                _ => (Some(Some(0.0)), false),
+            },
+            None => (None, true),
+        };
+        if contact == Some(None) || states_decide && !self.is_valid_state(a) {
             return MotionCheck::Invalid { last_valid: None };
         }
-        let n = self.segment_count(a, b);
-        let mut previous = *a;
+        let mut previous = (*a, 0.0);
         for k in 1..=n {
+            let fraction = k as f64 / n as f64;
+            if let Some(Some(last_clear)) = contact {
+                if fraction > last_clear {
+                    break;
+                }
+            }
             let state = self.state_at(a, b, k, n);
-            if !(self.inclination_ok(&previous, &state) && self.is_valid_state(&state)) {
-                let fraction = (k - 1) as f64 / n as f64;
+            if !(self.inclination_ok(&previous.0, &state)
+                && (!states_decide || self.is_valid_state(&state)))
+            {
                 return MotionCheck::Invalid {
-                    last_valid: Some((previous, fraction)),
+                    last_valid: Some(previous),
                 };
             }
-            previous = state;
+            previous = (state, fraction);
         }
-        MotionCheck::Valid
+        match contact {
+            Some(Some(last_clear)) if last_clear > previous.1 => MotionCheck::Invalid {
+                last_valid: Some((self.metric.interpolate(a, b, last_clear), last_clear)),
+            },
+            Some(_) => MotionCheck::Invalid {
+                last_valid: Some(previous),
+            },
+            None => MotionCheck::Valid,
+        }
     }
 
     fn counters(&self) -> Counters {
@@ -302,5 +392,84 @@ mod tests {
         assert!(v.is_valid_motion(&Pose2::new(1.0, 2.0, 0.0), &Pose2::new(1.0, 4.0, 0.0)));
         let lenient = validator(0.1, Some((world, 10.0)));
         assert!(lenient.is_valid_motion(&Pose2::new(1.0, 7.0, 0.0), &Pose2::new(1.0, 9.0, 0.0)));
+    }
+
+    /// Every position of a motion the continuous trace accepts is valid for the disc
+    /// (checked every millimetre), and the trace rejects a motion whose disc clips a
+    /// corner between the resolution's states.
+    mod continuous {
+        use super::*;
+        use crate::clearance_2d::{Clearance2dChecker, Clearance2dParams};
+        use smug_core::{GridGeometry, GridLayer};
+
+        fn disc_world() -> World {
+            let g = GridGeometry::new([0.0, 0.0], 1.0, [10, 10]).unwrap();
+            let blocked = [(3, 3), (4, 3), (7, 8), (5, 6)];
+            let elevation =
+                GridLayer::from_fn(g, |i, j| if blocked.contains(&(i, j)) { 2.0 } else { 0.0 });
+            World::new(
+                "grid",
+                elevation,
+                Mission {
+                    start: Pose2::new(0.5, 0.5, 0.0),
+                    end: None,
+                    targets: vec![],
+                },
+            )
+        }
+
+        fn disc_validator(resolution: f64) -> DiscreteMotionValidator {
+            let params = Clearance2dParams {
+                radius: 0.25,
+                obstacle_height: 1.0,
+            };
+            let states = Arc::new(Clearance2dChecker::new(&disc_world(), params).unwrap());
+            DiscreteMotionValidator::new(states, Arc::new(Se2Metric::default()), None, resolution)
+                .unwrap()
+        }
+
+        proptest! {
+            #[test]
+            fn accepted_motions_are_valid_everywhere(
+                a in (0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0),
+                b in (0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0),
+            ) {
+                let v = disc_validator(0.05);
+                let (a, b) = (Pose2::new(a.0, a.1, a.2), Pose2::new(b.0, b.1, b.2));
+                let valid = v.is_valid_motion(&a, &b);
+                prop_assert_eq!(valid, v.check_motion(&a, &b).is_valid());
+                prop_assert_eq!(valid, v.is_valid_motion(&b, &a), "the reverse motion");
+                prop_assert_eq!(valid, v.check_motion(&b, &a).is_valid());
+                if valid {
+                    let steps = (a.xy_distance(&b) / 0.001).ceil().max(1.0) as usize;
+                    for k in 0..=steps {
+                        let t = k as f64 / steps as f64;
+                        let p = Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, 0.0);
+                        prop_assert!(v.states.is_valid(&p), "{:?} on {:?} → {:?}", p, a, b);
+                    }
+                }
+                if let MotionCheck::Invalid { last_valid: Some((s, _)) } = v.check_motion(&a, &b) {
+                    prop_assert!(v.states.is_valid(&s));
+                }
+            }
+        }
+
+        #[test]
+        fn a_corner_between_coarse_steps_is_caught() {
+            // Passing the blocked square (5, 6)..(6, 7) with the disc overlapping its
+            // corner by 5 mm, between states 1 m apart.
+            let v = disc_validator(1.0);
+            let y = 6.0 - 0.25 + 0.005;
+            let (a, b) = (Pose2::new(4.0, y - 1.0, 0.0), Pose2::new(6.0, y + 1.0, 0.0));
+            let corner_gap = {
+                // Distance from the segment to the corner (5, 6), less the radius.
+                let (dx, dy) = (b.x - a.x, b.y - a.y);
+                let t = ((5.0 - a.x) * dx + (6.0 - a.y) * dy) / (dx * dx + dy * dy);
+                let (px, py) = (a.x + t * dx, a.y + t * dy);
+                (px - 5.0).hypot(py - 6.0) - 0.25
+            };
+            assert!(corner_gap < 0.0, "the test motion must clip the corner");
+            assert!(!v.is_valid_motion(&a, &b));
+        }
     }
 }

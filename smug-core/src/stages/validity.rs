@@ -11,6 +11,15 @@ pub trait StateValidityChecker: Send + Sync {
     /// True when the robot at `state` is safe (traversable and collision-free).
     fn is_valid(&self, state: &Pose2) -> bool;
 
+    /// How far the robot can move from `state`, in any direction in the plane and
+    /// with any yaw, and stay valid: a lower bound, ≤ 0 when `state` is invalid; `None`
+    /// when the checker cannot tell (the default). A disc robot can: motion validators
+    /// then check motions continuously, in steps of this clearance.
+    fn clearance(&self, state: &Pose2) -> Option<f64> {
+        let _ = state;
+        None
+    }
+
     /// Counters accumulated so far (e.g. `"checks"`, `"esdf_queries"`).
     fn counters(&self) -> Counters {
         Counters::new()
