@@ -200,11 +200,6 @@ impl Roadmap {
         self.components_stale = true;
     }
 
-    /// Edges and vertices removed so far.
-    pub fn removals(&self) -> u64 {
-        self.removals
-    }
-
     /// True when `a` and `b` may be connected (exact once components are refreshed).
     pub fn maybe_connected(&mut self, a: u32, b: u32) -> bool {
         self.components.find(a) == self.components.find(b)
@@ -233,7 +228,7 @@ impl Roadmap {
 
     /// Neighbours of `v` as `(neighbour, edge id, edge cost)`, in [`Roadmap::neighbours`]
     /// order, without looking the costs up in the edge array.
-    pub fn neighbours_with_costs(&self, v: u32) -> impl Iterator<Item = (u32, u32, f64)> + '_ {
+    fn neighbours_with_costs(&self, v: u32) -> impl Iterator<Item = (u32, u32, f64)> + '_ {
         let v = v as usize;
         self.adjacency[v]
             .iter()
@@ -503,7 +498,8 @@ impl AStar {
 
     /// The cost of the cheapest path from `start` to `goal` that the latest search
     /// (with the repairs since) found, when it is still exact for `map`.
-    pub fn settled_path_cost(&self, map: &Roadmap, start: u32, goal: u32) -> Option<f64> {
+    #[cfg(test)]
+    fn settled_path_cost(&self, map: &Roadmap, start: u32, goal: u32) -> Option<f64> {
         self.settled_for(map, start, goal).map(|b| b.cost)
     }
 

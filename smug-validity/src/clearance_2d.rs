@@ -86,51 +86,40 @@ impl Clearance2dChecker {
         )
     }
 
-    /// The distance from `(x, y)` to the nearest obstacle square, exactly when it is
-    /// below `reach`, else `reach` (only the cells within `reach` are looked at).
-    fn obstacle_distance_within(&self, x: f64, y: f64, reach: f64) -> f64 {
+    /// The gaps `(dx, dy)` from `(x, y)` to the obstacle squares whose cells lie within
+    /// `reach` of it along both axes, row by row (one exact check).
+    fn obstacle_gaps(&self, x: f64, y: f64, reach: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.exact_checks.fetch_add(1, Relaxed);
         let g = &self.geometry;
         let res = g.resolution;
         let lo = |v: f64, o: f64| ((v - reach - o) / res).floor().max(0.0) as usize;
         let hi = |v: f64, o: f64, n: usize| (((v + reach - o) / res).floor() as usize).min(n - 1);
-        let mut nearest = reach;
-        for j in lo(y, g.origin[1])..=hi(y, g.origin[1], g.size[1]) {
-            for i in lo(x, g.origin[0])..=hi(x, g.origin[0], g.size[0]) {
-                if self.obstacles[g.index(i, j)] {
-                    let x0 = g.origin[0] + i as f64 * res;
-                    let y0 = g.origin[1] + j as f64 * res;
-                    let dx = (x0 - x).max(0.0).max(x - (x0 + res));
-                    let dy = (y0 - y).max(0.0).max(y - (y0 + res));
-                    nearest = nearest.min(dx.hypot(dy));
-                }
-            }
-        }
-        nearest
+        let columns = lo(x, g.origin[0])..=hi(x, g.origin[0], g.size[0]);
+        (lo(y, g.origin[1])..=hi(y, g.origin[1], g.size[1]))
+            .flat_map(move |j| columns.clone().map(move |i| (i, j)))
+            .filter(|&(i, j)| self.obstacles[g.index(i, j)])
+            .map(move |(i, j)| {
+                let x0 = g.origin[0] + i as f64 * res;
+                let y0 = g.origin[1] + j as f64 * res;
+                let dx = (x0 - x).max(0.0).max(x - (x0 + res));
+                let dy = (y0 - y).max(0.0).max(y - (y0 + res));
+                (dx, dy)
+            })
+    }
+
+    /// The distance from `(x, y)` to the nearest obstacle square, exactly when it is
+    /// below `reach`, else `reach` (only the cells within `reach` are looked at).
+    fn obstacle_distance_within(&self, x: f64, y: f64, reach: f64) -> f64 {
+        self.obstacle_gaps(x, y, reach)
+            .map(|(dx, dy)| dx.hypot(dy))
+            .fold(reach, f64::min)
     }
 
     /// True when the disc at `(x, y)` touches an obstacle cell (checks the cells around it).
     fn touches_obstacle(&self, x: f64, y: f64) -> bool {
-        self.exact_checks.fetch_add(1, Relaxed);
-        let g = &self.geometry;
-        let res = g.resolution;
-        let lo = |v: f64, o: f64| ((v - self.radius - o) / res).floor().max(0.0) as usize;
-        let hi =
-            |v: f64, o: f64, n: usize| (((v + self.radius - o) / res).floor() as usize).min(n - 1);
-        for j in lo(y, g.origin[1])..=hi(y, g.origin[1], g.size[1]) {
-            for i in lo(x, g.origin[0])..=hi(x, g.origin[0], g.size[0]) {
-                if self.obstacles[g.index(i, j)] {
-                    let x0 = g.origin[0] + i as f64 * res;
-                    let y0 = g.origin[1] + j as f64 * res;
-                    let dx = (x0 - x).max(0.0).max(x - (x0 + res));
-                    let dy = (y0 - y).max(0.0).max(y - (y0 + res));
-                    if dx.hypot(dy) < self.radius || self.radius == 0.0 && dx == 0.0 && dy == 0.0 {
-                        return true;
-                    }
-                }
-            }
-        }
-        false
+        let r = self.radius;
+        self.obstacle_gaps(x, y, r)
+            .any(|(dx, dy)| dx.hypot(dy) < r || r == 0.0 && dx == 0.0 && dy == 0.0)
     }
 }
 
@@ -142,14 +131,9 @@ impl StateValidityChecker for Clearance2dChecker {
         if !(x - r >= b.min[0] && x + r <= b.max[0] && y - r >= b.min[1] && y + r <= b.max[1]) {
             return false;
         }
-        let Some([i, j]) = self.geometry.cell_of(x, y) else {
+        let Some(bound) = self.obstacle_distance_bound(x, y) else {
             return false;
         };
-        let [cx, cy] = self.geometry.center_of(i, j);
-        // Lower bound of the distance to the nearest obstacle square.
-        let bound = self.distance[self.geometry.index(i, j)]
-            - (x - cx).hypot(y - cy)
-            - std::f64::consts::FRAC_1_SQRT_2 * self.geometry.resolution;
         bound > r || !self.touches_obstacle(x, y)
     }
 
