@@ -474,6 +474,7 @@ impl LazyPrmStar {
         let max_stall = self.params.max_stall;
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
         while !clock.is_done() && !stalled(&best, stall) {
+            // `best` changes only at the end of an iteration.
             let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
             let focusing = !focus.covers(best_cost);
             let focused = if focusing {
@@ -516,7 +517,6 @@ impl LazyPrmStar {
                 continue;
             }
             since_attempt = 0;
-            let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
             let repaired = match best {
                 Some(_) => self.repair(s, g),
                 None => Repair::NoBase,
@@ -542,7 +542,6 @@ impl LazyPrmStar {
                 if best.is_none() {
                     interval = improvement_interval(&self.params, clock.iterations());
                 }
-                let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
                 // A round counts as stalled only once the focus covers the informed
                 // set: until then the samples have not yet reached all of it.
                 if path.cost > best_cost * (1.0 - self.params.improvement)
