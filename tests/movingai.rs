@@ -9,6 +9,7 @@ use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{convert_movingai, read_map, read_scenarios, scenario_to_world};
 use std::path::{Path, PathBuf};
 
+use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_validity as _;

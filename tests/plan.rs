@@ -4,6 +4,7 @@
 use smug_core::{plan_mission, LoadedConfig, Pipeline, PlanOptions};
 use std::path::Path;
 
+use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_selection as _;

@@ -4,6 +4,7 @@
 use smug_core::{LoadedConfig, Pipeline, PlannerOutcome, Pose2};
 use std::path::Path;
 
+use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_validity as _;
@@ -97,7 +98,7 @@ fn with_the_grid_settings_unreachable_goals_and_invalid_endpoints_are_outcomes()
 fn check_paths(settings: &[&str]) {
     let mut p = pipeline(settings);
     let motions = p.motion_validator.clone().unwrap();
-    let metric = p.metric.clone();
+    let objective = p.objective.clone();
     let planner = p.planner.as_mut().unwrap();
     for (start, goal) in queries() {
         let outcome = planner.plan(&start, &goal).unwrap();
@@ -114,7 +115,7 @@ fn check_paths(settings: &[&str]) {
                 w[1]
             );
         }
-        assert!(path.cost >= metric.distance(&start, &goal) - 1e-9);
+        assert!(path.cost >= objective.cost_bound(&start, &goal) - 1e-9);
     }
     let stats = planner.stats();
     assert_eq!(stats.queries, 4);
@@ -243,7 +244,7 @@ proptest::proptest! {
         settings.extend([seed.as_str(), "planner.params.max_samples=1500"]);
         let mut p = pipeline(&settings);
         let motions = p.motion_validator.clone().unwrap();
-        let metric = p.metric.clone();
+        let objective = p.objective.clone();
         let planner = p.planner.as_mut().unwrap();
         for (sx, sy, syaw, gx, gy, gyaw) in ends {
             let (start, goal) = (Pose2::new(sx, sy, syaw), Pose2::new(gx, gy, gyaw));
@@ -254,7 +255,7 @@ proptest::proptest! {
                     .states
                     .windows(2)
                     .all(|w| motions.check_motion(&w[0], &w[1]).is_valid()));
-                proptest::prop_assert!(path.cost >= metric.distance(&start, &goal) - 1e-9);
+                proptest::prop_assert!(path.cost >= objective.cost_bound(&start, &goal) - 1e-9);
             }
         }
     }

@@ -7,6 +7,7 @@ use std::path::Path;
 
 // Link every plugin crate (and the out-of-tree example) so their plugins register.
 use smug_example_traversability as _;
+use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_selection as _;

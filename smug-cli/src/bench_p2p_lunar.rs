@@ -65,7 +65,7 @@ pub fn run(config: &Path, set: &[String], count: usize) -> anyhow::Result<LunarR
     let loaded = LoadedConfig::from_file(config, set)?;
     let mut pipeline = Pipeline::assemble(&loaded)?;
     let pairs = poi_pairs(&pipeline, count, loaded.config.seed)?;
-    let metric = pipeline.metric.clone();
+    let objective = pipeline.objective.clone();
     let planner = pipeline
         .planner
         .as_mut()
@@ -78,7 +78,7 @@ pub fn run(config: &Path, set: &[String], count: usize) -> anyhow::Result<LunarR
         if let PlannerOutcome::Exact(path) = outcome {
             solved += 1;
             cost += path.cost;
-            bound += metric.distance(start, goal);
+            bound += objective.cost_bound(start, goal);
         }
     }
     let mut sorted = times.clone();

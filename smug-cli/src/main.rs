@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 // Name every plugin crate so that its `inventory` registrations are linked in.
+use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_selection as _;

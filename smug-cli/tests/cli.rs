@@ -38,13 +38,17 @@ fn plugins_lists_every_stage_and_the_builtin_plugins() {
         "uniform",
         "discrete",
         "brute-force",
+        "path-length",
+        "traversability",
+        "energy",
+        "time",
         "rotation_weight = 0.5",
     ] {
         assert!(text.contains(needle), "`{needle}` missing from:\n{text}");
     }
     let json: serde_json::Value =
         serde_json::from_slice(&smug(&["plugins", "--json"]).stdout).unwrap();
-    assert_eq!(json.as_array().unwrap().len(), 9);
+    assert_eq!(json.as_array().unwrap().len(), 10);
 }
 
 #[test]
@@ -194,7 +198,7 @@ fn overrides_change_values_and_reject_unknown_keys() {
         "--set",
         "sampler.type=uniform",
         "--set",
-        "cost.params.rotation_weight=0",
+        "objective.params.rotation_weight=0",
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     assert!(stdout(&out).contains("type = \"uniform\""));

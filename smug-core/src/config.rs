@@ -120,8 +120,13 @@ pub struct PipelineConfig {
     /// The robot's base box.
     #[serde(default)]
     pub robot: RobotConfig,
-    /// Path cost metric (default `se2`).
-    pub cost: Option<PluginSection>,
+    /// Motion model: k-NN distance and local motions (default `se2`).
+    pub space: Option<PluginSection>,
+    /// What a path costs, with an admissible bound (default `path-length`).
+    pub objective: Option<PluginSection>,
+    /// Removed: split into `[space]` and `[objective]` (kept to say so clearly).
+    #[serde(default, skip_serializing)]
+    pub cost: Option<toml::Value>,
     /// Traversability estimator (absent: keep the world's own layer, if any).
     pub traversability: Option<PluginSection>,
     /// State validity checker.
@@ -150,7 +155,8 @@ impl PipelineConfig {
         [
             &self.world,
             &self.traversability,
-            &self.cost,
+            &self.space,
+            &self.objective,
             &self.validity,
             &self.motion,
             &self.sampler,
@@ -167,7 +173,8 @@ impl PipelineConfig {
         let slots = [
             ("world", &mut self.world),
             ("traversability", &mut self.traversability),
-            ("cost", &mut self.cost),
+            ("space", &mut self.space),
+            ("objective", &mut self.objective),
             ("validity", &mut self.validity),
             ("motion", &mut self.motion),
             ("sampler", &mut self.sampler),

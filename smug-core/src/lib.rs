@@ -2,7 +2,8 @@
 //! pipelines that every other SMUG crate builds on.
 //!
 //! A pipeline is assembled from a TOML config: each stage (`world`, `traversability`,
-//! `cost`, `validity`, `motion`, `sampler`, `planner`, `sequencer`, `selector`) names a
+//! `space`, `objective`, `validity`, `motion`, `sampler`, `planner`, `sequencer`,
+//! `selector`) names a
 //! registered plugin with `type = "…"` and gives its parameters in `params`.
 //! Plugins register themselves with [`register_plugin!`].
 
@@ -10,10 +11,11 @@
 
 pub mod config;
 pub mod error;
+pub mod evaluation;
 pub mod grid;
-pub mod metric;
 pub mod mission;
 pub mod mission_run;
+pub mod objective;
 pub mod oracle;
 pub mod path;
 pub mod pipeline;
@@ -21,6 +23,7 @@ pub mod plan;
 pub mod pose;
 pub mod registry;
 pub mod rng;
+pub mod space;
 pub mod stages;
 pub mod termination;
 #[cfg(feature = "testing")]
@@ -30,14 +33,15 @@ pub mod world;
 pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
 pub use error::{ConfigError, Error, Origin, RegistryError, Result};
 pub use grid::{GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};
-pub use metric::{CostMetric, Se2Metric};
 pub use mission::{Mission, Target};
 pub use mission_run::{plan_mission, PlanOptions};
+pub use objective::{Objective, PathLength};
 pub use oracle::{PathOracle, PlannedPath};
 pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, Waypoint};
+pub use space::{Se2Space, StateSpace};
 pub use stages::*;
 pub use termination::Termination;
 pub use world::World;

@@ -4,6 +4,7 @@
 //! every query shares the planner's roadmap.
 
 use crate::error::{Error, Result};
+use crate::evaluation::plan_metrics;
 use crate::mission::Mission;
 use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
@@ -146,7 +147,8 @@ fn sequence(
         .collect())
 }
 
-/// Path costs between every pair of `nodes` (symmetric: each pair planned once).
+/// Path costs between every pair of `nodes` (each pair planned once when the oracle is
+/// symmetric, both ways otherwise).
 fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
     let n = nodes.len();
     let mut costs = vec![0.0; n * n];
@@ -154,7 +156,11 @@ fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
         for j in i + 1..n {
             let c = oracle.cost(nodes[i], nodes[j])?;
             costs[i * n + j] = c;
-            costs[j * n + i] = c;
+            costs[j * n + i] = if oracle.is_symmetric() {
+                c
+            } else {
+                oracle.cost(nodes[j], nodes[i])?
+            };
         }
     }
     CostMatrix::from_rows(n, costs)
@@ -242,7 +248,8 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
         stage: "smug plan".into(),
         needed: "planner",
     })?;
-    let mut oracle = PathOracle::new(pipeline.metric.clone(), planner);
+    let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
+        .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric());
     let layout = register_poses(&mut oracle, &mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
@@ -309,6 +316,12 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
         &route,
     )?;
     let (mut poses, fixed) = concatenate(&plan);
+    let objective = pipeline
+        .config
+        .objective
+        .as_ref()
+        .map_or("path-length", |section| section.kind.as_str());
+    plan.metrics = plan_metrics(pipeline.context(), &world, objective, &poses);
     if !options.keep_headings {
         align_headings(
             &mut poses,
@@ -475,18 +488,18 @@ fn stats(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metric::Se2Metric;
+    use crate::objective::PathLength;
     use crate::path::Path;
     use crate::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
     use proptest::prelude::*;
     use std::sync::Arc;
 
-    /// Answers every query with a straight path whose cost is the metric distance
+    /// Answers every query with a straight path whose cost is the objective's cost
     /// times a fixed detour factor of the pair (≥ 1, symmetric).
     struct DetourPlanner {
         poses: Vec<Pose2>,
         detours: Vec<f64>,
-        metric: Se2Metric,
+        objective: PathLength,
     }
 
     impl DetourPlanner {
@@ -500,7 +513,7 @@ mod tests {
             let (i, j) = (self.index(start), self.index(goal));
             let n = self.poses.len();
             let factor = self.detours[i.min(j) * n + i.max(j)];
-            let mut path = Path::new(vec![*start, *goal], &self.metric);
+            let mut path = Path::new(vec![*start, *goal], &self.objective);
             path.cost *= factor;
             Ok(PlannerOutcome::Exact(path))
         }
@@ -544,13 +557,13 @@ mod tests {
     }
 
     fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
-        let metric = Se2Metric::default();
+        let objective = PathLength::default();
         let planner = DetourPlanner {
             poses: poses.to_vec(),
             detours,
-            metric,
+            objective,
         };
-        let mut oracle = PathOracle::new(Arc::new(metric), Box::new(planner));
+        let mut oracle = PathOracle::new(Arc::new(objective), Box::new(planner));
         let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
         (oracle, nodes)
     }

@@ -4,7 +4,7 @@
 //! planner, so every query of a mission shares one roadmap.
 
 use crate::error::Result;
-use crate::metric::CostMetric;
+use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
 use crate::stages::{PlannerOutcome, PointToPointPlanner};
@@ -56,7 +56,7 @@ pub struct OracleStats {
 /// Lower bounds and lazily planned paths between registered poses.
 pub struct PathOracle {
     poses: Vec<Pose2>,
-    metric: Arc<dyn CostMetric>,
+    objective: Arc<dyn Objective>,
     planner: Box<dyn PointToPointPlanner>,
     cache: HashMap<(usize, usize), Arc<PlannedPath>>,
     symmetric: bool,
@@ -64,20 +64,21 @@ pub struct PathOracle {
 }
 
 impl PathOracle {
-    /// An oracle over `planner` (symmetric: a path i→j reversed serves j→i).
-    pub fn new(metric: Arc<dyn CostMetric>, planner: Box<dyn PointToPointPlanner>) -> Self {
+    /// An oracle over `planner`, with costs and bounds of `objective` (symmetric when
+    /// the objective is: a path i→j reversed serves j→i).
+    pub fn new(objective: Arc<dyn Objective>, planner: Box<dyn PointToPointPlanner>) -> Self {
         Self {
             poses: Vec::new(),
-            metric,
+            symmetric: objective.is_symmetric(),
+            objective,
             planner,
             cache: HashMap::new(),
-            symmetric: true,
             stats: OracleStats::default(),
         }
     }
 
-    /// Whether a path i→j reversed may serve j→i (true for undirected roadmaps and
-    /// symmetric metrics, the default).
+    /// Whether a path i→j reversed may serve j→i (true for undirected roadmaps,
+    /// symmetric spaces and symmetric objectives; default: the objective's symmetry).
     pub fn with_symmetry(mut self, symmetric: bool) -> Self {
         self.symmetric = symmetric;
         self
@@ -104,14 +105,19 @@ impl PathOracle {
         self.poses.is_empty()
     }
 
-    /// The metric.
-    pub fn metric(&self) -> &dyn CostMetric {
-        self.metric.as_ref()
+    /// The objective.
+    pub fn objective(&self) -> &dyn Objective {
+        self.objective.as_ref()
     }
 
-    /// Straight-line cost from `i` to `j`: a lower bound of any path's cost.
+    /// Whether a path i→j reversed serves j→i.
+    pub fn is_symmetric(&self) -> bool {
+        self.symmetric
+    }
+
+    /// The objective's bound from `i` to `j`: a lower bound of any path's cost.
     pub fn lower_bound(&self, i: usize, j: usize) -> f64 {
-        self.metric.distance(&self.poses[i], &self.poses[j])
+        self.objective.cost_bound(&self.poses[i], &self.poses[j])
     }
 
     /// True when the pair has been planned (in either direction if symmetric).
@@ -194,12 +200,12 @@ impl std::fmt::Debug for PathOracle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::metric::Se2Metric;
+    use crate::objective::PathLength;
     use crate::stages::PlannerStats;
 
     /// Connects everything with the straight line, except into pose index 2's position.
     struct StraightLine {
-        metric: Se2Metric,
+        objective: PathLength,
         calls: u64,
     }
 
@@ -211,7 +217,7 @@ mod tests {
             }
             Ok(PlannerOutcome::Exact(Path::new(
                 vec![*start, *goal],
-                &self.metric,
+                &self.objective,
             )))
         }
 
@@ -224,10 +230,13 @@ mod tests {
     }
 
     fn oracle() -> PathOracle {
-        let metric = Se2Metric::default();
+        let objective = PathLength::default();
         let mut oracle = PathOracle::new(
-            Arc::new(metric),
-            Box::new(StraightLine { metric, calls: 0 }),
+            Arc::new(objective),
+            Box::new(StraightLine {
+                objective,
+                calls: 0,
+            }),
         );
         oracle.add_pose(Pose2::new(0.0, 0.0, 0.0));
         oracle.add_pose(Pose2::new(3.0, 4.0, 1.0));

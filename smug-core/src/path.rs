@@ -1,27 +1,29 @@
 //! Paths: sequences of SE(2) states with their cost.
 
-use crate::metric::{polyline_cost, CostMetric};
+use crate::objective::Objective;
 use crate::pose::Pose2;
 use serde::{Deserialize, Serialize};
 
-/// A piecewise-straight path in SE(2) and its cost under the planning metric.
+/// A path in SE(2): states joined by the space's local motions, and its cost under the
+/// planning objective.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Path {
     /// States from start to goal.
     pub states: Vec<Pose2>,
-    /// Sum of the metric over consecutive states.
+    /// Sum of the objective's motion costs over consecutive states.
     pub cost: f64,
 }
 
 impl Path {
-    /// A path through `states`, its cost computed with `metric`.
-    pub fn new(states: Vec<Pose2>, metric: &dyn CostMetric) -> Self {
-        let cost = polyline_cost(metric, &states);
+    /// A path through `states`, its cost computed with `objective`.
+    pub fn new(states: Vec<Pose2>, objective: &dyn Objective) -> Self {
+        let cost = objective.path_cost(&states);
         Self { states, cost }
     }
 
-    /// The same path traversed backwards (same cost under a symmetric metric).
+    /// The same path traversed backwards (same cost under a symmetric objective and space;
+    /// the caller decides whether that holds).
     pub fn reversed(&self) -> Self {
         let mut states = self.states.clone();
         states.reverse();

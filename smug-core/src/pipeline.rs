@@ -3,14 +3,15 @@
 
 use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
 use crate::error::{Error, Result};
-use crate::metric::{CostMetric, Se2Metric};
 use crate::mission::Mission;
+use crate::objective::{Objective, PathLength};
 use crate::pose::Pose2;
 use crate::registry::{
-    Built, CostStage, MotionStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
-    Stage, TraversabilityStage, ValidityStage, WorldStage,
+    Built, MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
+    SpaceStage, Stage, TraversabilityStage, ValidityStage, WorldStage,
 };
 use crate::rng::{stage_rng, StageRng};
+use crate::space::{Se2Space, StateSpace};
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
 };
@@ -20,13 +21,20 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
+/// The message for a config that still has the `[cost]` section of earlier versions.
+const REMOVED_COST: &str =
+    "`[cost]` was split into `[space]` (the motion model and k-NN distance, \
+     e.g. type = \"se2\") and `[objective]` (what a path costs, e.g. type = \"path-length\"); \
+     both take the weights `translation_weight` and `rotation_weight`: move the section there";
+
 /// What a plugin's builder may use: the seed, the robot, and the stages built before it.
 #[derive(Clone)]
 pub struct BuildContext {
     seed: u64,
     robot: RobotConfig,
     sources: Arc<SourceMap>,
-    metric: Arc<dyn CostMetric>,
+    space: Arc<dyn StateSpace>,
+    objective: Arc<dyn Objective>,
     world: Option<Arc<World>>,
     state_validity: Option<Arc<dyn StateValidityChecker>>,
     motion_validator: Option<Arc<dyn MotionValidator>>,
@@ -35,14 +43,16 @@ pub struct BuildContext {
 }
 
 impl BuildContext {
-    /// A context with the default metric and nothing else built (for tests and
-    /// programmatic assembly; add stages with the `with_*` methods).
+    /// A context with the default space (`se2`) and objective (`path-length`) and
+    /// nothing else built (for tests and programmatic assembly; add stages with the
+    /// `with_*` methods).
     pub fn new(seed: u64, robot: RobotConfig) -> Self {
         Self {
             seed,
             robot,
             sources: Arc::new(SourceMap::default()),
-            metric: Arc::new(Se2Metric::default()),
+            space: Arc::new(Se2Space::default()),
+            objective: Arc::new(PathLength::default()),
             world: None,
             state_validity: None,
             motion_validator: None,
@@ -51,9 +61,15 @@ impl BuildContext {
         }
     }
 
-    /// Sets the cost metric.
-    pub fn with_metric(mut self, metric: Arc<dyn CostMetric>) -> Self {
-        self.metric = metric;
+    /// Sets the state space (motion model).
+    pub fn with_space(mut self, space: Arc<dyn StateSpace>) -> Self {
+        self.space = space;
+        self
+    }
+
+    /// Sets the objective.
+    pub fn with_objective(mut self, objective: Arc<dyn Objective>) -> Self {
+        self.objective = objective;
         self
     }
 
@@ -101,9 +117,14 @@ impl BuildContext {
         stage_rng(self.seed, stream)
     }
 
-    /// The cost metric.
-    pub fn metric(&self) -> Arc<dyn CostMetric> {
-        self.metric.clone()
+    /// The state space (motion model).
+    pub fn space(&self) -> Arc<dyn StateSpace> {
+        self.space.clone()
+    }
+
+    /// The objective.
+    pub fn objective(&self) -> Arc<dyn Objective> {
+        self.objective.clone()
     }
 
     /// The world, or an error naming the stage that needs it.
@@ -188,8 +209,10 @@ pub struct Pipeline {
     pub mission: Option<Mission>,
     /// PoIs left out because they are not valid for the robot.
     pub dropped_pois: Vec<DroppedPoi>,
-    /// The cost metric.
-    pub metric: Arc<dyn CostMetric>,
+    /// The state space (motion model).
+    pub space: Arc<dyn StateSpace>,
+    /// The objective (what paths cost).
+    pub objective: Arc<dyn Objective>,
     /// The state validity checker, if configured.
     pub state_validity: Option<Arc<dyn StateValidityChecker>>,
     /// The motion validator, if configured.
@@ -227,7 +250,8 @@ impl Pipeline {
             world: None,
             mission: None,
             dropped_pois: Vec::new(),
-            metric: ctx.metric(),
+            space: ctx.space(),
+            objective: ctx.objective(),
             state_validity: None,
             motion_validator: None,
             planner: None,
@@ -237,13 +261,19 @@ impl Pipeline {
             build_times_s: BTreeMap::new(),
             context: ctx.clone(),
         };
-        let cost = config
-            .cost
+        if config.cost.is_some() {
+            let key = KeyPath::dotted("cost");
+            return Err(loaded.sources.key_error(&key, REMOVED_COST).into());
+        }
+        let space_section = config
+            .space
             .clone()
-            .unwrap_or_else(|| PluginSection::new("cost", "se2"));
-        let metric: Arc<dyn CostMetric> = pipeline.build_stage::<CostStage>(&ctx, &cost)?.into();
-        ctx = ctx.with_metric(metric.clone());
-        pipeline.metric = metric;
+            .unwrap_or_else(|| PluginSection::new("space", "se2"));
+        let space: Arc<dyn StateSpace> = pipeline
+            .build_stage::<SpaceStage>(&ctx, &space_section)?
+            .into();
+        ctx = ctx.with_space(space.clone());
+        pipeline.space = space;
 
         let world = match (given_world, &config.world) {
             (Some(world), _) => Some(world),
@@ -267,6 +297,15 @@ impl Pipeline {
             ctx = ctx.with_world(world.clone());
             pipeline.world = Some(world);
         }
+        let objective_section = config
+            .objective
+            .clone()
+            .unwrap_or_else(|| PluginSection::new("objective", "path-length"));
+        let objective: Arc<dyn Objective> = pipeline
+            .build_stage::<ObjectiveStage>(&ctx, &objective_section)?
+            .into();
+        ctx = ctx.with_objective(objective.clone());
+        pipeline.objective = objective;
         if let Some(section) = &config.validity {
             let checker: Arc<dyn StateValidityChecker> =
                 pipeline.build_stage::<ValidityStage>(&ctx, section)?.into();

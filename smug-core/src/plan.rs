@@ -84,8 +84,11 @@ pub struct Plan {
     pub segments: Vec<Segment>,
     /// `[x, y, z, yaw]` from start to end, for a local planner.
     pub waypoints: Vec<Waypoint>,
-    /// Total cost under the planning metric.
+    /// Total cost under the planning objective.
     pub cost: f64,
+    /// Length, cost under every objective, and traversability along the plan.
+    #[serde(default)]
+    pub metrics: crate::evaluation::PlanMetrics,
     /// Targets left out (unreachable, with `skip_unreachable = true`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub skipped: Vec<String>,

@@ -4,13 +4,14 @@
 
 use crate::config::PluginSection;
 use crate::error::{RegistryError, Result};
+use crate::objective::Objective;
 use crate::pipeline::BuildContext;
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
     TraversabilityEstimator,
 };
 use crate::world::World;
-use crate::CostMetric;
+use crate::StateSpace;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -129,8 +130,12 @@ define_stage!(
     WorldStage, "world", "terrain maps and the mission", World
 );
 define_stage!(
-    /// Cost metrics on SE(2).
-    CostStage, "cost", "path cost metric on SE(2)", dyn CostMetric
+    /// State spaces (motion models): k-NN distance and local motions.
+    SpaceStage, "space", "motion model: k-NN distance and the local motion between states", dyn StateSpace
+);
+define_stage!(
+    /// Objectives: motion costs over the world's layers and admissible bounds.
+    ObjectiveStage, "objective", "cost of motions and paths, with an admissible lower bound", dyn Objective
 );
 define_stage!(
     /// Traversability estimators.
@@ -203,7 +208,8 @@ pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
     Ok(vec![
         stage_info::<WorldStage>()?,
         stage_info::<TraversabilityStage>()?,
-        stage_info::<CostStage>()?,
+        stage_info::<SpaceStage>()?,
+        stage_info::<ObjectiveStage>()?,
         stage_info::<ValidityStage>()?,
         stage_info::<MotionStage>()?,
         stage_info::<SamplerStage>()?,
@@ -323,10 +329,13 @@ mod tests {
     }
 
     #[test]
-    fn the_global_tables_hold_the_core_metric() {
-        let costs = CostStage::registry().unwrap();
-        assert!(costs.names().contains(&"se2"));
-        let params = (costs.get("se2").unwrap().default_params)();
+    fn the_global_tables_hold_the_core_space_and_objective() {
+        let spaces = SpaceStage::registry().unwrap();
+        assert!(spaces.names().contains(&"se2"));
+        let params = (spaces.get("se2").unwrap().default_params)();
+        assert_eq!(params["rotation_weight"].as_float(), Some(0.5));
+        let objectives = ObjectiveStage::registry().unwrap();
+        let params = (objectives.get("path-length").unwrap().default_params)();
         assert_eq!(params["rotation_weight"].as_float(), Some(0.5));
         assert!(catalogue().unwrap().iter().any(|s| s.stage == "planner"));
     }

@@ -8,9 +8,13 @@
 //!     }
 //! }
 //! ```
+//!
+//! Objective authors check their objective the same way with [`check_objective`] on
+//! random motions and [`check_objective_path`] on random multi-motion paths.
 
-use crate::metric::CostMetric;
+use crate::objective::Objective;
 use crate::pose::{angle_distance, Pose2};
+use crate::space::StateSpace;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::f64::consts::PI;
@@ -38,12 +42,86 @@ fn tolerance(scale: f64) -> f64 {
     TOL * (1.0 + scale.abs())
 }
 
+/// Checks the contract of an [`Objective`] on the motions between `a`, `b`, `c` of
+/// `space`, with `t` a split fraction: costs and bounds are ≥ 0; the bound is below the
+/// motion's cost and consistent (`bound(a, c) ≤ cost(a, b) + bound(b, c)`); costs and
+/// bounds respect the additive bound of `bound_weights`; a motion split at
+/// `space.interpolate(a, b, t)` costs what the whole motion costs, to within
+/// `split_tolerance` (relative: integrating objectives sample the terrain in pieces).
+pub fn check_objective(
+    objective: &dyn Objective,
+    space: &dyn StateSpace,
+    (a, b, c): (&Pose2, &Pose2, &Pose2),
+    t: f64,
+    split_tolerance: f64,
+) -> Result<(), TestCaseError> {
+    let (ab, bc) = (objective.motion_cost(a, b), objective.motion_cost(b, c));
+    let bound = |p: &Pose2, q: &Pose2| objective.cost_bound(p, q);
+    prop_assert!(
+        ab >= 0.0 && ab.is_finite(),
+        "motion cost {ab} is not finite and ≥ 0"
+    );
+    prop_assert!(bound(a, b) >= 0.0, "bound {} < 0", bound(a, b));
+    prop_assert!(
+        bound(a, b) <= ab + tolerance(ab),
+        "bound {} above the motion's cost {ab}",
+        bound(a, b)
+    );
+    prop_assert!(
+        bound(a, c) <= ab + bound(b, c) + tolerance(ab + bc),
+        "inconsistent bound: b(a, c) = {} > c(a, b) + b(b, c) = {}",
+        bound(a, c),
+        ab + bound(b, c)
+    );
+    let (w_t, w_r) = objective.bound_weights();
+    let additive = w_t * a.xy_distance(b) + w_r * angle_distance(a.yaw, b.yaw);
+    prop_assert!(
+        ab >= additive - tolerance(additive) && bound(a, b) >= additive - tolerance(additive),
+        "cost {ab} or bound {} below the weighted bound {additive}",
+        bound(a, b)
+    );
+    let mid = space.interpolate(a, b, t);
+    let split = objective.motion_cost(a, &mid) + objective.motion_cost(&mid, b);
+    prop_assert!(
+        (split - ab).abs() <= split_tolerance * (1.0 + ab),
+        "not additive: c(a, m) + c(m, b) = {split} vs c(a, b) = {ab}"
+    );
+    Ok(())
+}
+
+/// Checks that the objective's bound between the ends of the path through `states` is
+/// not above the path's cost, and that the path's cost is the sum of its motions'.
+pub fn check_objective_path(
+    objective: &dyn Objective,
+    states: &[Pose2],
+) -> Result<(), TestCaseError> {
+    let (Some(first), Some(last)) = (states.first(), states.last()) else {
+        return Ok(());
+    };
+    let cost = objective.path_cost(states);
+    let sum: f64 = states
+        .windows(2)
+        .map(|w| objective.motion_cost(&w[0], &w[1]))
+        .sum();
+    prop_assert!(
+        (cost - sum).abs() <= tolerance(sum),
+        "path cost {cost} ≠ Σ motions {sum}"
+    );
+    let bound = objective.cost_bound(first, last);
+    prop_assert!(
+        bound <= cost + tolerance(cost),
+        "bound {bound} above the cost {cost} of a {}-state path",
+        states.len()
+    );
+    Ok(())
+}
+
 /// Checks the axioms every SMUG cost metric must satisfy on the poses `a`, `b`, `c`
 /// and the interpolation fraction `t`: non-negativity, identity, symmetry, triangle
 /// inequality, the additive lower bound of `lower_bound_weights`, interpolation
 /// endpoints, and that interpolation splits the cost (`c(a, m) + c(m, b) = c(a, b)`).
 pub fn check_metric_axioms(
-    metric: &dyn CostMetric,
+    metric: &dyn StateSpace,
     a: &Pose2,
     b: &Pose2,
     c: &Pose2,

@@ -13,7 +13,7 @@
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use smug_core::{Bounds2, CostMetric, Pose2, Se2Metric};
+use smug_core::{Bounds2, PathLength, Pose2, Se2Space, StateSpace};
 use smug_planners::nn::XyGrid;
 use smug_planners::roadmap::{AStar, Evaluator, Roadmap, Validity};
 use std::f64::consts::PI;
@@ -46,12 +46,13 @@ fn random_poses(n: usize, seed: u64) -> Vec<Pose2> {
 }
 
 /// A roadmap of `n` valid vertices, each connected to its k nearest as LazyPRM* does.
-fn build_roadmap(poses: &[Pose2], metric: &Se2Metric) -> Roadmap {
+fn build_roadmap(poses: &[Pose2], metric: &Se2Space) -> Roadmap {
     let (w_t, _) = metric.lower_bound_weights();
+    let objective = PathLength::default();
     let mut map = Roadmap::new(BOUNDS);
     for pose in poses {
         let k = connection_k(map.live_vertex_count() + 1);
-        map.add_vertex(*pose, Validity::Valid, k, metric, w_t);
+        map.add_vertex(*pose, Validity::Valid, k, (metric, w_t), &objective);
     }
     map
 }
@@ -59,7 +60,7 @@ fn build_roadmap(poses: &[Pose2], metric: &Se2Metric) -> Roadmap {
 fn knn(c: &mut Criterion) {
     const N: usize = 20_000;
     const QUERIES: usize = 128;
-    let metric = Se2Metric::default();
+    let metric = Se2Space::default();
     let (w_t, _) = metric.lower_bound_weights();
     let poses = random_poses(N, 1);
     // Built as the roadmap builds it: coarse cells, refined as points arrive.
@@ -86,7 +87,7 @@ fn knn(c: &mut Criterion) {
 
 fn build(c: &mut Criterion) {
     const N: usize = 5_000;
-    let metric = Se2Metric::default();
+    let metric = Se2Space::default();
     let poses = random_poses(N, 3);
     let mut group = c.benchmark_group("roadmap");
     // Long iterations: the same number in every sample.
@@ -114,7 +115,7 @@ impl Evaluator for HiddenEdges {
 fn astar(c: &mut Criterion) {
     const N: usize = 5_000;
     const PAIRS: usize = 32;
-    let metric = Se2Metric::default();
+    let metric = Se2Space::default();
     let mut map = build_roadmap(&random_poses(N, 3), &metric);
     let mut rng = ChaCha8Rng::seed_from_u64(4);
     let pairs: Vec<(u32, u32)> = (0..PAIRS)
@@ -138,14 +139,21 @@ fn astar(c: &mut Criterion) {
     group.bench_function(format!("search/n={N}"), |b| {
         b.iter(|| {
             for &(s, g) in &pairs {
-                black_box(search.search(&map, s, g, &metric, f64::INFINITY));
+                black_box(search.search(&map, s, g, &PathLength::default(), f64::INFINITY));
             }
         })
     });
     group.bench_function(format!("search_lazy/n={N}/10%-invalid-edges"), |b| {
         b.iter(|| {
             for &(s, g) in &pairs {
-                black_box(search.search_lazy(&mut map, s, g, &metric, &mut hidden, f64::INFINITY));
+                black_box(search.search_lazy(
+                    &mut map,
+                    s,
+                    g,
+                    &PathLength::default(),
+                    &mut hidden,
+                    f64::INFINITY,
+                ));
             }
         })
     });

@@ -2,7 +2,7 @@
 //! sampler on one roadmap shared by every query of a mission.
 //!
 //! A query adds its endpoints to the roadmap (they stay), then repeats: A* on the
-//! roadmap with the metric as heuristic; check the unknown vertices, then the unknown
+//! roadmap with the objective's bound as heuristic; check the unknown vertices, then the unknown
 //! edges, of the candidate path; remove what is invalid; until a valid path is found or
 //! start and goal are disconnected. Between searches the roadmap grows by samples
 //! (informed once a path is known), each connected to its k nearest neighbours with
@@ -18,8 +18,8 @@ use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::{
-    Bounds2, BuildContext, CostMetric, Error, InformedSet, MotionCheck, MotionValidator, Path,
-    PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result, Sampler,
+    Bounds2, BuildContext, Error, InformedSet, MotionCheck, MotionValidator, Objective, Path,
+    PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace,
     StateValidityChecker, Termination, TimeBreakdown,
 };
 use std::collections::BTreeMap;
@@ -213,7 +213,8 @@ pub struct LazyPrmStar {
     sampler: Box<dyn Sampler>,
     states: Arc<dyn StateValidityChecker>,
     motions: Arc<dyn MotionValidator>,
-    metric: Arc<dyn CostMetric>,
+    space: Arc<dyn StateSpace>,
+    objective: Arc<dyn Objective>,
     bounds: Bounds2,
     w_t: f64,
     grown: bool,
@@ -235,7 +236,7 @@ impl LazyPrmStar {
         sampler: Box<dyn Sampler>,
         states: Arc<dyn StateValidityChecker>,
         motions: Arc<dyn MotionValidator>,
-        metric: Arc<dyn CostMetric>,
+        (space, objective): (Arc<dyn StateSpace>, Arc<dyn Objective>),
         bounds: Bounds2,
     ) -> Result<Self> {
         if !(params.improvement.is_finite() && (0.0..1.0).contains(&params.improvement)) {
@@ -258,7 +259,7 @@ impl LazyPrmStar {
         if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
         }
-        let (w_t, _) = metric.lower_bound_weights();
+        let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
             roadmap: Roadmap::new(bounds),
@@ -266,7 +267,8 @@ impl LazyPrmStar {
             sampler,
             states,
             motions,
-            metric,
+            space,
+            objective,
             bounds,
             w_t,
             grown: false,
@@ -317,9 +319,13 @@ impl LazyPrmStar {
     fn add_vertex(&mut self, pose: Pose2, validity: Validity) -> u32 {
         let started = Instant::now();
         let k = connection_k(self.roadmap.live_vertex_count() + 1);
-        let v = self
-            .roadmap
-            .add_vertex(pose, validity, k, self.metric.as_ref(), self.w_t);
+        let v = self.roadmap.add_vertex(
+            pose,
+            validity,
+            k,
+            (self.space.as_ref(), self.w_t),
+            self.objective.as_ref(),
+        );
         self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
         v
     }
@@ -366,7 +372,7 @@ impl LazyPrmStar {
         let started = Instant::now();
         let found = self
             .astar
-            .search(&self.roadmap, s, g, self.metric.as_ref(), bound);
+            .search(&self.roadmap, s, g, self.objective.as_ref(), bound);
         self.counts.searches += 1;
         self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
         found
@@ -387,7 +393,7 @@ impl LazyPrmStar {
             &mut self.roadmap,
             s,
             g,
-            self.metric.as_ref(),
+            self.objective.as_ref(),
             &mut checks,
             bound,
         );
@@ -409,7 +415,7 @@ impl LazyPrmStar {
         let fresh_from = self.fresh_from;
         let repaired = self
             .astar
-            .repair(&self.roadmap, s, g, fresh_from, self.metric.as_ref());
+            .repair(&self.roadmap, s, g, fresh_from, self.objective.as_ref());
         if repaired != Repair::NoBase {
             self.fresh_from = self.roadmap.vertex_count() as u32;
             self.counts.repairs += 1;
@@ -467,7 +473,7 @@ impl LazyPrmStar {
         let mut interval = self.params.attempt_every;
         let mut focus = Focus::new(
             self.params.focus,
-            self.metric.distance(start, goal),
+            self.objective.cost_bound(start, goal),
             self.whole_bounds_cost(start, goal),
             self.focus_period(),
         );
@@ -562,7 +568,7 @@ impl LazyPrmStar {
     /// A cost whose informed set holds the whole bounds: every corner's sum of
     /// distances to the foci, weighted, plus the rotational lower bound.
     fn whole_bounds_cost(&self, start: &Pose2, goal: &Pose2) -> f64 {
-        let (w_t, w_r) = self.metric.lower_bound_weights();
+        let (w_t, w_r) = self.objective.bound_weights();
         let [x0, y0] = self.bounds.min;
         let [x1, y1] = self.bounds.max;
         let farthest = [[x0, y0], [x0, y1], [x1, y0], [x1, y1]]
@@ -587,16 +593,28 @@ impl LazyPrmStar {
             .map(|&v| *self.roadmap.pose(v))
             .collect();
         let motions = CountedMotions::new(self.motions.as_ref());
-        let states = if self.params.smooth {
-            smooth(&states, &motions, self.metric.as_ref())
+        let processed = if self.params.smooth {
+            smooth(
+                &states,
+                &motions,
+                self.space.as_ref(),
+                self.objective.as_ref(),
+            )
         } else if self.params.shortcut {
             shortcut(&states, &motions)
         } else {
-            states
+            return Path::new(states, self.objective.as_ref());
         };
         self.counts.edge_checks += motions.checks.load(Relaxed);
         self.counts.breakdown.edge_checking_s += motions.nanoseconds.load(Relaxed) as f64 * 1e-9;
-        Path::new(states, self.metric.as_ref())
+        let processed = Path::new(processed, self.objective.as_ref());
+        // A shortcut never costs more under a metric objective; under others (risk,
+        // energy, time) a straighter path may cross costlier ground: keep the cheaper.
+        if processed.cost <= graph_path.cost * (1.0 + 1e-9) + 1e-12 {
+            processed
+        } else {
+            Path::new(states, self.objective.as_ref())
+        }
     }
 }
 
@@ -749,7 +767,7 @@ fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPr
         ctx.new_sampler()?,
         ctx.state_validity()?,
         ctx.motion_validator()?,
-        ctx.metric(),
+        (ctx.space(), ctx.objective()),
         bounds,
     )
 }
@@ -765,7 +783,7 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use smug_core::{MotionCheck, Se2Metric};
+    use smug_core::{MotionCheck, PathLength, Se2Space};
 
     /// Everything is valid.
     struct Free;
@@ -813,7 +831,10 @@ mod tests {
             Box::new(Lcg(7)),
             Arc::new(Free),
             Arc::new(Free),
-            Arc::new(Se2Metric::default()),
+            (
+                Arc::new(Se2Space::default()),
+                Arc::new(PathLength::default()),
+            ),
             Bounds2 {
                 min: [0.0, 0.0],
                 max: [10.0, 10.0],

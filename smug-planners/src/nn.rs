@@ -4,7 +4,7 @@
 //! order of growing xy distance until the ring's xy lower bound exceeds the current
 //! k-th best full distance: the result is exactly the k nearest.
 
-use smug_core::{Bounds2, CostMetric, Pose2};
+use smug_core::{Bounds2, Pose2, StateSpace};
 use std::cmp::Ordering;
 
 /// Points per bucket the grid aims for; it is rebuilt finer as points arrive.
@@ -222,7 +222,7 @@ impl XyGrid {
         q: &Pose2,
         k: usize,
         poses: &[Pose2],
-        metric: &dyn CostMetric,
+        metric: &dyn StateSpace,
         w_t: f64,
         exclude: Option<u32>,
     ) -> Vec<Neighbour> {
@@ -328,7 +328,7 @@ impl XyGrid {
 mod tests {
     use super::*;
     use proptest::prelude::*;
-    use smug_core::Se2Metric;
+    use smug_core::Se2Space;
 
     proptest! {
         #[test]
@@ -337,7 +337,7 @@ mod tests {
             q in (-2.0f64..22.0, -2.0f64..12.0, -3.0f64..3.0),
             k in 1usize..20, w_r in 0.0f64..3.0, cell in 0.05f64..5.0,
         ) {
-            let metric = Se2Metric::new(1.0, w_r).unwrap();
+            let metric = Se2Space::new(1.0, w_r).unwrap();
             let bounds = Bounds2 { min: [0.0, 0.0], max: [20.0, 10.0] };
             let poses: Vec<Pose2> = points.iter().map(|&(x, y, t)| Pose2::new(x, y, t)).collect();
             let mut grid = XyGrid::new(bounds, cell);
@@ -357,7 +357,7 @@ mod tests {
 
     #[test]
     fn removal_hides_ids() {
-        let metric = Se2Metric::default();
+        let metric = Se2Space::default();
         let bounds = Bounds2 {
             min: [0.0, 0.0],
             max: [10.0, 10.0],

@@ -2,7 +2,7 @@
 //! validity, compact adjacency, connected components and a reusable A*.
 
 use crate::nn::{from_total_order_key, total_order_key, XyGrid};
-use smug_core::{Bounds2, CostMetric, Pose2};
+use smug_core::{Bounds2, Objective, Pose2, StateSpace};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 use std::sync::atomic::{AtomicU64, Ordering as AtomicOrdering};
@@ -25,7 +25,8 @@ pub struct Edge {
     pub a: u32,
     /// The other end.
     pub b: u32,
-    /// Metric cost.
+    /// The objective's cost of the motion from `a` to `b` (the adjacency lists hold each
+    /// direction's cost).
     pub cost: f64,
     /// Cached validity.
     pub validity: Validity,
@@ -119,19 +120,18 @@ impl Roadmap {
     }
 
     /// Adds a vertex with known `validity` and connects it to its `k` nearest live
-    /// vertices; returns its id.
+    /// vertices under `space` (`w_t`: its xy lower-bound weight), with edge costs from
+    /// `objective` in each direction; returns its id.
     pub fn add_vertex(
         &mut self,
         pose: Pose2,
         validity: Validity,
         k: usize,
-        metric: &dyn CostMetric,
-        w_t: f64,
+        (space, w_t): (&dyn StateSpace, f64),
+        objective: &dyn Objective,
     ) -> u32 {
         let id = self.poses.len() as u32;
-        let neighbours = self
-            .grid
-            .k_nearest(&pose, k, &self.poses, metric, w_t, None);
+        let neighbours = self.grid.k_nearest(&pose, k, &self.poses, space, w_t, None);
         self.poses.push(pose);
         self.vertex_validity.push(validity);
         // Later vertices connect to this one too: room for about as many again.
@@ -141,24 +141,33 @@ impl Roadmap {
         self.components.push();
         self.grid.insert(id, &pose, &self.poses);
         self.by_pose.insert(pose_key(&pose), id);
+        let symmetric = objective.is_symmetric();
         for n in neighbours {
-            self.add_edge(id, n.id, n.distance);
+            let other = self.poses[n.id as usize];
+            let there = objective.motion_cost(&pose, &other);
+            let back = if symmetric {
+                there
+            } else {
+                objective.motion_cost(&other, &pose)
+            };
+            self.add_edge(id, n.id, there, back);
         }
         id
     }
 
-    fn add_edge(&mut self, a: u32, b: u32, cost: f64) {
+    /// Adds the edge `a — b` with the costs of `a → b` and `b → a`.
+    fn add_edge(&mut self, a: u32, b: u32, there: f64, back: f64) {
         let e = self.edges.len() as u32;
         self.edges.push(Edge {
             a,
             b,
-            cost,
+            cost: there,
             validity: Validity::Unknown,
         });
         self.adjacency[a as usize].push((b, e));
         self.adjacency[b as usize].push((a, e));
-        self.adjacent_costs[a as usize].push(cost);
-        self.adjacent_costs[b as usize].push(cost);
+        self.adjacent_costs[a as usize].push(there);
+        self.adjacent_costs[b as usize].push(back);
         self.components.union(a, b);
         self.live_edges += 1;
     }
@@ -418,32 +427,32 @@ struct Marks {
     closed: u32,
 }
 
-/// What the cached heuristic values depend on: the roadmap, the goal and the metric
-/// (by address and weights).
+/// What the cached heuristic values depend on: the roadmap, the goal and the
+/// objective (by address and bound weights).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct HeuristicKey {
     roadmap: u64,
     goal: u32,
-    metric_address: usize,
-    metric_weights: (u64, u64),
+    objective_address: usize,
+    objective_weights: (u64, u64),
 }
 
 impl HeuristicKey {
-    fn new(map: &Roadmap, goal: u32, metric: &dyn CostMetric) -> Self {
-        let (w_t, w_r) = metric.lower_bound_weights();
+    fn new(map: &Roadmap, goal: u32, objective: &dyn Objective) -> Self {
+        let (w_t, w_r) = objective.bound_weights();
         Self {
             roadmap: map.id,
             goal,
-            metric_address: metric as *const dyn CostMetric as *const () as usize,
-            metric_weights: (w_t.to_bits(), w_r.to_bits()),
+            objective_address: objective as *const dyn Objective as *const () as usize,
+            objective_weights: (w_t.to_bits(), w_r.to_bits()),
         }
     }
 }
 
 /// A* with buffers reused across searches (generation stamps instead of clearing).
 ///
-/// The heuristic `metric(v, goal)` of each vertex is computed once and kept while the
-/// searches go to the same goal on the same roadmap with the same metric (LazyPRM*
+/// The heuristic `objective.cost_bound(v, goal)` of each vertex is computed once and kept while the
+/// searches go to the same goal on the same roadmap with the same objective (LazyPRM*
 /// searches each query's roadmap many times); vertex poses never change, so the cached
 /// values are exactly the ones recomputing would give.
 #[derive(Default)]
@@ -503,7 +512,7 @@ impl AStar {
         self.settled_for(map, start, goal).map(|b| b.cost)
     }
 
-    /// The cheapest path from `start` to `goal` over the live edges, with the metric
+    /// The cheapest path from `start` to `goal` over the live edges, with the objective's bound
     /// as (admissible, consistent) heuristic; `None` when disconnected or when every
     /// path costs more than `bound` (`f64::INFINITY`: no bound). Vertices whose
     /// estimate exceeds `bound` are never opened, so a bound from a known path (the
@@ -513,13 +522,13 @@ impl AStar {
         map: &Roadmap,
         start: u32,
         goal: u32,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
         bound: f64,
     ) -> Option<GraphPath> {
-        let marks = self.prepare(map, goal, metric);
+        let marks = self.prepare(map, goal, objective);
         self.settled = None;
         let goal_pose = *map.pose(goal);
-        let f_start = self.heuristic(map, start, &goal_pose, metric);
+        let f_start = self.heuristic(map, start, &goal_pose, objective);
         let record = &mut self.records[start as usize];
         (record.mark, record.g, record.parent) = (marks.open, 0.0, NO_PARENT);
         self.heap.push(Candidate::new(f_start, 0.0, start));
@@ -542,7 +551,7 @@ impl AStar {
                 return Some(self.trace(start, goal));
             }
             self.expansions += 1;
-            self.relax_neighbours(map, v, g, &goal_pose, metric, marks, bound);
+            self.relax_neighbours(map, v, g, &goal_pose, objective, marks, bound);
         }
         None
     }
@@ -560,12 +569,12 @@ impl AStar {
         start: u32,
         goal: u32,
         fresh_from: u32,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
     ) -> Repair {
         if self.settled_for(map, start, goal).is_none() {
             return Repair::NoBase;
         }
-        let open = self.prepare(map, goal, metric).open;
+        let open = self.prepare(map, goal, objective).open;
         // `prepare` forgets the base when the marks wrap around.
         let Some(base) = self.settled_for(map, start, goal) else {
             return Repair::NoBase;
@@ -587,7 +596,7 @@ impl AStar {
                         (a, settled.g),
                         (u, e, cost),
                         &goal_pose,
-                        metric,
+                        objective,
                         marks,
                         base.cost,
                     );
@@ -612,7 +621,7 @@ impl AStar {
                     (v, g),
                     (w, e, cost),
                     &goal_pose,
-                    metric,
+                    objective,
                     marks,
                     base.cost,
                 );
@@ -632,7 +641,7 @@ impl AStar {
         (v, g): (u32, f64),
         (w, e, cost): (u32, u32, f64),
         goal_pose: &Pose2,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
         marks: Marks,
         bound: f64,
     ) {
@@ -643,7 +652,7 @@ impl AStar {
             return;
         }
         let h = cached_heuristic(record, self.h_stamp, || {
-            metric.distance(map.pose(w), goal_pose)
+            objective.cost_bound(map.pose(w), goal_pose)
         });
         if candidate + h >= bound {
             return;
@@ -661,7 +670,7 @@ impl AStar {
         v: u32,
         g: f64,
         goal_pose: &Pose2,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
         marks: Marks,
         bound: f64,
     ) {
@@ -673,7 +682,7 @@ impl AStar {
             let candidate = g + cost;
             if record.mark != marks.open || candidate < record.g {
                 let h = cached_heuristic(record, self.h_stamp, || {
-                    metric.distance(map.pose(w), goal_pose)
+                    objective.cost_bound(map.pose(w), goal_pose)
                 });
                 if candidate + h > bound {
                     continue;
@@ -693,16 +702,16 @@ impl AStar {
         map: &mut Roadmap,
         start: u32,
         goal: u32,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
         evaluator: &mut dyn Evaluator,
         bound: f64,
     ) -> Option<GraphPath> {
-        let marks = self.prepare(map, goal, metric);
+        let marks = self.prepare(map, goal, objective);
         self.settled = None;
         let goal_pose = *map.pose(goal);
         let mut open = std::mem::take(&mut self.lazy_heap);
         open.clear();
-        let h0 = self.heuristic(map, start, &goal_pose, metric);
+        let h0 = self.heuristic(map, start, &goal_pose, objective);
         open.push(Open {
             f: h0,
             g: 0.0,
@@ -728,7 +737,7 @@ impl AStar {
                 break;
             }
             self.expansions += 1;
-            self.push_lazy_successors(&mut open, map, v, g, &goal_pose, metric, marks, bound);
+            self.push_lazy_successors(&mut open, map, v, g, &goal_pose, objective, marks, bound);
         }
         self.lazy_heap = open;
         found
@@ -745,7 +754,7 @@ impl AStar {
         v: u32,
         g: f64,
         goal_pose: &Pose2,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
         marks: Marks,
         bound: f64,
     ) {
@@ -760,7 +769,7 @@ impl AStar {
                 continue;
             }
             let h = cached_heuristic(record, self.h_stamp, || {
-                metric.distance(map.pose(w), goal_pose)
+                objective.cost_bound(map.pose(w), goal_pose)
             });
             if candidate + h > bound {
                 continue;
@@ -778,14 +787,14 @@ impl AStar {
     }
 
     /// Sizes the records for `map`, starts a new search generation (and a new heuristic
-    /// stamp when the goal, roadmap or metric changed); returns the search's marks.
-    fn prepare(&mut self, map: &Roadmap, goal: u32, metric: &dyn CostMetric) -> Marks {
+    /// stamp when the goal, roadmap or objective changed); returns the search's marks.
+    fn prepare(&mut self, map: &Roadmap, goal: u32, objective: &dyn Objective) -> Marks {
         let n = map.vertex_count();
         if self.records.len() < n {
             self.records.resize(n, VertexRecord::default());
         }
         self.heap.clear();
-        let key = HeuristicKey::new(map, goal, metric);
+        let key = HeuristicKey::new(map, goal, objective);
         if self.heuristic_key != Some(key) {
             self.heuristic_key = Some(key);
             self.next_heuristic_stamp();
@@ -822,10 +831,10 @@ impl AStar {
         map: &Roadmap,
         v: u32,
         goal_pose: &Pose2,
-        metric: &dyn CostMetric,
+        objective: &dyn Objective,
     ) -> f64 {
         cached_heuristic(&mut self.records[v as usize], self.h_stamp, || {
-            metric.distance(map.pose(v), goal_pose)
+            objective.cost_bound(map.pose(v), goal_pose)
         })
     }
 
@@ -893,7 +902,7 @@ pub fn dijkstra(map: &Roadmap, start: u32) -> Vec<f64> {
 mod tests {
     use super::*;
     use proptest::prelude::*;
-    use smug_core::Se2Metric;
+    use smug_core::{PathLength, Se2Space};
 
     proptest! {
         #[test]
@@ -902,23 +911,24 @@ mod tests {
             removed in proptest::collection::vec(0usize..2000, 0..60),
             k in 1usize..8, goal_pick in 0usize..1000, slack in prop_oneof![Just(0.0), 0.0f64..5.0],
         ) {
-            let metric = Se2Metric::default();
+            let metric = Se2Space::default();
+            let objective = PathLength::default();
             let mut map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
             for &(x, y, t) in &points {
-                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
             }
             for r in removed {
                 if r < map.edges.len() { map.remove_edge(r as u32); }
             }
             let goal = (goal_pick % map.vertex_count()) as u32;
             let dist = dijkstra(&map, 0);
-            let found = AStar::default().search(&map, 0, goal, &metric, f64::INFINITY);
+            let found = AStar::default().search(&map, 0, goal, &objective, f64::INFINITY);
             // A bound at or above the shortest cost changes nothing; below it, no path.
             let exact = dist[goal as usize];
             let mut bounded = AStar::default();
-            prop_assert_eq!(bounded.search(&map, 0, goal, &metric, exact * (1.0 + 1e-9) + slack), found.clone());
+            prop_assert_eq!(bounded.search(&map, 0, goal, &objective, exact * (1.0 + 1e-9) + slack), found.clone());
             if exact > 0.0 {
-                prop_assert_eq!(bounded.search(&map, 0, goal, &metric, exact * (1.0 - 1e-9) - 1e-9), None);
+                prop_assert_eq!(bounded.search(&map, 0, goal, &objective, exact * (1.0 - 1e-9) - 1e-9), None);
             }
             match found {
                 None => prop_assert!(dist[goal as usize].is_infinite()),
@@ -943,23 +953,24 @@ mod tests {
                 proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 1..6), 1..6),
             k in 1usize..8, goal_pick in 0usize..1000,
         ) {
-            let metric = Se2Metric::default();
+            let metric = Se2Space::default();
+            let objective = PathLength::default();
             let mut map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
             for &(x, y, t) in &points {
-                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
             }
             let goal = (goal_pick % map.vertex_count()) as u32;
             let mut incremental = AStar::default();
-            let Some(mut best) = incremental.search(&map, 0, goal, &metric, f64::INFINITY) else {
+            let Some(mut best) = incremental.search(&map, 0, goal, &objective, f64::INFINITY) else {
                 return Ok(());
             };
             for batch in batches {
                 let fresh_from = map.vertex_count() as u32;
                 for &(x, y, t) in &batch {
-                    map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                    map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
                 }
-                let again = AStar::default().search(&map, 0, goal, &metric, f64::INFINITY).unwrap();
-                match incremental.repair(&map, 0, goal, fresh_from, &metric) {
+                let again = AStar::default().search(&map, 0, goal, &objective, f64::INFINITY).unwrap();
+                match incremental.repair(&map, 0, goal, fresh_from, &objective) {
                     Repair::Cheaper(path) => {
                         prop_assert!(path.cost < best.cost);
                         prop_assert!((path.cost - again.cost).abs() <= 1e-9 * again.cost);
@@ -977,7 +988,7 @@ mod tests {
             // A removal ends the base: the next attempt must search.
             if let Some(&e) = best.edges.first() {
                 map.remove_edge(e);
-                prop_assert_eq!(incremental.repair(&map, 0, goal, map.vertex_count() as u32, &metric), Repair::NoBase);
+                prop_assert_eq!(incremental.repair(&map, 0, goal, map.vertex_count() as u32, &objective), Repair::NoBase);
             }
         }
     }
@@ -1045,15 +1056,16 @@ mod tests {
             validity in proptest::collection::vec(proptest::bool::weighted(0.7), 2000),
             k in 1usize..8, goal_pick in 0usize..1000, bounded: bool,
         ) {
-            let metric = Se2Metric::default();
+            let metric = Se2Space::default();
+            let objective = PathLength::default();
             let mut lazy = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
             for &(x, y, t) in &points {
-                lazy.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                lazy.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
             }
             let goal = (goal_pick % lazy.vertex_count()) as u32;
             let mut truth = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
             for &(x, y, t) in &points {
-                truth.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, &metric, 1.0);
+                truth.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
             }
             for e in 0..truth.edges.len() {
                 if !validity[e % validity.len()] { truth.remove_edge(e as u32); }
@@ -1062,7 +1074,7 @@ mod tests {
             let best = dijkstra(&truth, 0)[goal as usize];
             // A bound from a known valid path (at or above the cheapest) changes nothing.
             let bound = if bounded { best * (1.0 + 1e-9) } else { f64::INFINITY };
-            let found = AStar::default().search_lazy(&mut lazy, 0, goal, &metric, &mut Hidden(hidden), bound);
+            let found = AStar::default().search_lazy(&mut lazy, 0, goal, &objective, &mut Hidden(hidden), bound);
             match found {
                 None => prop_assert!(best.is_infinite()),
                 Some(path) => {

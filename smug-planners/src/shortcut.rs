@@ -1,6 +1,7 @@
 //! Greedy shortcutting: from each kept state, jump to the farthest later state that
-//! the motion validator accepts. Under a metric the cost never rises (triangle
-//! inequality), and every new segment is checked, so the path stays valid.
+//! the motion validator accepts. Under a metric objective the cost never rises
+//! (triangle inequality); under others the planner keeps the cheaper of the path and
+//! its shortcut. Every new segment is checked, so the path stays valid.
 //!
 //! [`shortcut_galloping`] finds a far jump by galloping instead (try 1, 2, 4… states
 //! ahead until a segment is invalid), then bisecting between the last valid and the
@@ -17,7 +18,7 @@
 //! steps only replace a part of the path by a cheaper one whose segments the motion
 //! validator accepts, so the cost never rises and the path stays valid.
 
-use smug_core::{CostMetric, MotionValidator, Pose2};
+use smug_core::{MotionValidator, Objective, Pose2, StateSpace};
 
 /// Rounds of [`smooth`] at most (each: one shortcut pass and one corner-cutting pass).
 const SMOOTH_ROUNDS: usize = 8;
@@ -99,13 +100,14 @@ fn bisect_jump(mut valid: usize, mut invalid: usize, reaches: impl Fn(usize) -> 
 pub fn smooth(
     states: &[Pose2],
     motions: &dyn MotionValidator,
-    metric: &dyn CostMetric,
+    space: &dyn StateSpace,
+    objective: &dyn Objective,
 ) -> Vec<Pose2> {
     let mut path = shortcut_galloping(states, motions);
-    let mut cost = path_cost(&path, metric);
+    let mut cost = objective.path_cost(&path);
     for _ in 0..SMOOTH_ROUNDS {
-        let next = shortcut_galloping(&cut_corners(&path, motions, metric), motions);
-        let next_cost = path_cost(&next, metric);
+        let next = shortcut_galloping(&cut_corners(&path, motions, space, objective), motions);
+        let next_cost = objective.path_cost(&next);
         if next_cost >= cost {
             break;
         }
@@ -119,22 +121,16 @@ pub fn smooth(
     path
 }
 
-/// The sum of the metric over consecutive states.
-fn path_cost(states: &[Pose2], metric: &dyn CostMetric) -> f64 {
-    states
-        .windows(2)
-        .map(|w| metric.distance(&w[0], &w[1]))
-        .sum()
-}
-
 /// One pass of corner cutting: every interior state `v` (between the last kept state
 /// `a` and the next state `b`) becomes `p = v + t(a − v)`, `q = v + t(b − v)` with the
 /// largest `t` found by bisection for which `a → p`, `p → q` and `q → b` are valid and
-/// cheaper than `a → v → b`; it stays when no such `t` is found.
+/// cheaper than `a → v → b` under `objective` (`p`, `q` on the space's motions); it
+/// stays when no such `t` is found.
 fn cut_corners(
     states: &[Pose2],
     motions: &dyn MotionValidator,
-    metric: &dyn CostMetric,
+    space: &dyn StateSpace,
+    objective: &dyn Objective,
 ) -> Vec<Pose2> {
     if states.len() <= 2 {
         return states.to_vec();
@@ -142,10 +138,11 @@ fn cut_corners(
     let mut out = vec![states[0]];
     for i in 1..states.len() - 1 {
         let (a, v, b) = (out[out.len() - 1], states[i], states[i + 1]);
-        let corner = metric.distance(&a, &v) + metric.distance(&v, &b);
+        let cost = |x: &Pose2, y: &Pose2| objective.motion_cost(x, y);
+        let corner = cost(&a, &v) + cost(&v, &b);
         let cut = |t: f64| {
-            let (p, q) = (metric.interpolate(&v, &a, t), metric.interpolate(&v, &b, t));
-            let cost = metric.distance(&a, &p) + metric.distance(&p, &q) + metric.distance(&q, &b);
+            let (p, q) = (space.interpolate(&v, &a, t), space.interpolate(&v, &b, t));
+            let cost = cost(&a, &p) + cost(&p, &q) + cost(&q, &b);
             (cost < corner
                 && motions.is_valid_motion(&p, &q)
                 && motions.is_valid_motion(&a, &p)
@@ -178,7 +175,17 @@ fn cut_corners(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use smug_core::MotionCheck;
+    use smug_core::objective::PathLengthParams;
+    use smug_core::{MotionCheck, PathLength};
+
+    /// The path length objective with yaw weight `w_r`.
+    fn length(w_r: f64) -> PathLength {
+        PathLength::from_params(PathLengthParams {
+            translation_weight: 1.0,
+            rotation_weight: w_r,
+        })
+        .unwrap()
+    }
 
     /// Motions are valid unless they cross the wall `x = 5` above `y = 1`.
     struct Wall;
@@ -230,15 +237,16 @@ mod tests {
 
     #[test]
     fn smoothing_pulls_the_detour_taut_around_the_wall_foot() {
-        let metric = smug_core::Se2Metric::new(1.0, 0.0).unwrap();
+        let space = smug_core::Se2Space::new(1.0, 0.0).unwrap();
+        let metric = length(0.0);
         let mut states: Vec<Pose2> = (0..=8)
             .map(|k| Pose2::new(1.0, 8.0 - k as f64, 0.0))
             .collect();
         states.push(Pose2::new(5.0, 0.0, 0.0));
         states.extend((0..=8).map(|k| Pose2::new(9.0, k as f64, 0.0)));
-        let smooth = smooth(&states, &Wall, &metric);
+        let smooth = smooth(&states, &Wall, &space, &metric);
         let taut = 2.0 * (4.0f64).hypot(7.0); // through the wall's foot (5, 1)
-        let cost = path_cost(&smooth, &metric);
+        let cost = metric.path_cost(&smooth);
         assert!(
             cost >= taut - 1e-9 && cost <= 1.01 * taut,
             "{cost} vs {taut}"
@@ -282,7 +290,8 @@ mod tests {
             yaw_weight in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0..1.0f64],
         ) {
             let motions = Discs(discs.into_iter().map(|((x, y), r)| ([x, y], r)).collect());
-            let metric = smug_core::Se2Metric::new(1.0, yaw_weight).unwrap();
+            let space = smug_core::Se2Space::new(1.0, yaw_weight).unwrap();
+            let metric = length(yaw_weight);
             // A valid input path: the random walk's states, keeping only valid segments.
             let mut states = vec![Pose2::new(walk[0].0, walk[0].1, walk[0].2)];
             for &(x, y, yaw) in &walk[1..] {
@@ -295,13 +304,13 @@ mod tests {
                 let short = f(&states, &motions);
                 proptest::prop_assert_eq!(short.first(), states.first());
                 proptest::prop_assert_eq!(short.last(), states.last());
-                proptest::prop_assert!(path_cost(&short, &metric) <= path_cost(&states, &metric) + 1e-9);
+                proptest::prop_assert!(metric.path_cost(&short) <= metric.path_cost(&states) + 1e-9);
             }
-            let smooth = smooth(&states, &motions, &metric);
+            let smooth = smooth(&states, &motions, &space, &metric);
             proptest::prop_assert_eq!(smooth.first(), states.first());
             proptest::prop_assert_eq!(smooth.last(), states.last());
             proptest::prop_assert!(smooth.windows(2).all(|w| motions.is_valid_motion(&w[0], &w[1])));
-            proptest::prop_assert!(path_cost(&smooth, &metric) <= path_cost(&states, &metric) + 1e-9);
+            proptest::prop_assert!(metric.path_cost(&smooth) <= metric.path_cost(&states) + 1e-9);
         }
     }
 }

@@ -16,7 +16,7 @@ use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
 use smug_core::{
-    Bounds2, BuildContext, CostMetric, Error, InformedSet, Pose2, Sampler, StateValidityChecker,
+    Bounds2, BuildContext, Error, InformedSet, Objective, Pose2, Sampler, StateValidityChecker,
 };
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -76,11 +76,11 @@ pub struct BridgeSampler {
 }
 
 impl BridgeSampler {
-    /// A sampler for `metric` checking bridges with `states`; `base_rng` drives the
-    /// informed part, `bridge_rng` the bridges.
+    /// A sampler for the informed sets of `objective` checking bridges with `states`;
+    /// `base_rng` drives the informed part, `bridge_rng` the bridges.
     pub fn new(
         params: BridgeParams,
-        metric: Arc<dyn CostMetric>,
+        objective: Arc<dyn Objective>,
         states: Arc<dyn StateValidityChecker>,
         base_rng: StageRng,
         bridge_rng: StageRng,
@@ -91,8 +91,8 @@ impl BridgeSampler {
         };
         Ok(Self {
             params,
-            weights: metric.lower_bound_weights(),
-            base: InformedSampler::new(informed, metric, base_rng),
+            weights: objective.bound_weights(),
+            base: InformedSampler::new(informed, objective, base_rng),
             rng: bridge_rng,
             states,
         })
@@ -164,7 +164,7 @@ impl Sampler for BridgeSampler {
 fn build_bridge(params: BridgeParams, ctx: &BuildContext) -> Result<BridgeSampler, Error> {
     BridgeSampler::new(
         params,
-        ctx.metric(),
+        ctx.objective(),
         ctx.state_validity()?,
         ctx.rng("sampler"),
         ctx.rng("sampler-bridge"),
@@ -182,8 +182,8 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use smug_core::objective::PathLength;
     use smug_core::rng::stage_rng;
-    use smug_core::Se2Metric;
 
     /// A 10 × 10 m map split by a wall `x ∈ [4.6, 5.4]` with a door `y ∈ [4.7, 5.3]`.
     struct WallWithDoor;
@@ -206,7 +206,7 @@ mod tests {
     fn sampler(params: BridgeParams, seed: u64) -> BridgeSampler {
         BridgeSampler::new(
             params,
-            Arc::new(Se2Metric::default()),
+            Arc::new(PathLength::default()),
             Arc::new(WallWithDoor),
             stage_rng(seed, "sampler"),
             stage_rng(seed, "sampler-bridge"),

@@ -3,7 +3,7 @@
 //! A state `x` can improve a path from `s1` to `s2` of cost `c_best` only if
 //! `w_t(‖xy − xy1‖ + ‖xy − xy2‖) < c_best − w_r·d(yaw1, yaw2)`: an ellipse with foci
 //! `xy1`, `xy2` and transverse diameter `(c_best − w_r·d(yaw1, yaw2)) / w_t`, where
-//! `(w_t, w_r)` are the metric's lower-bound weights. Samples are uniform in that
+//! `(w_t, w_r)` are the objective's bound weights. Samples are uniform in that
 //! ellipse intersected with the map bounds (exactly: by rejection from whichever of
 //! the ellipse and the bounds is smaller), yaw uniform.
 
@@ -12,7 +12,7 @@ use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::rng::StageRng;
-use smug_core::{Bounds2, CostMetric, InformedSet, Pose2, Sampler};
+use smug_core::{Bounds2, InformedSet, Objective, Pose2, Sampler};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -124,11 +124,11 @@ pub struct InformedSampler {
 }
 
 impl InformedSampler {
-    /// A sampler for `metric` drawing from `rng`.
-    pub fn new(params: InformedParams, metric: Arc<dyn CostMetric>, rng: StageRng) -> Self {
+    /// A sampler for the informed sets of `objective` (its bound weights) drawing from `rng`.
+    pub fn new(params: InformedParams, objective: Arc<dyn Objective>, rng: StageRng) -> Self {
         Self {
             rng,
-            weights: metric.lower_bound_weights(),
+            weights: objective.bound_weights(),
             max_attempts: params.max_attempts.max(1),
         }
     }
@@ -192,7 +192,7 @@ smug_core::register_plugin!(
     params = InformedParams,
     build = |params, ctx| Ok(Box::new(InformedSampler::new(
         params,
-        ctx.metric(),
+        ctx.objective(),
         ctx.rng("sampler")
     ))),
 );
@@ -201,11 +201,19 @@ smug_core::register_plugin!(
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    use smug_core::objective::{PathLength, PathLengthParams};
     use smug_core::rng::stage_rng;
-    use smug_core::Se2Metric;
+
+    fn length(w_t: f64, w_r: f64) -> PathLength {
+        PathLength::from_params(PathLengthParams {
+            translation_weight: w_t,
+            rotation_weight: w_r,
+        })
+        .unwrap()
+    }
 
     fn sampler(w_t: f64, w_r: f64, seed: u64) -> InformedSampler {
-        let metric = Arc::new(Se2Metric::new(w_t, w_r).unwrap());
+        let metric = Arc::new(length(w_t, w_r));
         InformedSampler::new(
             InformedParams::default(),
             metric,
@@ -227,8 +235,8 @@ mod tests {
             clip in 0.0f64..8.0,
         ) {
             let (start, goal) = (Pose2::new(x1, y1, yaw1), Pose2::new(x2, y2, yaw2));
-            let metric = Se2Metric::new(w_t, w_r).unwrap();
-            let set = InformedSet { start, goal, best_cost: metric.distance(&start, &goal) + slack };
+            let metric = length(w_t, w_r);
+            let set = InformedSet { start, goal, best_cost: metric.motion_cost(&start, &goal) + slack };
             let bounds = Bounds2 { min: [-10.0 + clip, -10.0], max: [10.0, 10.0 - clip] };
             let mut s = sampler(w_t, w_r, seed);
             for _ in 0..50 {
@@ -287,11 +295,11 @@ mod tests {
         // Map samples back to the unit disc: uniform there means r² and the angle are
         // uniform and independent. 10×8 bins, 40 000 samples, fixed seed.
         let (start, goal) = (Pose2::new(-3.0, 1.0, 0.3), Pose2::new(5.0, 4.0, -2.0));
-        let metric = Se2Metric::default();
+        let metric = PathLength::default();
         let set = InformedSet {
             start,
             goal,
-            best_cost: metric.distance(&start, &goal) * 1.3,
+            best_cost: metric.motion_cost(&start, &goal) * 1.3,
         };
         let ellipse = InformedEllipse::new(&set, 1.0, 0.5).unwrap();
         let mut s = sampler(1.0, 0.5, 42);

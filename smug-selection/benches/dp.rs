@@ -15,8 +15,8 @@ use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use smug_core::{
-    CostMetric, Path, PathOracle, PlannerOutcome, PlannerStats, PoiSelector, PointToPointPlanner,
-    Pose2, Result, Se2Metric, SelectionProblem,
+    Objective, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PoiSelector,
+    PointToPointPlanner, Pose2, Result, SelectionProblem,
 };
 use smug_selection::{DpSelector, IdpSelector};
 use std::collections::HashMap;
@@ -66,7 +66,7 @@ struct Fixture {
 impl Fixture {
     fn new(seed: u64) -> Self {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let metric = Se2Metric::default();
+        let metric = PathLength::default();
         let start = Pose2::new(1.0, 1.0, 0.0);
         let stones: Vec<(f64, f64)> = (0..TARGETS)
             .map(|_| (rng.random_range(2.0..28.0), rng.random_range(2.0..27.0)))
@@ -113,7 +113,7 @@ impl Fixture {
                 } else {
                     rng.random_range(1.0..1.5)
                 };
-                let cost = metric.distance(&poses[i], &poses[j]) * detour;
+                let cost = metric.motion_cost(&poses[i], &poses[j]) * detour;
                 costs[i * n + j] = cost;
                 costs[j * n + i] = cost;
             }
@@ -143,7 +143,7 @@ impl Fixture {
             costs: self.costs.clone(),
             n: self.poses.len(),
         };
-        let mut oracle = PathOracle::new(Arc::new(Se2Metric::default()), Box::new(planner));
+        let mut oracle = PathOracle::new(Arc::new(PathLength::default()), Box::new(planner));
         for p in &self.poses {
             oracle.add_pose(*p);
         }

@@ -103,7 +103,7 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use smug_core::{Path, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Se2Metric};
+    use smug_core::{Path, PathLength, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2};
     use std::sync::Arc;
 
     /// Straight lines, except that nothing reaches x = 9.
@@ -116,7 +116,7 @@ mod tests {
             }
             Ok(PlannerOutcome::Exact(Path::new(
                 vec![*a, *b],
-                &Se2Metric::default(),
+                &PathLength::default(),
             )))
         }
 
@@ -127,7 +127,7 @@ mod tests {
 
     fn oracle(poses: &[(f64, f64)]) -> PathOracle {
         let mut o = PathOracle::new(
-            Arc::new(Se2Metric::new(1.0, 0.0).unwrap()),
+            Arc::new(PathLength::new(1.0, 0.0).unwrap()),
             Box::new(StraightLine),
         );
         for &(x, y) in poses {

@@ -2,8 +2,8 @@
 
 use crate::SelectionError;
 use smug_core::{
-    Error, Path, PathOracle, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result,
-    Se2Metric,
+    Error, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2,
+    Result,
 };
 use std::sync::Arc;
 
@@ -15,7 +15,7 @@ impl PointToPointPlanner for StraightLine {
         if a.x == 9.0 || b.x == 9.0 {
             return Ok(PlannerOutcome::NoPath);
         }
-        Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &metric())))
+        Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &objective())))
     }
 
     fn stats(&self) -> PlannerStats {
@@ -38,7 +38,7 @@ impl PointToPointPlanner for Detour {
         } else {
             vec![*a, *b]
         };
-        Ok(PlannerOutcome::Exact(Path::new(states, &metric())))
+        Ok(PlannerOutcome::Exact(Path::new(states, &objective())))
     }
 
     fn stats(&self) -> PlannerStats {
@@ -54,7 +54,7 @@ impl PointToPointPlanner for Radius {
         if (a.x - b.x).hypot(a.y - b.y) > 10.0 {
             return Ok(PlannerOutcome::NoPath);
         }
-        Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &metric())))
+        Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &objective())))
     }
 
     fn stats(&self) -> PlannerStats {
@@ -62,12 +62,12 @@ impl PointToPointPlanner for Radius {
     }
 }
 
-fn metric() -> Se2Metric {
-    Se2Metric::new(1.0, 0.0).expect("valid weights")
+fn objective() -> PathLength {
+    PathLength::new(1.0, 0.0).expect("valid weights")
 }
 
 fn oracle(planner: Box<dyn PointToPointPlanner>, poses: &[(f64, f64)]) -> PathOracle {
-    let mut o = PathOracle::new(Arc::new(metric()), planner);
+    let mut o = PathOracle::new(Arc::new(objective()), planner);
     for &(x, y) in poses {
         o.add_pose(Pose2::new(x, y, 0.0));
     }

@@ -3,8 +3,8 @@
 
 use proptest::prelude::*;
 use smug_core::{
-    Error, Path, PathOracle, PlannerOutcome, PlannerStats, PoiSelector, PointToPointPlanner, Pose2,
-    Result, Se2Metric, Selection, SelectionProblem,
+    Error, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PoiSelector,
+    PointToPointPlanner, Pose2, Result, Selection, SelectionProblem,
 };
 use smug_selection::{BruteForceSelector, DpSelector, IdpSelector, IrbaSelector, SelectionError};
 use std::cmp::Reverse;
@@ -13,8 +13,8 @@ use std::sync::Arc;
 
 const SIDE: usize = 12;
 
-fn metric() -> Se2Metric {
-    Se2Metric::new(1.0, 0.0).expect("valid weights")
+fn objective() -> PathLength {
+    PathLength::new(1.0, 0.0).expect("valid weights")
 }
 
 /// A wall at x = 6 with a gap at the top, and a walled-in island vertex at (2, 9).
@@ -116,7 +116,7 @@ impl PointToPointPlanner for GridPlanner {
             )
             .chain(std::iter::once(*goal))
             .collect();
-        Ok(PlannerOutcome::Exact(Path::new(states, &metric())))
+        Ok(PlannerOutcome::Exact(Path::new(states, &objective())))
     }
 
     fn stats(&self) -> PlannerStats {
@@ -157,7 +157,7 @@ fn setup(
     (start, groups, end): &(PoseSpec, Vec<Vec<PoseSpec>>, Option<PoseSpec>),
 ) -> (PathOracle, SelectionProblem) {
     let free = free_vertices();
-    let mut oracle = PathOracle::new(Arc::new(metric()), Box::new(GridPlanner { queries: 0 }));
+    let mut oracle = PathOracle::new(Arc::new(objective()), Box::new(GridPlanner { queries: 0 }));
     let start = oracle.add_pose(pose(&free, start));
     let groups = groups
         .iter()

@@ -2,8 +2,8 @@
 
 use smug_core::registry::{SelectorStage, Stage};
 use smug_core::{
-    BuildContext, Path, PathOracle, PlannerOutcome, PlannerStats, PluginSection, PoiSelector,
-    PointToPointPlanner, Pose2, Result, RobotConfig, Se2Metric, SelectionProblem,
+    BuildContext, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PluginSection,
+    PoiSelector, PointToPointPlanner, Pose2, Result, RobotConfig, SelectionProblem,
 };
 use std::sync::Arc;
 // Link the crate so that its `inventory` registrations are collected.
@@ -24,7 +24,7 @@ struct StraightLine;
 
 impl PointToPointPlanner for StraightLine {
     fn plan(&mut self, a: &Pose2, b: &Pose2) -> Result<PlannerOutcome> {
-        let metric = Se2Metric::new(1.0, 0.0).expect("valid weights");
+        let metric = PathLength::new(1.0, 0.0).expect("valid weights");
         Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &metric)))
     }
 
@@ -43,7 +43,7 @@ fn all_four_selectors_are_registered() {
 
 #[test]
 fn selectors_build_from_parameters_and_select() {
-    let metric = Se2Metric::new(1.0, 0.0).unwrap();
+    let metric = PathLength::new(1.0, 0.0).unwrap();
     for (kind, params) in [
         ("dp", ""),
         ("idp", ""),

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 use smug_core::{
-    BuildContext, CostMetric, Counters, Error, MotionCheck, MotionValidator, Pose2,
+    BuildContext, Counters, Error, MotionCheck, MotionValidator, Pose2, StateSpace,
     StateValidityChecker, World,
 };
 use std::collections::VecDeque;
@@ -16,7 +16,7 @@ use std::sync::Arc;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DiscreteMotionParams {
-    /// Longest metric distance between checked states (OMPL's
+    /// Longest space distance between checked states (OMPL's
     /// `longest_valid_segment_length`; reference: 0.5).
     pub resolution: f64,
     /// Largest terrain slope |Δz| / horizontal distance between consecutive states
@@ -51,7 +51,7 @@ enum Swept {
 /// Checks straight motions state by state (continuously for disc robots).
 pub struct DiscreteMotionValidator {
     states: Arc<dyn StateValidityChecker>,
-    metric: Arc<dyn CostMetric>,
+    space: Arc<dyn StateSpace>,
     terrain: Option<(Arc<World>, f64)>,
     resolution: f64,
     motions_checked: AtomicU64,
@@ -59,11 +59,11 @@ pub struct DiscreteMotionValidator {
 }
 
 impl DiscreteMotionValidator {
-    /// A validator over `states` under `metric`; `terrain` = the world and its
+    /// A validator over `states` along the motions of `space`; `terrain` = the world and its
     /// inclination limit, when the limit applies.
     pub fn new(
         states: Arc<dyn StateValidityChecker>,
-        metric: Arc<dyn CostMetric>,
+        space: Arc<dyn StateSpace>,
         terrain: Option<(Arc<World>, f64)>,
         resolution: f64,
     ) -> Result<Self, Error> {
@@ -83,7 +83,7 @@ impl DiscreteMotionValidator {
         }
         Ok(Self {
             states,
-            metric,
+            space,
             terrain,
             resolution,
             motions_checked: AtomicU64::new(0),
@@ -93,7 +93,7 @@ impl DiscreteMotionValidator {
 
     /// Number of segments the motion `a → b` is split into.
     fn segment_count(&self, a: &Pose2, b: &Pose2) -> usize {
-        let n = (self.metric.distance(a, b) / self.resolution).ceil();
+        let n = (self.space.distance(a, b) / self.resolution).ceil();
         if n.is_finite() {
             (n as usize).max(1)
         } else {
@@ -102,7 +102,7 @@ impl DiscreteMotionValidator {
     }
 
     fn state_at(&self, a: &Pose2, b: &Pose2, k: usize, n: usize) -> Pose2 {
-        self.metric.interpolate(a, b, k as f64 / n as f64)
+        self.space.interpolate(a, b, k as f64 / n as f64)
     }
 
     fn is_valid_state(&self, s: &Pose2) -> bool {
@@ -263,7 +263,7 @@ impl MotionValidator for DiscreteMotionValidator {
         }
         match contact {
             Some(Some(last_clear)) if last_clear > previous.1 => MotionCheck::Invalid {
-                last_valid: Some((self.metric.interpolate(a, b, last_clear), last_clear)),
+                last_valid: Some((self.space.interpolate(a, b, last_clear), last_clear)),
             },
             Some(_) => MotionCheck::Invalid {
                 last_valid: Some(previous),
@@ -296,7 +296,7 @@ fn build_validator(
     };
     DiscreteMotionValidator::new(
         ctx.state_validity()?,
-        ctx.metric(),
+        ctx.space(),
         terrain,
         params.resolution,
     )
@@ -314,7 +314,7 @@ smug_core::register_plugin!(
 mod tests {
     use super::*;
     use proptest::prelude::*;
-    use smug_core::{Mission, Se2Metric};
+    use smug_core::{Mission, Se2Space};
     use smug_worlds::flat::{flat_world, BoxObstacle, FlatParams};
 
     /// Valid everywhere except inside the disc of radius 1 around (5, 5).
@@ -329,7 +329,7 @@ mod tests {
     fn validator(resolution: f64, terrain: Option<(Arc<World>, f64)>) -> DiscreteMotionValidator {
         DiscreteMotionValidator::new(
             Arc::new(DiscObstacle),
-            Arc::new(Se2Metric::default()),
+            Arc::new(Se2Space::default()),
             terrain,
             resolution,
         )
@@ -424,7 +424,7 @@ mod tests {
                 obstacle_height: 1.0,
             };
             let states = Arc::new(Clearance2dChecker::new(&disc_world(), params).unwrap());
-            DiscreteMotionValidator::new(states, Arc::new(Se2Metric::default()), None, resolution)
+            DiscreteMotionValidator::new(states, Arc::new(Se2Space::default()), None, resolution)
                 .unwrap()
         }
 

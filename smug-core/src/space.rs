@@ -1,39 +1,49 @@
-//! Cost metrics on SE(2): the trait and the OMPL SE(2) default.
+//! State spaces (motion models): the distance for nearest neighbours, the local motion
+//! between two states, and the OMPL SE(2) default.
+//!
+//! A space says how the robot moves; what a motion costs is the objective's business
+//! (see [`crate::objective`]).
 
 use crate::pose::{angle_distance, wrap_angle, Pose2};
 use serde::{Deserialize, Serialize};
 use std::fmt::Debug;
 
-/// A true metric on SE(2) used as path cost, admissible heuristic and k-NN distance.
+/// A motion model on SE(2): the k-NN distance and the local motion between two states.
 ///
-/// Implementations must satisfy the metric axioms (checked by
-/// `smug_core::testing::check_metric_axioms`), and the additive lower bound
-/// `distance(a, b) ≥ w_t·‖Δxy‖ + w_r·d(yaw_a, yaw_b)` with
-/// `(w_t, w_r) = lower_bound_weights()`: samplers and spatial indices rely on it.
-pub trait CostMetric: Send + Sync + Debug {
-    /// The cost of the straight motion from `a` to `b`.
+/// Implementations satisfy the triangle inequality (and symmetry when
+/// [`StateSpace::is_symmetric`]), checked by `smug_core::testing::check_metric_axioms`,
+/// and the additive lower bound `distance(a, b) ≥ w_t·‖Δxy‖ + w_r·d(yaw_a, yaw_b)` with
+/// `(w_t, w_r) = lower_bound_weights()`: spatial indices rely on it.
+pub trait StateSpace: Send + Sync + Debug {
+    /// The length of the local motion from `a` to `b` (the k-NN distance).
     fn distance(&self, a: &Pose2, b: &Pose2) -> f64;
 
     /// The state a fraction `t ∈ [0, 1]` of the way from `a` to `b`
     /// (along the shortest yaw arc); `t = 0` gives `a`, `t = 1` gives `b`.
     fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2;
 
-    /// Weights `(w_t, w_r)` of an additive lower bound of [`CostMetric::distance`]:
+    /// Weights `(w_t, w_r)` of an additive lower bound of [`StateSpace::distance`]:
     /// `distance(a, b) ≥ w_t·‖Δxy‖ + w_r·d(yaw_a, yaw_b)`.
     fn lower_bound_weights(&self) -> (f64, f64);
+
+    /// True when `distance(a, b) == distance(b, a)` and the motion `b → a` is the motion
+    /// `a → b` reversed (then roadmaps, path caches and cost matrices may be undirected).
+    fn is_symmetric(&self) -> bool {
+        true
+    }
 }
 
-/// Parameters of the OMPL SE(2) metric.
+/// Parameters of the OMPL SE(2) space (the weights of its distance).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct Se2MetricParams {
+pub struct Se2SpaceParams {
     /// Weight of the Euclidean distance in the plane (OMPL: 1.0).
     pub translation_weight: f64,
     /// Weight of the shortest yaw distance (OMPL: 0.5).
     pub rotation_weight: f64,
 }
 
-impl Default for Se2MetricParams {
+impl Default for Se2SpaceParams {
     fn default() -> Self {
         Self {
             translation_weight: 1.0,
@@ -44,18 +54,18 @@ impl Default for Se2MetricParams {
 
 /// OMPL's `SE2StateSpace` distance: `w_t·‖Δxy‖₂ + w_r·d(Δyaw)` (Euclidean, not squared).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Se2Metric {
+pub struct Se2Space {
     w_t: f64,
     w_r: f64,
 }
 
-impl Default for Se2Metric {
+impl Default for Se2Space {
     fn default() -> Self {
-        Self::from_params(Se2MetricParams::default()).expect("default weights are valid")
+        Self::from_params(Se2SpaceParams::default()).expect("default weights are valid")
     }
 }
 
-impl Se2Metric {
+impl Se2Space {
     /// A metric with the given weights; both must be finite and ≥ 0, `w_t` > 0.
     pub fn new(translation_weight: f64, rotation_weight: f64) -> Result<Self, String> {
         if !(translation_weight.is_finite() && translation_weight > 0.0) {
@@ -75,12 +85,12 @@ impl Se2Metric {
     }
 
     /// A metric from its config parameters.
-    pub fn from_params(p: Se2MetricParams) -> Result<Self, String> {
+    pub fn from_params(p: Se2SpaceParams) -> Result<Self, String> {
         Self::new(p.translation_weight, p.rotation_weight)
     }
 }
 
-impl CostMetric for Se2Metric {
+impl StateSpace for Se2Space {
     fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
         self.w_t * a.xy_distance(b) + self.w_r * angle_distance(a.yaw, b.yaw)
     }
@@ -105,22 +115,15 @@ impl CostMetric for Se2Metric {
     }
 }
 
-/// Cost of a polyline of poses under `metric`.
-pub fn polyline_cost(metric: &dyn CostMetric, poses: &[Pose2]) -> f64 {
-    poses
-        .windows(2)
-        .map(|w| metric.distance(&w[0], &w[1]))
-        .sum()
-}
-
 crate::register_plugin!(
-    crate::registry::CostStage,
+    crate::registry::SpaceStage,
     name = "se2",
-    summary = "OMPL SE(2) metric: w_t·‖Δxy‖ + w_r·d(Δyaw), Euclidean (not squared)",
-    params = Se2MetricParams,
+    summary =
+        "holonomic SE(2) (legged robots): straight lines, OMPL's distance w_t·‖Δxy‖ + w_r·d(Δyaw)",
+    params = Se2SpaceParams,
     build = |params, _ctx| {
-        let metric = Se2Metric::from_params(params)
-            .map_err(|message| crate::Error::invalid_param("cost", message))?;
+        let metric = Se2Space::from_params(params)
+            .map_err(|message| crate::Error::invalid_param("space", message))?;
         Ok(Box::new(metric))
     }
 );
@@ -135,19 +138,19 @@ mod tests {
     proptest! {
         #[test]
         fn default_se2_metric_satisfies_axioms(a in arb_pose(50.0), b in arb_pose(50.0), c in arb_pose(50.0), t in 0.0f64..=1.0) {
-            check_metric_axioms(&Se2Metric::default(), &a, &b, &c, t)?;
+            check_metric_axioms(&Se2Space::default(), &a, &b, &c, t)?;
         }
 
         #[test]
         fn weighted_se2_metric_satisfies_axioms(w_t in 0.01f64..10.0, w_r in 0.0f64..10.0,
                 a in arb_pose(50.0), b in arb_pose(50.0), c in arb_pose(50.0), t in 0.0f64..=1.0) {
-            check_metric_axioms(&Se2Metric::new(w_t, w_r).unwrap(), &a, &b, &c, t)?;
+            check_metric_axioms(&Se2Space::new(w_t, w_r).unwrap(), &a, &b, &c, t)?;
         }
     }
 
     #[test]
     fn matches_ompl_formula_not_squared_norm() {
-        let m = Se2Metric::default();
+        let m = Se2Space::default();
         let a = Pose2::new(0.0, 0.0, 0.0);
         let b = Pose2::new(3.0, 4.0, PI / 2.0);
         assert!((m.distance(&a, &b) - (5.0 + 0.5 * PI / 2.0)).abs() < 1e-12);
@@ -155,7 +158,7 @@ mod tests {
 
     #[test]
     fn interpolation_takes_the_short_yaw_arc() {
-        let m = Se2Metric::default();
+        let m = Se2Space::default();
         let a = Pose2::new(0.0, 0.0, 3.0);
         let b = Pose2::new(2.0, 0.0, -3.0);
         let mid = m.interpolate(&a, &b, 0.5);
@@ -165,8 +168,8 @@ mod tests {
 
     #[test]
     fn rejects_bad_weights() {
-        assert!(Se2Metric::new(0.0, 0.5).is_err());
-        assert!(Se2Metric::new(1.0, -0.1).is_err());
-        assert!(Se2Metric::new(f64::NAN, 0.5).is_err());
+        assert!(Se2Space::new(0.0, 0.5).is_err());
+        assert!(Se2Space::new(1.0, -0.1).is_err());
+        assert!(Se2Space::new(f64::NAN, 0.5).is_err());
     }
 }

@@ -1,0 +1,88 @@
+//! How a plan fares under every objective: its length, its cost under each registered
+//! objective (so plans made with different objectives can be compared), and the
+//! traversability along it.
+
+use crate::config::PluginSection;
+use crate::objective::integrate_motion;
+use crate::pipeline::BuildContext;
+use crate::pose::Pose2;
+use crate::registry::{ObjectiveStage, Stage};
+use crate::world::World;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Traversability below this counts as risky ground in [`PlanMetrics::risky_length_m`].
+pub const RISKY_TRAVERSABILITY: f64 = 0.5;
+
+/// A plan's length, costs under each objective and the ground it crosses.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlanMetrics {
+    /// The objective the plan was made with.
+    pub objective: String,
+    /// Length in the plane, metres.
+    pub length_m: f64,
+    /// Cost under each registered objective with its default parameters (those the
+    /// world cannot support, e.g. without a traversability layer, are left out).
+    pub costs: BTreeMap<String, f64>,
+    /// Lowest traversability along the path (`None` without a traversability layer).
+    pub traversability_min: Option<f64>,
+    /// Length-weighted mean traversability along the path.
+    pub traversability_mean: Option<f64>,
+    /// Length spent where traversability is below [`RISKY_TRAVERSABILITY`], metres.
+    pub risky_length_m: Option<f64>,
+}
+
+/// The metrics of the path through `states` (joined by the space's motions of `ctx`),
+/// made with the objective named `objective`.
+pub fn plan_metrics(
+    ctx: &BuildContext,
+    world: &World,
+    objective: &str,
+    states: &[Pose2],
+) -> PlanMetrics {
+    let length_m = states.windows(2).map(|w| w[0].xy_distance(&w[1])).sum();
+    let mut metrics = PlanMetrics {
+        objective: objective.to_string(),
+        length_m,
+        costs: costs_under_every_objective(ctx, states),
+        ..PlanMetrics::default()
+    };
+    if let Some(layer) = &world.traversability {
+        let step = layer.geometry.resolution * 0.5;
+        let (mut min, mut weighted, mut risky) = (f64::INFINITY, 0.0, 0.0);
+        let space = ctx.space();
+        for w in states.windows(2) {
+            integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, mid| {
+                let tau = layer.nearest(mid.x, mid.y).unwrap_or(0.0);
+                let length = from.xy_distance(to);
+                min = min.min(tau);
+                weighted += tau * length;
+                if tau < RISKY_TRAVERSABILITY {
+                    risky += length;
+                }
+                0.0
+            });
+        }
+        metrics.traversability_min = min.is_finite().then_some(min);
+        metrics.traversability_mean = (length_m > 0.0).then(|| weighted / length_m);
+        metrics.risky_length_m = Some(risky);
+    }
+    metrics
+}
+
+/// The cost of `states` under every registered objective that builds in `ctx`.
+fn costs_under_every_objective(ctx: &BuildContext, states: &[Pose2]) -> BTreeMap<String, f64> {
+    let Ok(registry) = ObjectiveStage::registry() else {
+        return BTreeMap::new();
+    };
+    registry
+        .names()
+        .into_iter()
+        .filter_map(|name| {
+            let built = ctx.build::<ObjectiveStage>(&PluginSection::new("objective", name));
+            built
+                .ok()
+                .map(|b| (name.to_string(), b.object.path_cost(states)))
+        })
+        .collect()
+}

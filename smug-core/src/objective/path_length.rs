@@ -1,0 +1,111 @@
+//! `path-length`: the SE(2) length `w_t·‖Δxy‖ + w_r·d(Δyaw)` of straight motions
+//! (OMPL's path length objective under its SE(2) distance); its bound is the cost itself.
+
+use super::{check_non_negative, check_positive, Objective};
+use crate::pose::{angle_distance, Pose2};
+use serde::{Deserialize, Serialize};
+
+/// Parameters of `path-length`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PathLengthParams {
+    /// Cost per metre in the plane (OMPL: 1.0).
+    pub translation_weight: f64,
+    /// Cost per radian of yaw change (OMPL: 0.5).
+    pub rotation_weight: f64,
+}
+
+impl Default for PathLengthParams {
+    fn default() -> Self {
+        Self {
+            translation_weight: 1.0,
+            rotation_weight: 0.5,
+        }
+    }
+}
+
+/// `w_t·‖Δxy‖ + w_r·d(Δyaw)` per motion: a metric, so the bound equals the cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PathLength {
+    w_t: f64,
+    w_r: f64,
+}
+
+impl Default for PathLength {
+    fn default() -> Self {
+        Self::from_params(PathLengthParams::default()).expect("default weights are valid")
+    }
+}
+
+impl PathLength {
+    /// The objective with the given weights: `translation_weight` > 0, `rotation_weight` ≥ 0.
+    pub fn new(translation_weight: f64, rotation_weight: f64) -> crate::Result<Self> {
+        Self::from_params(PathLengthParams {
+            translation_weight,
+            rotation_weight,
+        })
+    }
+
+    /// The objective from its parameters: `translation_weight` > 0, `rotation_weight` ≥ 0.
+    pub fn from_params(p: PathLengthParams) -> crate::Result<Self> {
+        Ok(Self {
+            w_t: check_positive("objective", "translation_weight", p.translation_weight)?,
+            w_r: check_non_negative("objective", "rotation_weight", p.rotation_weight)?,
+        })
+    }
+}
+
+impl Objective for PathLength {
+    fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
+        self.w_t * a.xy_distance(b) + self.w_r * angle_distance(a.yaw, b.yaw)
+    }
+
+    fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        self.motion_cost(a, b)
+    }
+
+    fn bound_weights(&self) -> (f64, f64) {
+        (self.w_t, self.w_r)
+    }
+}
+
+crate::register_plugin!(
+    crate::registry::ObjectiveStage,
+    name = "path-length",
+    summary = "SE(2) length w_t·‖Δxy‖ + w_r·d(Δyaw) (today's cost); bound = the cost",
+    params = PathLengthParams,
+    build = |params, _ctx| Ok(Box::new(PathLength::from_params(params)?)),
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::space::{Se2Space, StateSpace};
+    use crate::testing::arb_pose;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn equals_the_se2_distance_bit_for_bit(a in arb_pose(50.0), b in arb_pose(50.0)) {
+            let (space, objective) = (Se2Space::default(), PathLength::default());
+            prop_assert_eq!(space.distance(&a, &b).to_bits(), objective.motion_cost(&a, &b).to_bits());
+            prop_assert_eq!(objective.cost_bound(&a, &b).to_bits(), objective.motion_cost(&a, &b).to_bits());
+        }
+    }
+
+    #[test]
+    fn rejects_bad_weights() {
+        let bad = |w_t, w_r| {
+            PathLength::from_params(PathLengthParams {
+                translation_weight: w_t,
+                rotation_weight: w_r,
+            })
+            .unwrap_err()
+            .to_string()
+        };
+        assert!(bad(0.0, 0.5).contains("translation_weight"));
+        assert!(bad(1.0, -1.0).contains("rotation_weight"));
+        assert!(bad(f64::NAN, 0.5).contains("translation_weight"));
+        assert!(bad(1.0, f64::INFINITY).contains("rotation_weight"));
+    }
+}
