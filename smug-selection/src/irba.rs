@@ -1,4 +1,4 @@
-//! `irba`: iterative rubber band — local sweeps over the groups (DESIGN §2.7).
+//! `irba`: iterative rubber band — local sweeps over the groups (docs/algorithms.md).
 
 use crate::error::check_groups;
 use crate::idp::idp;

@@ -296,8 +296,12 @@ def main():
     ap.add_argument("maps", nargs="*", default=DEFAULT_MAPS,
                     help="maps under --data as dir/stem (e.g. dao/arena2), or MAP:SCEN paths relative to it "
                          f"(default: {' '.join(DEFAULT_MAPS)})")
-    ap.add_argument("--data", type=Path, default=Path("/work/shared/data/movingai"))
-    ap.add_argument("--smug", default="/work/main/target/release/smug", help="the smug binary")
+    data = os.environ.get("SMUG_DATA")
+    ap.add_argument("--data", type=Path, default=Path(data) if data else None,
+                    help="the MovingAI folder (holding mapf/, dao/, room/ …; not shipped, "
+                         "see docs/benchmarks.md); default: $SMUG_DATA")
+    ap.add_argument("--smug", default=str(HERE.parent.parent / "target" / "release" / "smug"),
+                    help="the smug binary (default: the workspace's target/release/smug)")
     ap.add_argument("--peer", default=str(HERE / "ompl_p2p"), help="the ompl_p2p binary")
     ap.add_argument("--scenarios", type=int, default=50)
     ap.add_argument("--radius", type=float, default=0.25, help="disc radius in cells")
@@ -318,6 +322,8 @@ def main():
     ap.add_argument("--out", type=Path, help="also write the Markdown report here")
     ap.add_argument("--json", type=Path, help="write per-query numbers here")
     args = ap.parse_args()
+    if args.data is None:
+        ap.error("no MovingAI data: pass --data DIR or set SMUG_DATA (see docs/benchmarks.md)")
     for exe in (args.smug, args.peer):
         if not os.access(exe, os.X_OK):
             sys.exit(f"{exe}: not an executable (see --smug / --peer, README.md)")
