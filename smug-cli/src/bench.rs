@@ -14,8 +14,9 @@ pub struct BenchArgs {
 enum BenchCommand {
     /// The paper's experiments (Tables I–IV) with the paper's numbers beside ours.
     Paper(crate::bench_paper::BenchPaperArgs),
-    /// TSP solvers on the TSPLIB instances: gap to the optimum and time.
-    Tsp(crate::tsp::BenchTspArgs),
+    /// TSP solvers on the TSPLIB suite (--data DIR or $SMUG_DATA/tsplib): gap to the
+    /// optimum and time.
+    Tsp(crate::bench_tsp::BenchTspArgs),
     /// LazyPRM* on MovingAI maps: scenarios solved, length against the optimum, time.
     P2p(crate::bench_p2p::BenchP2pArgs),
     /// State validity checkers: checks per second and distance-field queries.
@@ -26,7 +27,7 @@ enum BenchCommand {
 pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
     match args.which {
         BenchCommand::Paper(args) => crate::bench_paper::run(args),
-        BenchCommand::Tsp(args) => crate::tsp::run_bench(args),
+        BenchCommand::Tsp(args) => crate::bench_tsp::run_bench(args),
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),
     }

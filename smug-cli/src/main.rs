@@ -20,6 +20,7 @@ mod bench_p2p;
 mod bench_p2p_lunar;
 mod bench_paper;
 mod bench_paper_report;
+mod bench_tsp;
 mod bench_validity;
 mod check;
 mod p2p;
@@ -55,7 +56,7 @@ enum Command {
     Plan(plan::PlanArgs),
     /// Plan point-to-point queries on one shared roadmap.
     P2p(p2p::P2pArgs),
-    /// Solve a TSPLIB instance.
+    /// Solve a TSPLIB instance (a file, or a name in the suite of --data / $SMUG_DATA).
     Tsp(tsp::TspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),

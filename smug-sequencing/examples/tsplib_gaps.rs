@@ -1,18 +1,35 @@
 //! Local search on the TSPLIB suite with its construction and first-descent gaps (a
 //! tuning aid; `smug bench tsp` is the benchmark proper):
-//! `SEED=1 cargo run --release -p smug-sequencing --example tsplib_gaps -- [budget_s] [names…]`.
+//! `SEED=1 cargo run --release -p smug-sequencing --example tsplib_gaps -- [--data DIR]
+//! [budget_s] [names…]`. The suite is `--data DIR`, else `$SMUG_DATA/tsplib`.
 
 use smug_core::TourKind;
-use smug_sequencing::bench::{gap_percent, load_suite};
+use smug_sequencing::bench::{gap_percent, load_suite, suite_dir, DATA_ENV, SUITE_DESCRIPTION};
 use smug_sequencing::{read_tsplib, LocalSearch, LocalSearchParams};
-use std::path::Path;
+use std::path::PathBuf;
 use std::time::Instant;
 
+/// Removes `--data DIR` from `args` and returns `DIR`.
+fn take_data_option(args: &mut Vec<String>) -> Result<Option<PathBuf>, String> {
+    let Some(at) = args.iter().position(|a| a == "--data") else {
+        return Ok(None);
+    };
+    if at + 1 == args.len() {
+        return Err("--data needs a folder".into());
+    }
+    let dir = args.remove(at + 1);
+    args.remove(at);
+    Ok(Some(PathBuf::from(dir)))
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut args = std::env::args().skip(1);
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let given = take_data_option(&mut args)?;
+    let dir = suite_dir(given.as_deref(), std::env::var_os(DATA_ENV).as_deref())
+        .ok_or_else(|| format!("pass --data DIR or set {DATA_ENV}: {SUITE_DESCRIPTION}"))?;
+    let mut args = args.into_iter();
     let budget: f64 = args.next().map(|a| a.parse()).transpose()?.unwrap_or(1.0);
     let only: Vec<String> = args.collect();
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/tsplib");
     let (mut sym, mut asym) = (Vec::new(), Vec::new());
     for instance in load_suite(&dir)? {
         if !only.is_empty() && !only.contains(&instance.name) {

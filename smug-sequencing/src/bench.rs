@@ -1,13 +1,35 @@
 //! The TSPLIB benchmark suite: instances with proven optima, and gap measurement.
 //!
 //! A suite directory holds `tsp/` and `atsp/`, each with instance files and an
-//! `optima.csv` whose columns include `name` and `optimal_tour_length`.
+//! `optima.csv` whose columns include `name` and `optimal_tour_length`. The project
+//! ships no suite: see [`SUITE_DESCRIPTION`] for where TSPLIB95 is published, and
+//! [`suite_dir`] for how a folder is found.
 
 use crate::tsplib::{ProblemType, TsplibError};
 use serde::Serialize;
 use smug_core::{CostMatrix, Sequencer, TourKind};
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// The environment variable naming a data folder; the TSPLIB suite is its `tsplib/`.
+pub const DATA_ENV: &str = "SMUG_DATA";
+
+/// What a suite folder holds and where the instances are published (for messages).
+pub const SUITE_DESCRIPTION: &str = "the suite is TSPLIB95 (G. Reinelt, Universität Heidelberg; \
+published at http://comopt.ifi.uni-heidelberg.de/software/TSPLIB95/), laid out as \
+DIR/tsp/NAME.tsp and DIR/atsp/NAME.atsp, each folder with an optima.csv whose columns \
+include name and optimal_tour_length (the optima TSPLIB95 lists)";
+
+/// The suite folder: `given` (a `--data DIR` option) if any, else `tsplib/` inside the
+/// folder that `data_env` (the value of [`DATA_ENV`]) names; `None` when neither is set.
+pub fn suite_dir(given: Option<&Path>, data_env: Option<&OsStr>) -> Option<PathBuf> {
+    given.map(Path::to_path_buf).or_else(|| {
+        data_env
+            .filter(|value| !value.is_empty())
+            .map(|value| Path::new(value).join("tsplib"))
+    })
+}
 
 /// An instance of the suite and its optimal tour length.
 #[derive(Clone, Debug, PartialEq)]
@@ -186,15 +208,27 @@ mod tests {
 
     #[test]
     fn reads_optima_columns_by_name() {
-        let text = "name,dimension,optimal_tour_length,note\nbr17,17,39,x\n\nft70,70,38673,\n";
+        let text = "name,dimension,optimal_tour_length,note\nring5,6,21,x\n\ngrid4x4,16,160,\n";
         let rows = parse_optima(text, "optima.csv").unwrap();
         assert_eq!(
             rows,
-            vec![("br17".to_string(), 39.0), ("ft70".to_string(), 38673.0)]
+            vec![("ring5".to_string(), 21.0), ("grid4x4".to_string(), 160.0)]
         );
         let err = parse_optima("name,optimal_tour_length\nx,y\n", "o.csv").unwrap_err();
         assert!(err.to_string().starts_with("o.csv:2:"), "{err}");
         assert!(parse_optima("name\n", "o.csv").is_err());
+    }
+
+    #[test]
+    fn the_option_wins_over_the_environment() {
+        let env = Some(OsStr::new("/data"));
+        assert_eq!(
+            suite_dir(Some(Path::new("suite")), env),
+            Some(PathBuf::from("suite"))
+        );
+        assert_eq!(suite_dir(None, env), Some(PathBuf::from("/data/tsplib")));
+        assert_eq!(suite_dir(None, Some(OsStr::new(""))), None);
+        assert_eq!(suite_dir(None, None), None);
     }
 
     #[test]

@@ -691,19 +691,16 @@ mod tests {
     }
 
     #[test]
-    fn geo_distances_match_burma14() {
-        // TSPLIB burma14 (GEO); its optimal tour length is 3323.
-        let burma14 = "1 16.47 96.10\n2 16.47 94.44\n3 20.09 92.54\n4 22.39 93.37\n\
-                       5 25.23 97.24\n6 22.00 96.05\n7 20.47 97.02\n8 17.20 96.29\n\
-                       9 16.30 97.38\n10 14.05 98.12\n11 16.53 97.38\n12 21.52 95.59\n\
-                       13 19.41 97.13\n14 20.09 94.55";
-        let costs = coordinates("GEO", burma14);
-        let optimal = [0, 1, 13, 2, 3, 4, 5, 11, 6, 12, 7, 10, 8, 9];
-        assert_eq!(
-            costs.tour_cost(&optimal, smug_core::TourKind::Closed),
-            3323.0
-        );
-        assert_eq!(costs.get(0, 1), costs.get(1, 0));
+    fn geo_distances_use_degrees_and_minutes() {
+        // On a meridian or the equator: RRR · PI · Δ° / 180 + 1, truncated. 1.00 is 1°
+        // (111.32 + 1 → 112); -45.30 is 45° 30' = 45.5° (5065.24 + 1 → 5066), not 45.3°;
+        // 0.50 is 50' = 0.833° (92.77 + 1 → 93): its degrees are truncated, not rounded.
+        let nodes = "1 0.00 0.00\n2 1.00 0.00\n3 0.00 -45.30\n4 0.50 0.00";
+        let costs = coordinates("GEO", nodes);
+        assert_eq!(costs.get(0, 3), 93.0);
+        assert_eq!(costs.get(0, 1), 112.0);
+        assert_eq!(costs.get(0, 2), 5066.0);
+        assert_eq!(costs.get(2, 0), 5066.0);
     }
 
     fn error_of(text: &str) -> String {
