@@ -71,14 +71,21 @@ impl TravelTime {
         })
     }
 
-    /// Speed from `from` to `to` (on the ground under `mid`).
+    /// Speed at `mid` heading from `from` to `to`; the slope is measured over a fixed
+    /// baseline of one `step` along the heading, whatever the piece's length (so the
+    /// cost is a line integral, additive over split motions up to discretisation).
     fn speed(&self, from: &Pose2, to: &Pose2, mid: &Pose2) -> f64 {
         let p = &self.params;
         let f = p.min_speed_fraction;
         let tau = self.terrain.traversability(mid.x, mid.y);
         let run = from.xy_distance(to);
         let slope = if run > 0.0 {
-            self.terrain.rise((from.x, from.y), (to.x, to.y)).abs() / run
+            let h = 0.5 * p.step / run;
+            let (dx, dy) = ((to.x - from.x) * h, (to.y - from.y) * h);
+            let rise = self
+                .terrain
+                .rise((mid.x - dx, mid.y - dy), (mid.x + dx, mid.y + dy));
+            rise.abs() / p.step
         } else {
             0.0
         };

@@ -1,0 +1,378 @@
+//! Every built-in objective on the lunar world: its contract (bound ≤ cost on random
+//! motions and paths, consistency, additivity), IDP == DP on a fixed roadmap (including
+//! the asymmetric `energy`), recorded path-length plans, the trade-offs the objectives
+//! exist for, and errors naming the culprit.
+
+use proptest::prelude::*;
+use smug_core::testing::{check_objective, check_objective_path};
+use smug_core::{
+    plan_mission, LoadedConfig, Objective, Path, PathOracle, Pipeline, Plan, PlannerOutcome,
+    PlannerStats, PoiSelector, PointToPointPlanner, Pose2, Result, SelectionProblem,
+};
+use smug_selection::{DpSelector, IdpSelector};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+use std::sync::{Arc, OnceLock};
+
+use smug_objectives as _;
+use smug_planners as _;
+use smug_samplers as _;
+use smug_sequencing as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+const OBJECTIVES: [&str; 4] = ["path-length", "traversability", "energy", "time"];
+
+fn config(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../configs")
+        .join(name)
+}
+
+fn lunar(objective: &str) -> Pipeline {
+    let set = [format!("objective.type=\"{objective}\"")];
+    let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
+    Pipeline::assemble(&loaded).unwrap()
+}
+
+/// The lunar pipeline under each objective, built once.
+fn pipelines() -> &'static Vec<(&'static str, Pipeline)> {
+    static PIPELINES: OnceLock<Vec<(&'static str, Pipeline)>> = OnceLock::new();
+    PIPELINES.get_or_init(|| OBJECTIVES.iter().map(|&o| (o, lunar(o))).collect())
+}
+
+/// A pose in the lunar bounds from unit coordinates.
+fn pose((u, v, yaw): (f64, f64, f64)) -> Pose2 {
+    let bounds = pipelines()[0].1.world.as_ref().unwrap().bounds();
+    let [x0, y0] = bounds.min;
+    let [x1, y1] = bounds.max;
+    Pose2::new(x0 + u * (x1 - x0), y0 + v * (y1 - y0), yaw)
+}
+
+fn unit_pose() -> impl Strategy<Value = (f64, f64, f64)> {
+    (0.0..1.0f64, 0.0..1.0f64, -3.14159..3.14159f64)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    #[test]
+    fn every_objective_keeps_its_contract_on_random_motions(
+        a in unit_pose(), b in unit_pose(), c in unit_pose(), t in 0.0..1.0f64,
+    ) {
+        for (name, p) in pipelines() {
+            let (a, b, c) = (pose(a), pose(b), pose(c));
+            // Integrating objectives sample the terrain piecewise: a split motion samples
+            // other points, within a few per cent on the lunar terrain.
+            let split = if *name == "path-length" { 1e-9 } else { 0.05 };
+            check_objective(p.objective.as_ref(), p.space.as_ref(), (&a, &b, &c), t, split)
+                .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+        }
+    }
+
+    #[test]
+    fn bounds_never_exceed_random_paths(states in prop::collection::vec(unit_pose(), 2..8)) {
+        let states: Vec<Pose2> = states.into_iter().map(pose).collect();
+        for (name, p) in pipelines() {
+            check_objective_path(p.objective.as_ref(), &states)
+                .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+        }
+    }
+}
+
+/// Exact shortest paths on a fixed lattice over the lunar bounds (2 m spacing,
+/// 8-connected), edges costed by the objective in each direction; a query snaps its
+/// ends to the nearest lattice vertices.
+struct LatticePlanner {
+    objective: Arc<dyn Objective>,
+    origin: [f64; 2],
+    side: [usize; 2],
+    /// `costs[v][k]`: cost from `v` to its `k`-th neighbour (`INFINITY`: none).
+    costs: Vec<[f64; 8]>,
+}
+
+const SPACING: f64 = 2.0;
+const STEPS: [(i64, i64); 8] = [
+    (1, 0),
+    (1, 1),
+    (0, 1),
+    (-1, 1),
+    (-1, 0),
+    (-1, -1),
+    (0, -1),
+    (1, -1),
+];
+
+impl LatticePlanner {
+    fn new(pipeline: &Pipeline) -> Self {
+        let bounds = pipeline.world.as_ref().unwrap().bounds();
+        let side = [
+            ((bounds.max[0] - bounds.min[0]) / SPACING) as usize,
+            ((bounds.max[1] - bounds.min[1]) / SPACING) as usize,
+        ];
+        let mut planner = Self {
+            objective: pipeline.objective.clone(),
+            origin: [bounds.min[0] + 1.0, bounds.min[1] + 1.0],
+            side,
+            costs: Vec::new(),
+        };
+        planner.costs = (0..side[0] * side[1])
+            .map(|v| {
+                let mut row = [f64::INFINITY; 8];
+                for (k, step) in STEPS.iter().enumerate() {
+                    if let Some(w) = planner.neighbour(v, *step) {
+                        row[k] = planner
+                            .objective
+                            .motion_cost(&planner.vertex(v), &planner.vertex(w));
+                    }
+                }
+                row
+            })
+            .collect();
+        planner
+    }
+
+    fn vertex(&self, v: usize) -> Pose2 {
+        let (i, j) = (v / self.side[1], v % self.side[1]);
+        Pose2::new(
+            self.origin[0] + i as f64 * SPACING,
+            self.origin[1] + j as f64 * SPACING,
+            0.0,
+        )
+    }
+
+    fn neighbour(&self, v: usize, (di, dj): (i64, i64)) -> Option<usize> {
+        let (i, j) = (
+            (v / self.side[1]) as i64 + di,
+            (v % self.side[1]) as i64 + dj,
+        );
+        let inside = (0..self.side[0] as i64).contains(&i) && (0..self.side[1] as i64).contains(&j);
+        inside.then(|| i as usize * self.side[1] + j as usize)
+    }
+
+    fn snap(&self, p: &Pose2) -> usize {
+        let i = ((p.x - self.origin[0]) / SPACING)
+            .round()
+            .clamp(0.0, self.side[0] as f64 - 1.0);
+        let j = ((p.y - self.origin[1]) / SPACING)
+            .round()
+            .clamp(0.0, self.side[1] as f64 - 1.0);
+        i as usize * self.side[1] + j as usize
+    }
+
+    fn dijkstra(&self, from: usize, to: usize) -> Vec<usize> {
+        let mut dist = vec![f64::INFINITY; self.costs.len()];
+        let mut parent = vec![usize::MAX; self.costs.len()];
+        let mut heap = BinaryHeap::from([(Reverse(0u64), from)]);
+        dist[from] = 0.0;
+        while let Some((Reverse(d), v)) = heap.pop() {
+            if f64::from_bits(d) > dist[v] {
+                continue;
+            }
+            for (k, step) in STEPS.iter().enumerate() {
+                if let Some(w) = self.neighbour(v, *step) {
+                    let candidate = dist[v] + self.costs[v][k];
+                    if candidate < dist[w] {
+                        (dist[w], parent[w]) = (candidate, v);
+                        heap.push((Reverse(candidate.to_bits()), w));
+                    }
+                }
+            }
+        }
+        let mut path = vec![to];
+        while *path.last().unwrap() != from {
+            path.push(parent[*path.last().unwrap()]);
+        }
+        path.reverse();
+        path
+    }
+}
+
+impl PointToPointPlanner for LatticePlanner {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        let vertices = self.dijkstra(self.snap(start), self.snap(goal));
+        let states: Vec<Pose2> = std::iter::once(*start)
+            .chain(vertices.iter().map(|&v| self.vertex(v)))
+            .chain(std::iter::once(*goal))
+            .collect();
+        Ok(PlannerOutcome::Exact(Path::new(
+            states,
+            self.objective.as_ref(),
+        )))
+    }
+
+    fn stats(&self) -> PlannerStats {
+        PlannerStats::default()
+    }
+}
+
+/// The lunar mission's first `targets` targets, in mission order, on a fresh oracle.
+fn selection_setup(pipeline: &Pipeline, targets: usize) -> (PathOracle, SelectionProblem) {
+    let mission = pipeline.mission.as_ref().unwrap();
+    let planner = LatticePlanner::new(pipeline);
+    let mut oracle = PathOracle::new(pipeline.objective.clone(), Box::new(planner));
+    let start = oracle.add_pose(mission.start);
+    let groups = mission.targets[..targets]
+        .iter()
+        .map(|t| t.pois.iter().map(|p| oracle.add_pose(*p)).collect())
+        .collect();
+    (
+        oracle,
+        SelectionProblem {
+            start,
+            groups,
+            end: start,
+        },
+    )
+}
+
+#[test]
+fn idp_equals_dp_on_a_fixed_roadmap_under_every_objective() {
+    for (name, pipeline) in pipelines() {
+        let (mut oracle, problem) = selection_setup(pipeline, 5);
+        assert_eq!(oracle.is_symmetric(), *name != "energy", "{name}");
+        let dp = DpSelector::default().select(&mut oracle, &problem).unwrap();
+        let dp_paths = oracle.stats().paths_planned;
+        let (mut oracle, problem) = selection_setup(pipeline, 5);
+        let idp = IdpSelector::default()
+            .select(&mut oracle, &problem)
+            .unwrap();
+        let idp_paths = oracle.stats().paths_planned;
+        assert!(
+            (idp.cost - dp.cost).abs() <= 1e-9 * dp.cost.max(1.0),
+            "{name}: IDP {} vs DP {}",
+            idp.cost,
+            dp.cost
+        );
+        assert!(
+            idp_paths <= dp_paths,
+            "{name}: IDP planned {idp_paths} > DP {dp_paths}"
+        );
+    }
+}
+
+fn plan(config_name: &str, set: &[&str]) -> Plan {
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    let loaded = LoadedConfig::from_file(&config(config_name), &set).unwrap();
+    let mut pipeline = Pipeline::assemble(&loaded).unwrap();
+    plan_mission(&mut pipeline, loaded.config.plan.clone()).unwrap()
+}
+
+#[test]
+fn path_length_plans_are_the_recorded_ones() {
+    // Costs of the shipped configs before objectives were separated from the space
+    // (seed 1, main at b754893): `path-length` must keep them to the last bit.
+    for (name, cost) in [
+        ("lunar.toml", 96.81261847501415f64),
+        ("indoor.toml", 73.57378109544727),
+        ("lunar-dp.toml", 96.79606989851067),
+        ("lunar-irba.toml", 97.41166442373049),
+        ("lunar-full-collision.toml", 97.41288009955495),
+        ("flat-demo.toml", 41.56167971049054),
+    ] {
+        let plan = plan(name, &[]);
+        assert_eq!(
+            plan.cost.to_bits(),
+            cost.to_bits(),
+            "{name}: {} vs {cost}",
+            plan.cost
+        );
+        assert_eq!(plan.metrics.objective, "path-length");
+        let evaluated = plan.metrics.costs["path-length"];
+        assert!(
+            (evaluated - cost).abs() <= 1e-9 * cost,
+            "{name}: {evaluated}"
+        );
+    }
+}
+
+#[test]
+fn each_objective_buys_what_it_is_for_on_the_lunar_mission() {
+    let lazy = "plan.sequencing_costs=\"lazy\"";
+    let with = |o: &str| plan("lunar.toml", &[&format!("objective.type=\"{o}\""), lazy]);
+    let (length, risk, time) = (with("path-length"), with("traversability"), with("time"));
+    let mean = |p: &Plan| p.metrics.traversability_mean.unwrap();
+    let risky = |p: &Plan| p.metrics.risky_length_m.unwrap();
+    assert!(
+        mean(&risk) > mean(&length),
+        "{} vs {}",
+        mean(&risk),
+        mean(&length)
+    );
+    assert!(
+        risky(&risk) < risky(&length),
+        "{} vs {}",
+        risky(&risk),
+        risky(&length)
+    );
+    let cost = |p: &Plan, o: &str| p.metrics.costs[o];
+    assert!(cost(&time, "time") < cost(&length, "time"));
+    assert!(cost(&risk, "traversability") < cost(&length, "traversability"));
+    for p in [&length, &risk, &time] {
+        let evaluated = p.metrics.costs[&p.metrics.objective];
+        assert!(
+            (evaluated - p.cost).abs() <= 1e-9 * p.cost,
+            "{evaluated} vs {}",
+            p.cost
+        );
+    }
+}
+
+fn error(set: &[&str]) -> String {
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
+    match Pipeline::assemble(&loaded) {
+        Ok(_) => panic!("{set:?} assembled"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn bad_objectives_are_errors_naming_the_culprit() {
+    let unknown = error(&["objective.type=\"risk\""]);
+    for name in OBJECTIVES {
+        assert!(unknown.contains(name), "{unknown}");
+    }
+    for (set, key) in [
+        (
+            "objective.params.translation_weight=-1.0",
+            "translation_weight",
+        ),
+        ("objective.params.rotation_weight=nan", "rotation_weight"),
+    ] {
+        let message = error(&["objective.type=\"path-length\"", set]);
+        assert!(message.contains(key), "{set}: {message}");
+    }
+    for (objective, key, value) in [
+        ("energy", "mass", "-50.0"),
+        ("energy", "friction", "inf"),
+        ("time", "max_speed", "0.0"),
+        ("time", "min_speed_fraction", "1.5"),
+        ("traversability", "risk_weight", "-1.0"),
+        ("traversability", "step", "nan"),
+    ] {
+        let set = [
+            format!("objective.type=\"{objective}\""),
+            format!("objective.params.{key}={value}"),
+        ];
+        let refs: Vec<&str> = set.iter().map(String::as_str).collect();
+        let message = error(&refs);
+        assert!(
+            message.contains(key),
+            "{objective}.{key}={value}: {message}"
+        );
+    }
+    // The lunar world without its traversability estimator has no traversability layer.
+    let loaded =
+        LoadedConfig::from_file(&config("lunar.toml"), &["objective.type=\"time\"".into()])
+            .unwrap();
+    let mut config = loaded.config.clone();
+    config.traversability = None;
+    config.validity = None;
+    let stripped = LoadedConfig { config, ..loaded };
+    let message = Pipeline::assemble(&stripped).err().unwrap().to_string();
+    assert!(
+        message.contains("`time`") && message.contains("traversability layer"),
+        "{message}"
+    );
+}
