@@ -17,6 +17,7 @@ mod bench;
 mod bench_output;
 mod bench_p2p;
 mod bench_p2p_lunar;
+mod bench_p2p_maps;
 mod bench_paper;
 mod bench_paper_report;
 mod bench_validity;
@@ -26,6 +27,7 @@ mod plan;
 mod plugins;
 mod tsp;
 mod worlds;
+mod worlds_generate;
 
 /// What a command reports besides errors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,7 +60,7 @@ enum Command {
     Tsp(tsp::TspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
-    /// Look at, convert and export worlds.
+    /// Look at, convert, generate and export worlds.
     Worlds(worlds::WorldsArgs),
 }
 
