@@ -296,7 +296,10 @@ def main():
     ap.add_argument("maps", nargs="*", default=DEFAULT_MAPS,
                     help="maps under --data as dir/stem (e.g. dao/arena2), or MAP:SCEN paths relative to it "
                          f"(default: {' '.join(DEFAULT_MAPS)})")
-    ap.add_argument("--data", type=Path, default=Path("/work/shared/data/movingai"))
+    smug_data = os.environ.get("SMUG_DATA")
+    ap.add_argument("--data", type=Path, default=Path(smug_data) / "movingai" if smug_data else None,
+                    required=not smug_data,
+                    help="the MovingAI data folder (default: $SMUG_DATA/movingai, as `smug bench p2p`)")
     ap.add_argument("--smug", default="/work/main/target/release/smug", help="the smug binary")
     ap.add_argument("--peer", default=str(HERE / "ompl_p2p"), help="the ompl_p2p binary")
     ap.add_argument("--scenarios", type=int, default=50)
