@@ -46,10 +46,12 @@ pub(super) fn generate(
         }
         if joins || rng.random_bool(EXTRA_DOOR_CHANCE) {
             let along = rng.random_range(wall.along.0..wall.along.1);
-            match wall.vertical {
-                true => map.set_passable(wall.at, along, true),
-                false => map.set_passable(along, wall.at, true),
-            }
+            let (x, y) = if wall.vertical {
+                (wall.at, along)
+            } else {
+                (along, wall.at)
+            };
+            map.set_passable(x, y, true);
         }
     }
     map
