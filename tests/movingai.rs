@@ -1,13 +1,14 @@
-//! LazyPRM* on a real MovingAI map (random-32-32-10) with a disc robot of radius
-//! 0.25 cell and yaw weight 0, configured by `configs/p2p-grid.toml` (as `smug bench
-//! p2p`, which runs the bigger maps): 50 scenarios spread over the file, every one
-//! solved, no path entering a blocked cell, mean length within 5% of the optimal
-//! octile length.
+//! LazyPRM* on a generated MovingAI-format map (32×32, 10% random obstacles, seed 1)
+//! with a disc robot of radius 0.25 cell and yaw weight 0, configured by
+//! `configs/p2p-grid.toml` (as `smug bench p2p`, which runs bigger maps): 50 scenarios
+//! drawn by our octile Dijkstra, every one solved, no path entering a blocked cell, mean
+//! length within RATIO_BOUND of the optimal octile length.
 
 use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
+use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::load_map;
-use smug_worlds::movingai::{convert_movingai, read_map, read_scenarios, scenario_to_world};
-use std::path::{Path, PathBuf};
+use smug_worlds::movingai::{generate_scenarios, grid_to_map_yaml, scenario_to_world};
+use std::path::Path;
 
 use smug_objectives as _;
 use smug_planners as _;
@@ -18,32 +19,31 @@ use smug_validity as _;
 const CONFIG: &str = include_str!("../configs/p2p-grid.toml");
 /// What `smug bench p2p` adds: the SE(2) metric without its yaw term, a 0.25-cell disc.
 const SET: [&str; 3] = [
-    "cost.type=se2",
-    "cost.params.rotation_weight=0",
+    "space.type=se2",
+    "space.params.rotation_weight=0",
+    "objective.type=path-length",
+    "objective.params.rotation_weight=0",
     "validity.params.radius=0.25",
 ];
 
-fn data() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/movingai/mapf")
-}
+/// Upper bound on Σ planned length / Σ optimal octile length. Measured 0.9452 (any-angle
+/// paths beat the 8-connected optimum); the bound leaves 1.5% for planner changes.
+const RATIO_BOUND: f64 = 0.96;
 
 #[test]
-fn random_32_32_10_scenarios_are_solved_safely_and_near_optimally() {
-    let map_path = data().join("random-32-32-10.map");
-    let grid = read_map(&map_path).unwrap();
-    let scenarios = read_scenarios(&data().join("random-32-32-10-random-1.scen")).unwrap();
+fn random_32x32_10_percent_scenarios_are_solved_safely_and_near_optimally() {
+    let grid = generate(&GridParams::new(GridFamily::Random, 32, 32, 1)).unwrap();
+    let scenarios = generate_scenarios(&grid, "r10.map", 50, 1).unwrap();
     let dir = std::env::temp_dir().join(format!("smug-movingai-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
     let yaml = dir.join("r10.yaml");
-    convert_movingai(&map_path, &yaml, 1.0).unwrap();
+    grid_to_map_yaml(&grid, &yaml, 1.0, "generated").unwrap();
     let layers = load_map(&yaml, 2.0).unwrap();
     let to_pose = |cell: [usize; 2]| {
         let [x, y] = scenario_to_world(cell, grid.height, 1.0);
         Pose2::new(x, y, 0.0)
     };
-    let picked: Vec<_> = (0..50)
-        .map(|i| &scenarios[i * scenarios.len() / 50])
-        .collect();
+    let picked: Vec<_> = scenarios.iter().collect();
+    assert_eq!(picked.len(), 50);
     let mission = Mission {
         start: to_pose(picked[0].start),
         end: None,
@@ -84,9 +84,9 @@ fn random_32_32_10_scenarios_are_solved_safely_and_near_optimally() {
         optimal += s.optimal_length;
     }
     let ratio = planned / optimal;
-    println!("random-32-32-10: mean planned / optimal octile length = {ratio:.4}");
+    println!("random 32×32 10%: mean planned / optimal octile length = {ratio:.4}");
     assert!(
-        ratio <= 1.05,
+        ratio <= RATIO_BOUND,
         "planned paths are {:.1}% longer than optimal",
         100.0 * (ratio - 1.0)
     );

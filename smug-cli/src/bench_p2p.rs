@@ -1,8 +1,9 @@
-//! `smug bench p2p`: LazyPRM* on MovingAI maps — scenarios solved, path length against
-//! the optimal octile length, time — with a disc robot and yaw weight 0; and PoI-to-PoI
-//! queries on the lunar world (`bench_p2p_lunar`).
+//! `smug bench p2p`: LazyPRM* on grid maps — MovingAI's (`--data DIR` or
+//! `$SMUG_DATA/movingai`) or generated ones (`--generated`, see `bench_p2p_maps`) —
+//! scenarios solved, path length against the optimal octile length, time — with a disc
+//! robot and yaw weight 0; and PoI-to-PoI queries on the lunar world (`bench_p2p_lunar`).
 
-use crate::Outcome;
+use crate::{bench_p2p_maps, Outcome};
 use serde::Serialize;
 use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
 use smug_worlds::map_file::load_map;
@@ -12,28 +13,19 @@ use smug_worlds::movingai::{
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The maps of the benchmark: (map, scenario file) under the data folder.
-const MAPS: [(&str, &str); 4] = [
-    (
-        "mapf/random-32-32-10.map",
-        "mapf/random-32-32-10-random-1.scen",
-    ),
-    (
-        "mapf/random-32-32-20.map",
-        "mapf/random-32-32-20-random-1.scen",
-    ),
-    ("dao/arena2.map", "dao/arena2.map.scen"),
-    ("room/8room_000.map", "room/8room_000.map.scen"),
-];
-
 /// Arguments of `smug bench p2p`.
 #[derive(clap::Args, Debug)]
 pub struct BenchP2pArgs {
-    /// The MovingAI data folder.
-    #[arg(long, default_value = "../shared/data/movingai")]
-    data: PathBuf,
+    /// The MovingAI data folder (holding `mapf/`, `dao/`, `room/`); default
+    /// `$SMUG_DATA/movingai`. Without either, MovingAI maps cannot run.
+    #[arg(long, value_name = "DIR")]
+    data: Option<PathBuf>,
+    /// Also run generated maps of every family (random 10% and 20%, rooms, maze,
+    /// terrain; seed 1) with scenarios from our octile Dijkstra: no download needed.
+    #[arg(long)]
+    generated: bool,
     /// Only these maps (file stems, comma-separated, `lunar` for the lunar world), e.g.
-    /// `lunar,random-32-32-10,arena2`.
+    /// `lunar,random-32-32-10,arena2` or `random-32x32-d10-s1`.
     #[arg(long, value_delimiter = ',')]
     maps: Vec<String>,
     /// The lunar world's config (its world, checkers and planner).
@@ -146,8 +138,10 @@ fn run_map(
     )?;
     // The `smug p2p` disc robot, without the yaw term (grid paths have no heading).
     let mut set = vec![
-        "cost.type=se2".to_string(),
-        "cost.params.rotation_weight=0".to_string(),
+        "space.type=se2".to_string(),
+        "space.params.rotation_weight=0".to_string(),
+        "objective.type=path-length".to_string(),
+        "objective.params.rotation_weight=0".to_string(),
     ];
     set.extend(args.set.iter().cloned());
     set.push(format!("validity.params.radius={}", args.radius));
@@ -210,6 +204,7 @@ fn run_map(
 /// Runs `smug bench p2p`.
 pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     let wants = |name: &str| args.maps.is_empty() || args.maps.iter().any(|m| m == name);
+    let movingai = movingai_folder(&args)?;
     let lunar = if wants("lunar") {
         eprintln!("lunar: {} queries", args.lunar_queries);
         Some(crate::bench_p2p_lunar::run(
@@ -222,18 +217,20 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     };
     let scratch = std::env::temp_dir().join(format!("smug-bench-p2p-{}", std::process::id()));
     std::fs::create_dir_all(&scratch)?;
-    let mut results = Vec::new();
-    for (map, scen) in MAPS {
-        let stem = smug_worlds::map_file::file_stem(Path::new(map));
-        if !wants(&stem) {
-            continue;
-        }
-        results.push(run_map(
-            &args,
-            &args.data.join(map),
-            &args.data.join(scen),
+    let mut maps = match &movingai {
+        Some(dir) => bench_p2p_maps::movingai_maps(dir, wants),
+        None => Vec::new(),
+    };
+    if args.generated {
+        maps.extend(bench_p2p_maps::generated_maps(
             &scratch,
+            args.scenarios,
+            wants,
         )?);
+    }
+    let mut results = Vec::new();
+    for map in &maps {
+        results.push(run_map(&args, &map.map, &map.scen, &scratch)?);
     }
     std::fs::remove_dir_all(&scratch).ok();
     let mut report = String::from("# Point-to-point benchmark\n\n");
@@ -248,9 +245,21 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Ok)
 }
 
+/// The MovingAI data folder when MovingAI maps are to run: named maps need one; with
+/// no `--maps`, one is needed unless `--generated` is given.
+fn movingai_folder(args: &BenchP2pArgs) -> anyhow::Result<Option<PathBuf>> {
+    let named = args.maps.iter().any(|m| bench_p2p_maps::is_movingai(m));
+    match bench_p2p_maps::movingai_dir(args.data.as_deref()) {
+        Ok(dir) if named || args.maps.is_empty() => Ok(Some(dir)),
+        Ok(_) => Ok(None),
+        Err(err) if named || (args.maps.is_empty() && !args.generated) => Err(err),
+        Err(_) => Ok(None),
+    }
+}
+
 fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
     let mut md = format!(
-        "## MovingAI maps\n\nLazyPRM* with `configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
+        "## Grid maps\n\nLazyPRM* with `configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
          {} scenarios per map.\n\n\
          | map | solved | paths touching a blocked cell | mean length / optimal octile | \
          worst length / optimal | time (s) | ms per query | roadmap vertices |\n\

@@ -18,6 +18,7 @@ mod bench;
 mod bench_output;
 mod bench_p2p;
 mod bench_p2p_lunar;
+mod bench_p2p_maps;
 mod bench_paper;
 mod bench_paper_report;
 mod bench_tsp;
@@ -28,6 +29,7 @@ mod plan;
 mod plugins;
 mod tsp;
 mod worlds;
+mod worlds_generate;
 
 /// What a command reports besides errors.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,7 +62,7 @@ enum Command {
     Tsp(tsp::TspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
-    /// Look at, convert and export worlds.
+    /// Look at, convert, generate and export worlds.
     Worlds(worlds::WorldsArgs),
 }
 

@@ -1,4 +1,4 @@
-//! `smug worlds`: look at, convert and export worlds.
+//! `smug worlds`: look at, convert, generate and export worlds.
 //!
 //! A world is named in one of three ways: a registered world plugin built with its
 //! default parameters (`lunar`; `--set world.params.KEY=VALUE` changes them), a pipeline
@@ -28,6 +28,9 @@ enum WorldsCommand {
     Show(ShowArgs),
     /// Convert a MovingAI `.map` grid into a map YAML + PGM.
     ConvertMovingai(ConvertArgs),
+    /// Generate a seeded grid map (random, rooms, maze, terrain) as a MovingAI `.map`,
+    /// with scenarios and a map YAML + PGM on request.
+    Generate(crate::worlds_generate::GenerateArgs),
     /// Export a world as map YAML + occupancy PGM + elevation and traversability PNGs +
     /// mission TOML.
     Export(ExportArgs),
@@ -105,6 +108,7 @@ pub fn run(args: WorldsArgs) -> anyhow::Result<Outcome> {
     match args.command {
         WorldsCommand::Show(args) => show(args),
         WorldsCommand::ConvertMovingai(args) => convert(args),
+        WorldsCommand::Generate(args) => crate::worlds_generate::run(args),
         WorldsCommand::Export(args) => export(args),
     }
 }

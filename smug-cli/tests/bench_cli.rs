@@ -54,3 +54,58 @@ fn quick_paper_bench_writes_a_sane_report() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn p2p_bench_without_data_exits_2_naming_the_suite() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["bench", "p2p", "--scenarios", "1"])
+        .current_dir(common::workspace())
+        .env_remove("SMUG_DATA")
+        .output()
+        .unwrap();
+    common::assert_bad_input(
+        &out,
+        &[
+            "--data DIR",
+            "SMUG_DATA",
+            "MovingAI 2D pathfinding benchmark",
+            "Sturtevant",
+            "mapf/random-32-32-10.map + mapf/random-32-32-10-random-1.scen",
+            "https://movingai.com/benchmarks/",
+            "--generated",
+        ],
+    );
+    // `$SMUG_DATA/movingai` is where the maps are looked for.
+    let data = std::env::temp_dir().join(format!("smug-no-data-{}", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["bench", "p2p", "--maps", "random-32-32-10"])
+        .current_dir(common::workspace())
+        .env("SMUG_DATA", &data)
+        .output()
+        .unwrap();
+    let expected = data.join("movingai/mapf/random-32-32-10.map");
+    common::assert_bad_input(&out, &[expected.to_str().unwrap(), "cannot read"]);
+}
+
+#[test]
+fn p2p_bench_runs_on_generated_maps_without_data() {
+    let dir = std::env::temp_dir().join(format!("smug-bench-p2p-gen-{}", std::process::id()));
+    let report = dir.join("p2p.md");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["bench", "p2p", "--generated", "--scenarios", "10", "--out"])
+        .arg(&report)
+        .args(["--maps", "random-32x32-d10-s1,maze-33x33-s1"])
+        .current_dir(common::workspace())
+        .env_remove("SMUG_DATA")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
+    let text = std::fs::read_to_string(&report).unwrap();
+    for row in [
+        "| random-32x32-d10-s1 | 10/10 | 0 |",
+        "| maze-33x33-s1 | 10/10 | 0 |",
+    ] {
+        assert!(text.contains(row), "`{row}` missing from:\n{text}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

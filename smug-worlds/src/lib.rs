@@ -2,14 +2,15 @@
 //!
 //! Plugins: `flat` (a flat floor with box obstacles and a mission written in the
 //! config), `lunar` and `indoor` (procedural, seeded), `map` (ROS map_server-style
-//! YAML + images and a mission file). Also MovingAI map conversion, world export and
-//! SVG rendering.
+//! YAML + images and a mission file). Also MovingAI map conversion and writing, seeded
+//! grid map generators, optimal octile lengths, world export and SVG rendering.
 
 #![warn(missing_docs)]
 
 mod canvas;
 pub mod export;
 pub mod flat;
+pub mod grid_gen;
 pub mod indoor;
 pub mod lunar;
 pub mod map_file;
@@ -18,6 +19,7 @@ pub mod movingai;
 pub mod render;
 
 pub use export::{export_world, export_world_with, ExportError, ExportOptions};
+pub use grid_gen::{generate, GridFamily, GridGenError, GridParams};
 pub use map_file::{load_map, MapFileError, MapLayers, MapParams, MapYaml};
 pub use mission_file::{load_mission, MissionFileError};
 pub use movingai::{convert_movingai, scenario_to_world, MovingAiError};

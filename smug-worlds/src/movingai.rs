@@ -15,9 +15,20 @@
 //!
 //! which [`scenario_to_world`] computes (and [`world_to_scenario`] inverts). Scenario
 //! path lengths are in cells: multiply by `resolution` for metres.
+//!
+//! Besides reading, this module writes both formats ([`write_map`],
+//! [`write_scenarios`]), computes optimal octile lengths ([`octile_distances`]) and
+//! draws scenarios on a map ([`generate_scenarios`]).
 
-use crate::export::{write_map_yaml, write_pgm, ExportError, FREE_VALUE, OCCUPIED_VALUE};
-use crate::map_file::MapYaml;
+mod octile;
+mod scen_gen;
+mod write;
+
+pub use octile::{octile_distances, octile_length, SQRT_2};
+pub use scen_gen::{generate_scenarios, ScenarioGenError};
+pub use write::{format_map, format_scenarios, grid_to_map_yaml, write_map, write_scenarios};
+
+use crate::export::ExportError;
 use std::path::{Path, PathBuf};
 
 /// Why a MovingAI file could not be read or converted.
@@ -66,9 +77,30 @@ pub struct MovingAiMap {
 }
 
 impl MovingAiMap {
+    /// A `width` × `height` map whose cells are all passable (`true`) or all blocked.
+    pub fn filled(width: usize, height: usize, passable: bool) -> Self {
+        Self {
+            width,
+            height,
+            passable: vec![passable; width * height],
+        }
+    }
+
     /// True when cell `(x, y)` exists and is passable.
     pub fn is_passable(&self, x: usize, y: usize) -> bool {
         x < self.width && y < self.height && self.passable[y * self.width + x]
+    }
+
+    /// Makes cell `(x, y)` passable or blocked; cells outside the map are ignored.
+    pub fn set_passable(&mut self, x: usize, y: usize, passable: bool) {
+        if x < self.width && y < self.height {
+            self.passable[y * self.width + x] = passable;
+        }
+    }
+
+    /// The number of passable cells.
+    pub fn passable_count(&self) -> usize {
+        self.passable.iter().filter(|&&p| p).count()
     }
 }
 
@@ -297,35 +329,26 @@ pub fn convert_movingai(
     out_yaml: &Path,
     resolution: f64,
 ) -> Result<PathBuf, MovingAiError> {
-    if !(resolution.is_finite() && resolution > 0.0) {
-        return Err(MovingAiError::Invalid {
-            path: map.to_path_buf(),
-            message: format!("resolution must be a finite number > 0, got {resolution}"),
-        });
-    }
+    check_resolution(resolution, map)?;
     let grid = read_map(map)?;
-    let dir = out_yaml.parent().unwrap_or(Path::new(""));
-    if !dir.as_os_str().is_empty() {
-        std::fs::create_dir_all(dir).map_err(|source| ExportError::Write {
-            path: dir.to_path_buf(),
-            source,
-        })?;
-    }
-    let pgm_name = format!("{}.pgm", crate::map_file::file_stem(out_yaml));
-    let pgm_path = dir.join(&pgm_name);
-    let pixels: Vec<u8> = grid
-        .passable
-        .iter()
-        .map(|&free| if free { FREE_VALUE } else { OCCUPIED_VALUE })
-        .collect();
-    write_pgm(&pgm_path, [grid.width, grid.height], &pixels)?;
-    let yaml = MapYaml::new(pgm_name, resolution, [0.0, 0.0]);
-    write_map_yaml(
+    grid_to_map_yaml(
+        &grid,
         out_yaml,
-        &yaml,
+        resolution,
         &format!("converted from MovingAI map {}", map.display()),
-    )?;
-    Ok(pgm_path)
+    )
+}
+
+/// Fails unless `resolution` is a finite number > 0; `path` names the input in errors.
+fn check_resolution(resolution: f64, path: &Path) -> Result<(), MovingAiError> {
+    if resolution.is_finite() && resolution > 0.0 {
+        Ok(())
+    } else {
+        Err(MovingAiError::Invalid {
+            path: path.to_path_buf(),
+            message: format!("resolution must be a finite number > 0, got {resolution}"),
+        })
+    }
 }
 
 #[cfg(test)]

@@ -1,10 +1,14 @@
 //! Map import (YAML + PGM/PNG), world export round trips, the `map` plugin and the
-//! MovingAI converter on the reference maps in `shared/data/movingai`.
+//! MovingAI converter and readers on generated maps and the sample files in
+//! `tests/data/` (every terrain character, CRLF, header and scenario corner cases).
 
 use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};
 use smug_core::{GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Point3, Pose2, World};
+use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::{load_map, MapFileError};
-use smug_worlds::movingai::{read_map, read_scenarios, scenario_to_world};
+use smug_worlds::movingai::{
+    generate_scenarios, read_map, read_scenarios, scenario_to_world, write_map, write_scenarios,
+};
 use smug_worlds::{convert_movingai, export_world};
 use std::path::{Path, PathBuf};
 
@@ -408,20 +412,34 @@ fn export_rejects_unusable_requests() {
     assert!(err.contains("cannot write"), "{err}");
 }
 
-fn movingai_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/movingai")
+/// The sample `.map` / `.scen` files of this crate's tests.
+fn data_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+}
+
+/// A generated 32×32 map with 10% random obstacles and 200 scenarios, written as
+/// `random.map` and `random.map.scen` into `dir`.
+fn generated_random_map(dir: &Path) -> (PathBuf, PathBuf) {
+    let params = GridParams::new(GridFamily::Random, 32, 32, 1);
+    let grid = generate(&params).unwrap();
+    let map = dir.join("random.map");
+    let scen = dir.join("random.map.scen");
+    write_map(&map, &grid).unwrap();
+    let scenarios = generate_scenarios(&grid, "random.map", 200, 1).unwrap();
+    write_scenarios(&scen, &scenarios).unwrap();
+    (map, scen)
 }
 
 #[test]
 fn movingai_conversion_keeps_cells_and_scenarios() {
     let dir = scratch("movingai");
-    let map_path = movingai_dir().join("mapf/random-32-32-10.map");
+    let (map_path, scen_path) = generated_random_map(&dir);
     let grid = read_map(&map_path).unwrap();
     assert_eq!((grid.width, grid.height), (32, 32));
     let resolution = 0.5;
-    let yaml = dir.join("random.yaml");
+    let yaml = dir.join("converted.yaml");
     let pgm = convert_movingai(&map_path, &yaml, resolution).unwrap();
-    assert_eq!(pgm, dir.join("random.pgm"));
+    assert_eq!(pgm, dir.join("converted.pgm"));
     let layers = load_map(&yaml, 2.0).unwrap();
     let e = &layers.elevation;
     assert_eq!(e.geometry.size, [32, 32]);
@@ -435,15 +453,11 @@ fn movingai_conversion_keeps_cells_and_scenarios() {
             blocked += usize::from(z == 2.0);
         }
     }
-    assert!(blocked > 50, "{blocked} blocked cells");
-    let scenarios =
-        read_scenarios(&movingai_dir().join("mapf/random-32-32-10-random-1.scen")).unwrap();
-    assert!(scenarios.len() > 100);
+    assert_eq!(blocked, 102, "10% of 1024 cells");
+    let scenarios = read_scenarios(&scen_path).unwrap();
+    assert_eq!(scenarios.len(), 200);
     for s in &scenarios {
-        assert_eq!(
-            (s.width, s.height, s.map.as_str()),
-            (32, 32, "random-32-32-10.map")
-        );
+        assert_eq!((s.width, s.height, s.map.as_str()), (32, 32, "random.map"));
         for cell in [s.start, s.goal] {
             let [wx, wy] = scenario_to_world(cell, grid.height, resolution);
             assert_eq!(
@@ -456,23 +470,98 @@ fn movingai_conversion_keeps_cells_and_scenarios() {
 }
 
 #[test]
-fn every_reference_movingai_file_parses() {
-    for (map, scen) in [
-        ("dao/arena2.map", "dao/arena2.map.scen"),
-        ("street/Berlin_0_512.map", "street/Berlin_0_512.map.scen"),
+fn every_sample_and_generated_movingai_file_parses() {
+    let dir = scratch("movingai-families");
+    let mut pairs = vec![
         (
-            "mapf/random-32-32-20.map",
-            "mapf/random-32-32-20-random-1.scen",
+            data_dir().join("every-terrain.map"),
+            data_dir().join("tabs.scen"),
         ),
-    ] {
-        let grid = read_map(&movingai_dir().join(map)).unwrap();
-        let scenarios = read_scenarios(&movingai_dir().join(scen)).unwrap();
+        (
+            data_dir().join("crlf.map"),
+            data_dir().join("spaces-crlf.scen"),
+        ),
+    ];
+    for family in GridFamily::ALL {
+        let grid = generate(&GridParams::new(family, 45, 30, 2)).unwrap();
+        let map = dir.join(format!("{family}.map"));
+        write_map(&map, &grid).unwrap();
+        let scen = dir.join(format!("{family}.map.scen"));
+        let name = format!("{family}.map");
+        write_scenarios(&scen, &generate_scenarios(&grid, &name, 50, 2).unwrap()).unwrap();
+        pairs.push((map, scen));
+    }
+    for (map, scen) in &pairs {
+        let grid = read_map(map).unwrap();
+        let scenarios = read_scenarios(scen).unwrap();
+        assert!(!scenarios.is_empty(), "{}", scen.display());
         for s in &scenarios {
-            assert_eq!((s.width, s.height), (grid.width, grid.height), "{scen}");
-            assert!(grid.is_passable(s.start[0], s.start[1]), "{scen}: {s:?}");
-            assert!(grid.is_passable(s.goal[0], s.goal[1]), "{scen}: {s:?}");
+            let name = scen.display();
+            assert_eq!((s.width, s.height), (grid.width, grid.height), "{name}");
+            assert!(grid.is_passable(s.start[0], s.start[1]), "{name}: {s:?}");
+            assert!(grid.is_passable(s.goal[0], s.goal[1]), "{name}: {s:?}");
+            let length = smug_worlds::movingai::octile_length(&grid, s.start, s.goal);
+            assert!(
+                (length.unwrap() - s.optimal_length).abs() < 1e-6,
+                "{name}: {s:?}"
+            );
         }
     }
+}
+
+#[test]
+fn sample_files_cover_the_reader_corner_cases() {
+    // Every terrain character: `.`, `G` and `S` passable; `@`, `O`, `T` and `W` blocked.
+    let terrain = read_map(&data_dir().join("every-terrain.map")).unwrap();
+    let rows: Vec<String> = (0..terrain.height)
+        .map(|y| {
+            (0..terrain.width)
+                .map(|x| if terrain.is_passable(x, y) { '.' } else { '#' })
+                .collect()
+        })
+        .collect();
+    assert_eq!(rows, [".....", "##.##", "....."]);
+    // CRLF line ends read like LF ones.
+    let crlf = read_map(&data_dir().join("crlf.map")).unwrap();
+    assert_eq!(crlf.passable, [true, false, true, true, true, true]);
+    let spaced = read_scenarios(&data_dir().join("spaces-crlf.scen")).unwrap();
+    assert_eq!(
+        (spaced[0].start, spaced[0].goal, spaced[0].optimal_length),
+        ([0, 0], [2, 0], 4.0)
+    );
+    // Header lines in either order; blank lines after the rows are fine.
+    let w = read_map(&data_dir().join("width-first.map")).unwrap();
+    assert_eq!(
+        (w.width, w.height, w.passable.clone()),
+        (2, 1, vec![true, false])
+    );
+    assert_eq!(
+        read_map(&data_dir().join("trailing-blank-lines.map"))
+            .unwrap()
+            .passable_count(),
+        4
+    );
+    let errors = [
+        (
+            "no-width.map",
+            "no-width.map:3: the header needs `height` and `width`",
+        ),
+        ("no-version.scen", "no-version.scen:1: expected `version 1`"),
+        ("short-line.scen", "short-line.scen:2: expected 9 fields"),
+    ];
+    for (file, needle) in errors {
+        let path = data_dir().join(file);
+        let err = if file.ends_with(".map") {
+            read_map(&path).unwrap_err().to_string()
+        } else {
+            read_scenarios(&path).unwrap_err().to_string()
+        };
+        assert!(err.contains(needle), "{err}");
+    }
+    let missing = read_map(&data_dir().join("absent.map"))
+        .unwrap_err()
+        .to_string();
+    assert!(missing.contains("absent.map: cannot read"), "{missing}");
 }
 
 #[test]

@@ -179,7 +179,8 @@ def compare_map(args, name, work, log):
     radius = args.radius * res
     smug_json = work / f"{stem}.smug.json"
     smug_cmd = [args.smug, "p2p", "--map", yaml, "--queries", queries, "--validity", "clearance-2d",
-                "--radius", repr(radius), "--set", "cost.type=se2", "--set", "cost.params.rotation_weight=0"]
+                "--radius", repr(radius), "--set", "space.type=se2", "--set", "space.params.rotation_weight=0",
+                "--set", "objective.type=path-length", "--set", "objective.params.rotation_weight=0"]
     for s in args.smug_set:
         smug_cmd += ["--set", s]
     smug_out, smug_wall, smug_cpu = run(smug_cmd + ["--out", smug_json], log)
@@ -296,10 +297,10 @@ def main():
     ap.add_argument("maps", nargs="*", default=DEFAULT_MAPS,
                     help="maps under --data as dir/stem (e.g. dao/arena2), or MAP:SCEN paths relative to it "
                          f"(default: {' '.join(DEFAULT_MAPS)})")
-    data = os.environ.get("SMUG_DATA")
-    ap.add_argument("--data", type=Path, default=Path(data) if data else None,
-                    help="the MovingAI folder (holding mapf/, dao/, room/ …; not shipped, "
-                         "see docs/benchmarks.md); default: $SMUG_DATA")
+    smug_data = os.environ.get("SMUG_DATA")
+    ap.add_argument("--data", type=Path, default=Path(smug_data) / "movingai" if smug_data else None,
+                    required=not smug_data,
+                    help="the MovingAI data folder (default: $SMUG_DATA/movingai, as `smug bench p2p`)")
     ap.add_argument("--smug", default=str(HERE.parent.parent / "target" / "release" / "smug"),
                     help="the smug binary (default: the workspace's target/release/smug)")
     ap.add_argument("--peer", default=str(HERE / "ompl_p2p"), help="the ompl_p2p binary")
