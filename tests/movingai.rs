@@ -18,7 +18,7 @@ use smug_validity as _;
 /// The documented grid config of `smug p2p` and `smug bench p2p`.
 const CONFIG: &str = include_str!("../configs/p2p-grid.toml");
 /// What `smug bench p2p` adds: the SE(2) metric without its yaw term, a 0.25-cell disc.
-const SET: [&str; 3] = [
+const SET: [&str; 5] = [
     "space.type=se2",
     "space.params.rotation_weight=0",
     "objective.type=path-length",
