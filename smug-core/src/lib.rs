@@ -41,7 +41,7 @@ pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, Waypoint};
-pub use space::{Se2Space, StateSpace};
+pub use space::{MotionExtent, Se2Space, StateSpace};
 pub use stages::*;
 pub use termination::Termination;
 pub use world::World;

@@ -561,7 +561,7 @@ mod tests {
         let planner = DetourPlanner {
             poses: poses.to_vec(),
             detours,
-            objective,
+            objective: objective.clone(),
         };
         let mut oracle = PathOracle::new(Arc::new(objective), Box::new(planner));
         let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();

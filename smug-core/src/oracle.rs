@@ -232,7 +232,7 @@ mod tests {
     fn oracle() -> PathOracle {
         let objective = PathLength::default();
         let mut oracle = PathOracle::new(
-            Arc::new(objective),
+            Arc::new(objective.clone()),
             Box::new(StraightLine {
                 objective,
                 calls: 0,

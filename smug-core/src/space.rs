@@ -31,6 +31,45 @@ pub trait StateSpace: Send + Sync + Debug {
     fn is_symmetric(&self) -> bool {
         true
     }
+
+    /// The local motion's length in the plane and how far its heading turns in all
+    /// (a straight SE(2) motion: `‖Δxy‖` and `d(yaw_a, yaw_b)`); objectives cost by it.
+    fn motion_extent(&self, a: &Pose2, b: &Pose2) -> MotionExtent {
+        MotionExtent {
+            length: a.xy_distance(b),
+            turning: angle_distance(a.yaw, b.yaw),
+        }
+    }
+
+    /// A lower bound of the planar length of every feasible path from `a` to `b` that
+    /// is also the length of the shortest one where the model knows it (a curve of
+    /// bounded curvature: the Dubins or Reeds–Shepp length); at least `‖Δxy‖`.
+    /// Objectives build their admissible bounds on it.
+    fn length_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        a.xy_distance(b)
+    }
+
+    /// True when the robot drives backwards at fraction `t` of the motion `a → b`
+    /// (a Reeds–Shepp gear change); forward-only models never do.
+    fn is_reversing(&self, _a: &Pose2, _b: &Pose2, _t: f64) -> bool {
+        false
+    }
+
+    /// True when the heading is free of the direction of travel (legged robots: a
+    /// waypoint may be turned to face the next one); false for car-like models, whose
+    /// plans are their curves sampled, headings untouched.
+    fn is_holonomic(&self) -> bool {
+        true
+    }
+}
+
+/// How long a local motion is in the plane, and how far its heading turns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MotionExtent {
+    /// Planar length, metres.
+    pub length: f64,
+    /// Total heading change along the motion, radians (≥ `d(yaw_a, yaw_b)`).
+    pub turning: f64,
 }
 
 /// Parameters of the OMPL SE(2) space (the weights of its distance).

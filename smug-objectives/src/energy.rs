@@ -80,7 +80,7 @@ impl Objective for Energy {
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
         let (mg, mu) = (self.weight(), self.params.friction);
         let climb = self.terrain.rise((a.x, a.y), (b.x, b.y)).max(0.0);
-        mu * mg * a.xy_distance(b) + mg * climb
+        mu * mg * self.space.length_bound(a, b) + mg * climb
     }
 
     fn bound_weights(&self) -> (f64, f64) {

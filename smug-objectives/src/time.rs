@@ -106,7 +106,7 @@ impl Objective for TravelTime {
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
         let p = &self.params;
-        a.xy_distance(b) / p.max_speed + angle_distance(a.yaw, b.yaw) / p.turn_rate
+        self.space.length_bound(a, b) / p.max_speed + angle_distance(a.yaw, b.yaw) / p.turn_rate
     }
 
     fn bound_weights(&self) -> (f64, f64) {

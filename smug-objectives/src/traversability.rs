@@ -82,7 +82,8 @@ impl Objective for RiskAware {
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
         let p = &self.params;
-        p.translation_weight * a.xy_distance(b) + p.rotation_weight * angle_distance(a.yaw, b.yaw)
+        p.translation_weight * self.space.length_bound(a, b)
+            + p.rotation_weight * angle_distance(a.yaw, b.yaw)
     }
 
     fn bound_weights(&self) -> (f64, f64) {

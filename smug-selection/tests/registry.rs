@@ -51,7 +51,7 @@ fn selectors_build_from_parameters_and_select() {
         ("brute-force", "max_combinations = 10"),
     ] {
         let selector = build(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}"));
-        let mut oracle = PathOracle::new(Arc::new(metric), Box::new(StraightLine));
+        let mut oracle = PathOracle::new(Arc::new(metric.clone()), Box::new(StraightLine));
         for (x, y) in [(0.0, 0.0), (4.0, 3.0), (1.0, 1.0), (2.0, 0.0), (5.0, 5.0)] {
             oracle.add_pose(Pose2::new(x, y, 0.0));
         }

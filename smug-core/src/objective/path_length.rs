@@ -1,9 +1,13 @@
-//! `path-length`: the SE(2) length `w_t·‖Δxy‖ + w_r·d(Δyaw)` of straight motions
-//! (OMPL's path length objective under its SE(2) distance); its bound is the cost itself.
+//! `path-length`: `w_t·length + w_r·turning` of the space's motions; for straight SE(2)
+//! motions that is `w_t·‖Δxy‖ + w_r·d(Δyaw)` (OMPL's path length under its SE(2)
+//! distance) and the bound is the cost itself; for curved models the bound is
+//! `w_t·length_bound + w_r·d(Δyaw)` (the shortest feasible curve).
 
 use super::{check_non_negative, check_positive, Objective};
 use crate::pose::{angle_distance, Pose2};
+use crate::space::{Se2Space, StateSpace};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Parameters of `path-length`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -24,11 +28,13 @@ impl Default for PathLengthParams {
     }
 }
 
-/// `w_t·‖Δxy‖ + w_r·d(Δyaw)` per motion: a metric, so the bound equals the cost.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `w_t·length + w_r·turning` per motion of the space (on `se2`: a metric, so the bound
+/// equals the cost).
+#[derive(Clone, Debug)]
 pub struct PathLength {
     w_t: f64,
     w_r: f64,
+    space: Arc<dyn StateSpace>,
 }
 
 impl Default for PathLength {
@@ -46,22 +52,35 @@ impl PathLength {
         })
     }
 
-    /// The objective from its parameters: `translation_weight` > 0, `rotation_weight` ≥ 0.
+    /// The objective from its parameters on straight SE(2) motions:
+    /// `translation_weight` > 0, `rotation_weight` ≥ 0.
     pub fn from_params(p: PathLengthParams) -> crate::Result<Self> {
         Ok(Self {
             w_t: check_positive("objective", "translation_weight", p.translation_weight)?,
             w_r: check_non_negative("objective", "rotation_weight", p.rotation_weight)?,
+            space: Arc::new(Se2Space::default()),
         })
+    }
+
+    /// The same objective along the motions of `space`.
+    pub fn on(mut self, space: Arc<dyn StateSpace>) -> Self {
+        self.space = space;
+        self
     }
 }
 
 impl Objective for PathLength {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.w_t * a.xy_distance(b) + self.w_r * angle_distance(a.yaw, b.yaw)
+        let extent = self.space.motion_extent(a, b);
+        self.w_t * extent.length + self.w_r * extent.turning
     }
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.motion_cost(a, b)
+        self.w_t * self.space.length_bound(a, b) + self.w_r * angle_distance(a.yaw, b.yaw)
+    }
+
+    fn is_symmetric(&self) -> bool {
+        self.space.is_symmetric()
     }
 
     fn bound_weights(&self) -> (f64, f64) {
@@ -74,13 +93,12 @@ crate::register_plugin!(
     name = "path-length",
     summary = "SE(2) length w_t·‖Δxy‖ + w_r·d(Δyaw) (today's cost); bound = the cost",
     params = PathLengthParams,
-    build = |params, _ctx| Ok(Box::new(PathLength::from_params(params)?)),
+    build = |params, ctx| Ok(Box::new(PathLength::from_params(params)?.on(ctx.space()))),
 );
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::space::{Se2Space, StateSpace};
     use crate::testing::arb_pose;
     use proptest::prelude::*;
 
