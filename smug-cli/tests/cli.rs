@@ -8,10 +8,10 @@ use common::*;
 /// returns its path relative to the workspace.
 fn temp_config(name: &str, text: &str) -> String {
     let dir = workspace().join("target").join("cli-test-configs");
-    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::create_dir_all(dir.join("robots")).unwrap();
     std::fs::copy(
-        workspace().join("configs/anymal.toml"),
-        dir.join("anymal.toml"),
+        workspace().join("configs/robots/anymal.toml"),
+        dir.join("robots/anymal.toml"),
     )
     .unwrap();
     let path = dir.join(name);

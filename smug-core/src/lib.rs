@@ -21,6 +21,7 @@ pub mod path;
 pub mod pipeline;
 pub mod plan;
 pub mod pose;
+pub mod post_process;
 pub mod registry;
 pub mod rng;
 pub mod space;

@@ -9,10 +9,9 @@ use crate::mission::Mission;
 use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
 use crate::plan::{ChosenPoi, Plan, PlanStats, Segment};
-use crate::pose::{wrap_angle, Pose2, Waypoint};
-use crate::stages::{
-    CostMatrix, MotionValidator, SelectionProblem, Sequencer, StateValidityChecker, Tour, TourKind,
-};
+use crate::pose::Pose2;
+use crate::post_process::{concatenate, waypoints};
+use crate::stages::{CostMatrix, SelectionProblem, Sequencer, Tour, TourKind};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -315,25 +314,13 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
         &selection.chosen,
         &route,
     )?;
-    let (mut poses, fixed) = concatenate(&plan);
     let objective = pipeline
         .config
         .objective
         .as_ref()
         .map_or("path-length", |section| section.kind.as_str());
-    plan.metrics = plan_metrics(pipeline.context(), &world, objective, &poses);
-    if !options.keep_headings {
-        align_headings(
-            &mut poses,
-            &fixed,
-            pipeline.state_validity.as_deref(),
-            pipeline.motion_validator.as_deref(),
-        );
-    }
-    plan.waypoints = poses
-        .iter()
-        .map(|p| Waypoint::from_pose(p, world.height_at(p.x, p.y).unwrap_or(f64::NAN)))
-        .collect();
+    plan.metrics = plan_metrics(pipeline.context(), &world, objective, &concatenate(&plan).0);
+    (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, &world, options.keep_headings);
     plan.cost = selection.cost;
     plan.skipped = skipped;
     times.insert("post-processing".into(), t.elapsed().as_secs_f64());
@@ -414,48 +401,6 @@ fn assemble_plan(
         segments,
         ..Plan::default()
     })
-}
-
-/// The segments' states in order (shared endpoints once) and which of them are fixed
-/// (the start, the PoIs, the end).
-fn concatenate(plan: &Plan) -> (Vec<Pose2>, Vec<bool>) {
-    let mut poses: Vec<Pose2> = Vec::new();
-    let mut fixed = Vec::new();
-    for segment in &plan.segments {
-        for (k, s) in segment.path.states.iter().enumerate() {
-            if k == 0 && !poses.is_empty() {
-                continue;
-            }
-            poses.push(*s);
-            fixed.push(k == 0 || k + 1 == segment.path.states.len());
-        }
-    }
-    (poses, fixed)
-}
-
-/// Turns every free waypoint towards the next one (forward walking) where the checkers
-/// accept the turned state and its motions; fixed waypoints keep their yaw.
-fn align_headings(
-    poses: &mut [Pose2],
-    fixed: &[bool],
-    states: Option<&dyn StateValidityChecker>,
-    motions: Option<&dyn MotionValidator>,
-) {
-    for k in 1..poses.len().saturating_sub(1) {
-        if fixed[k] {
-            continue;
-        }
-        let heading = (poses[k + 1].y - poses[k].y).atan2(poses[k + 1].x - poses[k].x);
-        let turned = Pose2::new(poses[k].x, poses[k].y, wrap_angle(heading));
-        let accepted = states.is_none_or(|c| c.is_valid(&turned))
-            && motions.is_none_or(|m| {
-                m.is_valid_motion(&poses[k - 1], &turned)
-                    && m.is_valid_motion(&turned, &poses[k + 1])
-            });
-        if accepted {
-            poses[k] = turned;
-        }
-    }
 }
 
 fn stats(

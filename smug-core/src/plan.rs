@@ -84,6 +84,10 @@ pub struct Plan {
     pub segments: Vec<Segment>,
     /// `[x, y, z, yaw]` from start to end, for a local planner.
     pub waypoints: Vec<Waypoint>,
+    /// For models that drive backwards (Reeds–Shepp): whether the robot reverses into
+    /// each waypoint (absent when it never does).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reversing: Vec<bool>,
     /// Total cost under the planning objective.
     pub cost: f64,
     /// Length, cost under every objective, and traversability along the plan.

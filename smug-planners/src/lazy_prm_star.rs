@@ -262,7 +262,7 @@ impl LazyPrmStar {
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
-            roadmap: Roadmap::new(bounds),
+            roadmap: Roadmap::new(bounds).with_directed_edges(!space.is_symmetric()),
             astar: AStar::default(),
             sampler,
             states,

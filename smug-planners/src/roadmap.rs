@@ -18,12 +18,13 @@ pub enum Validity {
     Invalid,
 }
 
-/// An undirected edge.
+/// An edge: undirected (the motion `a → b` and its reverse are one motion, as for
+/// symmetric spaces), or the directed motion `a → b` on a directed roadmap.
 #[derive(Clone, Copy, Debug)]
 pub struct Edge {
-    /// One end.
+    /// One end (where a directed edge starts).
     pub a: u32,
-    /// The other end.
+    /// The other end (where a directed edge ends).
     pub b: u32,
     /// The objective's cost of the motion from `a` to `b` (the adjacency lists hold each
     /// direction's cost).
@@ -38,7 +39,14 @@ pub struct Roadmap {
     id: u64,
     poses: Vec<Pose2>,
     vertex_validity: Vec<Validity>,
+    /// Edges leaving each vertex (every incident edge when undirected).
     adjacency: Vec<Vec<(u32, u32)>>,
+    /// On a directed roadmap, the edges entering each vertex (empty lists otherwise).
+    incoming: Vec<Vec<u32>>,
+    /// Whether each motion and its reverse are separate edges (asymmetric spaces).
+    directed: bool,
+    /// Whether some edge costs differ by direction (then repairs search afresh).
+    asymmetric_costs: bool,
     /// The costs of the edges in `adjacency`, in the same order (read by the searches
     /// without touching the edge array).
     adjacent_costs: Vec<Vec<f64>>,
@@ -63,6 +71,9 @@ impl Roadmap {
             poses: Vec::new(),
             vertex_validity: Vec::new(),
             adjacency: Vec::new(),
+            incoming: Vec::new(),
+            directed: false,
+            asymmetric_costs: false,
             adjacent_costs: Vec::new(),
             edges: Vec::new(),
             grid: XyGrid::new(bounds, (w.max(h) / 8.0).max(1e-3)),
@@ -72,6 +83,14 @@ impl Roadmap {
             live_edges: 0,
             removals: 0,
         }
+    }
+
+    /// The same roadmap with directed edges (for asymmetric spaces, whose motion `b → a`
+    /// is not `a → b` reversed): each connection adds both motions as separate edges,
+    /// checked and removed on their own. Call before adding vertices.
+    pub fn with_directed_edges(mut self, directed: bool) -> Self {
+        self.directed = directed;
+        self
     }
 
     /// Number of vertices ever added (invalid ones included).
@@ -138,6 +157,7 @@ impl Roadmap {
         let capacity = 2 * neighbours.len() + 4;
         self.adjacency.push(Vec::with_capacity(capacity));
         self.adjacent_costs.push(Vec::with_capacity(capacity));
+        self.incoming.push(Vec::new());
         self.components.push();
         self.grid.insert(id, &pose, &self.poses);
         self.by_pose.insert(pose_key(&pose), id);
@@ -150,9 +170,31 @@ impl Roadmap {
             } else {
                 objective.motion_cost(&other, &pose)
             };
-            self.add_edge(id, n.id, there, back);
+            self.asymmetric_costs |= there != back;
+            if self.directed {
+                self.add_directed_edge(id, n.id, there);
+                self.add_directed_edge(n.id, id, back);
+            } else {
+                self.add_edge(id, n.id, there, back);
+            }
         }
         id
+    }
+
+    /// Adds the directed edge (motion) `a → b` with its cost.
+    fn add_directed_edge(&mut self, a: u32, b: u32, cost: f64) {
+        let e = self.edges.len() as u32;
+        self.edges.push(Edge {
+            a,
+            b,
+            cost,
+            validity: Validity::Unknown,
+        });
+        self.adjacency[a as usize].push((b, e));
+        self.adjacent_costs[a as usize].push(cost);
+        self.incoming[b as usize].push(e);
+        self.components.union(a, b);
+        self.live_edges += 1;
     }
 
     /// Adds the edge `a — b` with the costs of `a → b` and `b → a`.
@@ -187,6 +229,10 @@ impl Roadmap {
                 self.adjacent_costs[v as usize].swap_remove(k);
             }
         }
+        let entering = &mut self.incoming[b as usize];
+        if let Some(k) = entering.iter().position(|&id| id == e) {
+            entering.swap_remove(k);
+        }
         self.live_edges -= 1;
         self.removals += 1;
         self.components_stale = true;
@@ -198,7 +244,11 @@ impl Roadmap {
             return;
         }
         self.vertex_validity[v as usize] = Validity::Invalid;
-        let incident: Vec<u32> = self.adjacency[v as usize].iter().map(|&(_, e)| e).collect();
+        let incident: Vec<u32> = self.adjacency[v as usize]
+            .iter()
+            .map(|&(_, e)| e)
+            .chain(self.incoming[v as usize].iter().copied())
+            .collect();
         for e in incident {
             self.remove_edge(e);
         }
@@ -571,7 +621,9 @@ impl AStar {
         fresh_from: u32,
         objective: &dyn Objective,
     ) -> Repair {
-        if self.settled_for(map, start, goal).is_none() {
+        // The repair relaxes edges into fresh vertices with the costs stored from
+        // their side: only right when costs are the same both ways.
+        if map.asymmetric_costs || self.settled_for(map, start, goal).is_none() {
             return Repair::NoBase;
         }
         let open = self.prepare(map, goal, objective).open;
@@ -1081,6 +1133,61 @@ mod tests {
                     prop_assert!((path.cost - best).abs() < 1e-9, "{} vs {}", path.cost, best);
                     prop_assert!(path.edges.iter().all(|&e| lazy.edge(e).validity == Validity::Valid || path.vertices.len() == 1));
                 }
+            }
+        }
+    }
+
+    /// A cost that charges going up in x twice as much as going down (asymmetric).
+    #[derive(Debug)]
+    struct Uphill;
+
+    impl Objective for Uphill {
+        fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
+            a.xy_distance(b) + (b.x - a.x).max(0.0)
+        }
+        fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+            self.motion_cost(a, b)
+        }
+        fn bound_weights(&self) -> (f64, f64) {
+            (1.0, 0.0)
+        }
+        fn is_symmetric(&self) -> bool {
+            false
+        }
+    }
+
+    proptest! {
+        /// Directed edges (both motions of every connection) find the same cheapest
+        /// paths as undirected ones, under symmetric and asymmetric costs; removing one
+        /// direction leaves the other.
+        #[test]
+        fn directed_roadmaps_agree_with_undirected_ones(
+            points in prop::collection::vec((0.0..10.0f64, 0.0..10.0f64, -3.0..3.0f64), 3..40),
+            k in 2usize..6,
+            asymmetric in any::<bool>(),
+        ) {
+            let space = Se2Space::default();
+            let (length, uphill) = (PathLength::default(), Uphill);
+            let objective: &dyn Objective = if asymmetric { &uphill } else { &length };
+            let mut undirected = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            let mut directed = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] }).with_directed_edges(true);
+            for &(x, y, t) in &points {
+                for map in [&mut undirected, &mut directed] {
+                    map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&space, 1.0), objective);
+                }
+            }
+            let goal = points.len() as u32 - 1;
+            for start in [0, goal] {
+                let (u, d) = (dijkstra(&undirected, start), dijkstra(&directed, start));
+                for (a, b) in u.iter().zip(&d) {
+                    prop_assert!(a == b || (a - b).abs() <= 1e-9 * a.max(1.0), "{a} vs {b}");
+                }
+            }
+            prop_assert_eq!(directed.live_edge_count(), 2 * undirected.live_edge_count());
+            if let Some(&(w, e)) = directed.neighbours(0).first() {
+                directed.remove_edge(e);
+                prop_assert!(directed.neighbours(0).iter().all(|&(_, id)| id != e));
+                prop_assert!(directed.neighbours(w).iter().any(|&(v, _)| v == 0), "the reverse motion stays");
             }
         }
     }
