@@ -21,6 +21,8 @@ enum BenchCommand {
     P2p(crate::bench_p2p::BenchP2pArgs),
     /// State validity checkers: checks per second and distance-field queries.
     Validity(crate::bench_validity::BenchValidityArgs),
+    /// The missions under each objective: length, risk, energy, time, planning time.
+    Objectives(crate::bench_objectives::BenchObjectivesArgs),
 }
 
 /// Runs `smug bench`.
@@ -30,5 +32,6 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Tsp(args) => crate::bench_tsp::run_bench(args),
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),
+        BenchCommand::Objectives(args) => crate::bench_objectives::run(args),
     }
 }

@@ -15,6 +15,7 @@ use smug_validity as _;
 use smug_worlds as _;
 
 mod bench;
+mod bench_objectives;
 mod bench_output;
 mod bench_p2p;
 mod bench_p2p_lunar;

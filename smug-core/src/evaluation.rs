@@ -21,6 +21,8 @@ pub struct PlanMetrics {
     pub objective: String,
     /// Length in the plane, metres.
     pub length_m: f64,
+    /// Height climbed (Σ max(0, Δz) along the path, sampled every half cell), metres.
+    pub climb_m: f64,
     /// Cost under each registered objective with its default parameters (those the
     /// world cannot support, e.g. without a traversability layer, are left out).
     pub costs: BTreeMap<String, f64>,
@@ -44,6 +46,7 @@ pub fn plan_metrics(
     let mut metrics = PlanMetrics {
         objective: objective.to_string(),
         length_m,
+        climb_m: climb(ctx, world, states),
         costs: costs_under_every_objective(ctx, states),
         ..PlanMetrics::default()
     };
@@ -68,6 +71,25 @@ pub fn plan_metrics(
         metrics.risky_length_m = Some(risky);
     }
     metrics
+}
+
+/// Height climbed along the space's motions through `states`, sampled every half cell
+/// of the elevation layer (unknown heights climb nothing).
+fn climb(ctx: &BuildContext, world: &World, states: &[Pose2]) -> f64 {
+    let step = world.elevation.geometry.resolution * 0.5;
+    let space = ctx.space();
+    let height = |p: &Pose2| world.height_at(p.x, p.y);
+    states
+        .windows(2)
+        .map(|w| {
+            integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, _| {
+                match (height(from), height(to)) {
+                    (Some(a), Some(b)) => (b - a).max(0.0),
+                    _ => 0.0,
+                }
+            })
+        })
+        .sum()
 }
 
 /// The cost of `states` under every registered objective that builds in `ctx`.
