@@ -6,6 +6,7 @@ use smug_core::{LoadedConfig, Pipeline};
 use std::path::Path;
 
 // Link every plugin crate (and the out-of-tree example) so their plugins register.
+use smug_example_objective as _;
 use smug_example_traversability as _;
 use smug_objectives as _;
 use smug_planners as _;
@@ -88,4 +89,28 @@ fn the_out_of_tree_plugin_validates_its_parameters() {
     let loaded = LoadedConfig::from_text(&text, "example.toml", Path::new("."), &[]).unwrap();
     let err = Pipeline::assemble(&loaded).err().unwrap().to_string();
     assert!(err.contains("critical_slope must be > 0"), "{err}");
+}
+
+#[test]
+fn a_config_plans_with_the_out_of_tree_objective() {
+    let config = Path::new(env!("CARGO_MANIFEST_DIR")).join("../configs/lunar.toml");
+    let set = [
+        "objective.type=\"example-steepness\"".to_string(),
+        "objective.params.penalty=4.0".to_string(),
+        "plan.sequencing_costs=\"lazy\"".to_string(),
+    ];
+    let loaded = LoadedConfig::from_file(&config, &set).unwrap();
+    let mut pipeline = Pipeline::assemble(&loaded).unwrap();
+    let plan = smug_core::plan_mission(&mut pipeline, loaded.config.plan).unwrap();
+    assert_eq!(plan.metrics.objective, "example-steepness");
+    let evaluated = plan.metrics.costs["example-steepness"];
+    assert!(
+        (evaluated - plan.cost).abs() <= 1e-9 * plan.cost,
+        "{evaluated} vs {}",
+        plan.cost
+    );
+    assert!(
+        plan.cost >= plan.metrics.length_m,
+        "every metre costs at least a metre"
+    );
 }

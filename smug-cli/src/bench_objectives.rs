@@ -78,7 +78,12 @@ pub fn run(args: BenchObjectivesArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Ok)
 }
 
-fn plan_once(config: &PathBuf, objective: &str, seed: u64, set: &[String]) -> anyhow::Result<Run> {
+fn plan_once(
+    config: &std::path::Path,
+    objective: &str,
+    seed: u64,
+    set: &[String],
+) -> anyhow::Result<Run> {
     let mut overrides = vec![
         format!("objective.type=\"{objective}\""),
         format!("seed={seed}"),

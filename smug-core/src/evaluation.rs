@@ -23,8 +23,9 @@ pub struct PlanMetrics {
     pub length_m: f64,
     /// Height climbed (Σ max(0, Δz) along the path, sampled every half cell), metres.
     pub climb_m: f64,
-    /// Cost under each registered objective with its default parameters (those the
-    /// world cannot support, e.g. without a traversability layer, are left out).
+    /// Cost under each registered objective: the planning one with its configured
+    /// parameters, the others with their defaults (those the world cannot support,
+    /// e.g. without a traversability layer, are left out).
     pub costs: BTreeMap<String, f64>,
     /// Lowest traversability along the path (`None` without a traversability layer).
     pub traversability_min: Option<f64>,
@@ -92,14 +93,20 @@ fn climb(ctx: &BuildContext, world: &World, states: &[Pose2]) -> f64 {
         .sum()
 }
 
-/// The cost of `states` under every registered objective that builds in `ctx`.
-fn costs_under_every_objective(ctx: &BuildContext, states: &[Pose2]) -> BTreeMap<String, f64> {
+/// The cost of `states` under every registered objective but `planning` that builds in
+/// `ctx` with its default parameters.
+fn costs_under_other_objectives(
+    ctx: &BuildContext,
+    planning: &str,
+    states: &[Pose2],
+) -> BTreeMap<String, f64> {
     let Ok(registry) = ObjectiveStage::registry() else {
         return BTreeMap::new();
     };
     registry
         .names()
         .into_iter()
+        .filter(|&name| name != planning)
         .filter_map(|name| {
             let built = ctx.build::<ObjectiveStage>(&PluginSection::new("objective", name));
             built

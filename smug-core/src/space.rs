@@ -55,9 +55,10 @@ pub trait StateSpace: Send + Sync + Debug {
         false
     }
 
-    /// True when the heading is free of the direction of travel (legged robots: a
-    /// waypoint may be turned to face the next one); false for car-like models, whose
-    /// plans are their curves sampled, headings untouched.
+    /// True for holonomic models: straight SE(2) motions (the default
+    /// `motion_extent` and `length_bound`) with the heading free of the direction of
+    /// travel (legged robots: a waypoint may be turned to face the next one); false for
+    /// car-like models, whose plans are their curves sampled, headings untouched.
     fn is_holonomic(&self) -> bool {
         true
     }

@@ -5,7 +5,7 @@
 
 use super::{check_non_negative, check_positive, Objective};
 use crate::pose::{angle_distance, Pose2};
-use crate::space::{Se2Space, StateSpace};
+use crate::space::StateSpace;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -34,7 +34,8 @@ impl Default for PathLengthParams {
 pub struct PathLength {
     w_t: f64,
     w_r: f64,
-    space: Arc<dyn StateSpace>,
+    /// The space's motions, when they are not straight SE(2) lines.
+    curved: Option<Arc<dyn StateSpace>>,
 }
 
 impl Default for PathLength {
@@ -58,29 +59,42 @@ impl PathLength {
         Ok(Self {
             w_t: check_positive("objective", "translation_weight", p.translation_weight)?,
             w_r: check_non_negative("objective", "rotation_weight", p.rotation_weight)?,
-            space: Arc::new(Se2Space::default()),
+            curved: None,
         })
     }
 
-    /// The same objective along the motions of `space`.
+    /// The same objective along the motions of `space` (holonomic spaces move in
+    /// straight lines: their length and turning need no call through the space).
     pub fn on(mut self, space: Arc<dyn StateSpace>) -> Self {
-        self.space = space;
+        self.curved = (!space.is_holonomic()).then_some(space);
         self
     }
 }
 
 impl Objective for PathLength {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
-        let extent = self.space.motion_extent(a, b);
-        self.w_t * extent.length + self.w_r * extent.turning
+        match &self.curved {
+            None => self.w_t * a.xy_distance(b) + self.w_r * angle_distance(a.yaw, b.yaw),
+            Some(space) => {
+                let extent = space.motion_extent(a, b);
+                self.w_t * extent.length + self.w_r * extent.turning
+            }
+        }
     }
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.w_t * self.space.length_bound(a, b) + self.w_r * angle_distance(a.yaw, b.yaw)
+        match &self.curved {
+            None => self.motion_cost(a, b),
+            Some(space) => {
+                self.w_t * space.length_bound(a, b) + self.w_r * angle_distance(a.yaw, b.yaw)
+            }
+        }
     }
 
     fn is_symmetric(&self) -> bool {
-        self.space.is_symmetric()
+        self.curved
+            .as_ref()
+            .is_none_or(|space| space.is_symmetric())
     }
 
     fn bound_weights(&self) -> (f64, f64) {
@@ -99,6 +113,7 @@ crate::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::space::Se2Space;
     use crate::testing::arb_pose;
     use proptest::prelude::*;
 
