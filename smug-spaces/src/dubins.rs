@@ -87,13 +87,18 @@ impl StateSpace for DubinsSpace {
 }
 
 /// Rounding slack: a squared length or cosine this far outside its domain is taken as
-/// on its boundary (a tangent case), and an arc this close to a full turn as none.
+/// on its boundary (a tangent case).
 const SLACK: f64 = 1e-9;
 
-/// `x` in `[0, 2π)`; values within [`SLACK`] below `2π` (rounding of a zero arc) are 0.
+/// An arc this close to a full turn is a zero arc gone round by rounding: at a tangency
+/// of two arcs the straight piece `p = √p²` is ~1e-8 of pure rounding and moves the
+/// arcs by as much (OMPL snaps at 5e-7). A shortest curve never turns a full circle.
+const FULL_TURN_SLACK: f64 = 1e-6;
+
+/// `x` in `[0, 2π)`; values within [`FULL_TURN_SLACK`] below `2π` are 0.
 fn mod2pi(x: f64) -> f64 {
     let v = x.rem_euclid(TAU);
-    if TAU - v < SLACK {
+    if TAU - v < FULL_TURN_SLACK {
         0.0
     } else {
         v

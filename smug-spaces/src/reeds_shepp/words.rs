@@ -12,8 +12,13 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use Steer::{Left as L, Right as R, Straight as S};
 
-/// Slack of the sign and domain tests (rounding of exact tangencies).
+/// Slack of the domain tests (rounding of exact tangencies).
 const SLACK: f64 = 1e-10;
+
+/// Slack of the sign tests: at a tangency a length `√s` of a rounded `s ≈ 0` is ~1e-8
+/// and tilts the next arc by as much. Every signed solution is a real curve to the
+/// goal (it is sampled with its signs), so the slack never admits a false length.
+const SIGN_SLACK: f64 = 1e-7;
 
 /// `x` wrapped into `(-π, π]`.
 fn mod2pi(x: f64) -> f64 {
@@ -54,7 +59,7 @@ fn sqrt_slack(s: f64) -> f64 {
 fn lp_sp_lp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     let (u, t) = polar(x - phi.sin(), y - 1.0 + phi.cos());
     let v = mod2pi(phi - t);
-    (t >= -SLACK && v >= -SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺S⁺R⁺ (§8.2).
@@ -67,7 +72,7 @@ fn lp_sp_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     let u = sqrt_slack(u1 - 4.0);
     let t = mod2pi(t1 + 2.0f64.atan2(u));
     let v = mod2pi(t - phi);
-    (t >= -SLACK && v >= -SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻L (§8.3).
@@ -79,7 +84,7 @@ fn lp_rm_l(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     let u = -2.0 * (u1 / 4.0).min(1.0).asin();
     let t = mod2pi(theta + 0.5 * u + PI);
     let v = mod2pi(phi - t + u);
-    (t >= -SLACK && u <= SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && u <= SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁺ᵤL⁻ᵤR⁻ (§8.7): lengths `(t, u, v)` of `t, u, -u, v`.
@@ -91,7 +96,7 @@ fn lp_rup_lum_rm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     }
     let u = rho.min(1.0).acos();
     let (t, v) = tau_omega(u, -u, xi, eta, phi);
-    (t >= -SLACK && v <= SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻ᵤL⁻ᵤR⁺ (§8.8): lengths `(t, u, v)` of `t, u, u, v`.
@@ -106,7 +111,7 @@ fn lp_rum_lum_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
         return None;
     }
     let (t, v) = tau_omega(u, u, xi, eta, phi);
-    (t >= -SLACK && v >= -SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻_{π/2}S⁻L⁻ (§8.9): lengths `(t, u, v)` of `t, -π/2, u, v`.
@@ -119,7 +124,7 @@ fn lp_rm_sm_lm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     let u = 2.0 - r;
     let t = mod2pi(theta + r.atan2(-2.0));
     let v = mod2pi(phi - FRAC_PI_2 - t);
-    (t >= -SLACK && u <= SLACK && v <= SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && u <= SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻_{π/2}S⁻R⁻ (§8.10): lengths `(t, u, v)` of `t, -π/2, u, v`.
@@ -132,7 +137,7 @@ fn lp_rm_sm_rm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
     let t = theta;
     let u = 2.0 - rho;
     let v = mod2pi(t + FRAC_PI_2 - phi);
-    (t >= -SLACK && u <= SLACK && v <= SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && u <= SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻_{π/2}S⁻L⁻_{π/2}R⁺ (§8.11): lengths `(t, u, v)` of `t, -π/2, u, -π/2, v`.
@@ -143,12 +148,12 @@ fn lp_rm_slm_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
         return None;
     }
     let u = 4.0 - sqrt_slack(rho * rho - 4.0);
-    if u > SLACK {
+    if u > SIGN_SLACK {
         return None;
     }
     let t = mod2pi(((4.0 - u) * xi - 2.0 * eta).atan2(-2.0 * xi + (u - 4.0) * eta));
     let v = mod2pi(t - phi);
-    (t >= -SLACK && v >= -SLACK).then_some([t, u, v])
+    (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
 /// The shortest word seen so far.
