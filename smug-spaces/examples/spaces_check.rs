@@ -1,13 +1,16 @@
 //! Prints seeded random pose pairs and their `dubins` and `reeds-shepp` distances, for
 //! the OMPL cross-check (`tools/ompl-peer/spaces_compare.py`, `SPACES.md`).
 //!
-//! Usage: `spaces_check RADIUS PAIRS SEED` → lines `x1 y1 yaw1 x2 y2 yaw2 dubins rs`.
-//! Nine pairs in ten have positions in `[-10, 10]²`; one in ten lies within one turning
-//! radius (the short CCC, CCCC and CCSCC words); yaws are uniform in `[-π, π)`.
+//! Usage: `spaces_check RADIUS PAIRS SEED` → lines `x1 y1 yaw1 x2 y2 yaw2 dubins rs class`,
+//! class `far`, `near` or `tangent`.
+//! Eight pairs in ten have positions in `[-10, 10]²`; one in ten lies within one turning
+//! radius (the short CCC, CCCC and CCSCC words); yaws are uniform in `[-π, π)`. One in
+//! ten is a tangent case: `b` is `a` driven along a single arc or straight piece
+//! (forwards or in reverse), where the words meet and rounding decides.
 
 use smug_core::pose::Pose2;
 use smug_core::space::StateSpace;
-use smug_spaces::{DubinsSpace, ReedsSheppSpace};
+use smug_spaces::{Curve, DubinsSpace, ReedsSheppSpace, Steer};
 use std::f64::consts::PI;
 
 /// SplitMix64: a seeded stream of uniform numbers in `[0, 1)`.
@@ -44,13 +47,20 @@ fn main() {
             rng.range(-half, half),
             rng.range(-PI, PI),
         );
-        let b = Pose2::new(
-            rng.range(-half, half),
-            rng.range(-half, half),
-            rng.range(-PI, PI),
-        );
+        let b = if i % 10 == 8 {
+            let steer =
+                [Steer::Left, Steer::Straight, Steer::Right][(rng.uniform() * 3.0) as usize];
+            let piece = Curve::from_word(&[steer], &[rng.range(-1.9 * PI, 1.9 * PI)]);
+            piece.sample(&a, radius, 1.0)
+        } else {
+            Pose2::new(
+                rng.range(-half, half),
+                rng.range(-half, half),
+                rng.range(-PI, PI),
+            )
+        };
         println!(
-            "{:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e}",
+            "{:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {:.17e} {}",
             a.x,
             a.y,
             a.yaw,
@@ -58,7 +68,8 @@ fn main() {
             b.y,
             b.yaw,
             dubins.distance(&a, &b),
-            rs.distance(&a, &b)
+            rs.distance(&a, &b),
+            ["far", "near", "tangent"][usize::from(i % 10 == 9) + 2 * usize::from(i % 10 == 8)]
         );
     }
 }
