@@ -13,6 +13,7 @@ use std::path::Path;
 use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
+use smug_spaces as _;
 use smug_validity as _;
 
 /// The documented grid config of `smug p2p` and `smug bench p2p`.

@@ -18,6 +18,7 @@ use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
 use smug_sequencing as _;
+use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
 

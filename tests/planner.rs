@@ -7,6 +7,7 @@ use std::path::Path;
 use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
+use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
 

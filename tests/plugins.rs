@@ -13,6 +13,7 @@ use smug_planners as _;
 use smug_samplers as _;
 use smug_selection as _;
 use smug_sequencing as _;
+use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
 
