@@ -36,7 +36,7 @@ pub struct PlanMetrics {
 }
 
 /// The metrics of the path through `states` (joined by the space's motions of `ctx`),
-/// made with the objective named `objective`.
+/// made with `ctx`'s objective, registered as `objective`.
 pub fn plan_metrics(
     ctx: &BuildContext,
     world: &World,
@@ -44,11 +44,13 @@ pub fn plan_metrics(
     states: &[Pose2],
 ) -> PlanMetrics {
     let length_m = states.windows(2).map(|w| w[0].xy_distance(&w[1])).sum();
+    let mut costs = costs_under_other_objectives(ctx, objective, states);
+    costs.insert(objective.to_string(), ctx.objective().path_cost(states));
     let mut metrics = PlanMetrics {
         objective: objective.to_string(),
         length_m,
         climb_m: climb(ctx, world, states),
-        costs: costs_under_every_objective(ctx, states),
+        costs,
         ..PlanMetrics::default()
     };
     if let Some(layer) = &world.traversability {

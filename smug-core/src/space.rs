@@ -49,6 +49,14 @@ pub trait StateSpace: Send + Sync + Debug {
         a.xy_distance(b)
     }
 
+    /// A lower bound of `distance(a, b)` cheaper than the distance itself, for nearest
+    /// neighbour searches of non-holonomic models (default: the additive bound of
+    /// `lower_bound_weights`). Curvature-limited models: `max(‖Δxy‖, r·d(yaw))`.
+    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        let (w_t, w_r) = self.lower_bound_weights();
+        w_t * a.xy_distance(b) + w_r * angle_distance(a.yaw, b.yaw)
+    }
+
     /// True when the robot drives backwards at fraction `t` of the motion `a → b`
     /// (a Reeds–Shepp gear change); forward-only models never do.
     fn is_reversing(&self, _a: &Pose2, _b: &Pose2, _t: f64) -> bool {

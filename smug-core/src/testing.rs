@@ -152,6 +152,11 @@ pub fn check_metric_axioms(
             "non-negativity: c(b, a) = {ba}"
         );
     }
+    prop_assert!(
+        metric.distance_bound(a, b) <= ab + tolerance(ab),
+        "distance bound {} > c(a, b) = {ab}",
+        metric.distance_bound(a, b)
+    );
     let extent = metric.motion_extent(a, b);
     let length_bound = metric.length_bound(a, b);
     prop_assert!(

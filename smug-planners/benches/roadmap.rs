@@ -78,7 +78,7 @@ fn knn(c: &mut Criterion) {
     group.bench_function(format!("k_nearest/n={N}/k={k}"), |b| {
         b.iter(|| {
             for q in &queries {
-                black_box(grid.k_nearest(q, k, &poses, &metric, w_t, None));
+                black_box(grid.k_nearest(q, k, &poses, &metric, w_t, f64::INFINITY, None));
             }
         })
     });

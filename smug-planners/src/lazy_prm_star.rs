@@ -170,6 +170,11 @@ pub struct LazyPrmStarParams {
     /// instead of searching again; the paths are the same, found faster. Off only to
     /// compare.
     pub incremental_attempts: bool,
+    /// Longest roadmap connection in space distance (OMPL's LazyPRM `range`): a new
+    /// vertex connects to its k nearest within it. Absent: no limit. Curvature-limited
+    /// models need one: their k-th nearest is a turn-around away, so unlimited
+    /// connections reach across the map.
+    pub range: Option<f64>,
 }
 
 impl Default for LazyPrmStarParams {
@@ -188,6 +193,7 @@ impl Default for LazyPrmStarParams {
             smooth: false,
             search: SearchMode::Auto,
             incremental_attempts: true,
+            range: None,
         }
     }
 }
@@ -256,13 +262,18 @@ impl LazyPrmStar {
                 ));
             }
         }
+        if params.range.is_some_and(|r| r.is_nan() || r <= 0.0) {
+            return Err(Error::invalid_param("planner", "range must be > 0"));
+        }
         if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
         }
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
-            roadmap: Roadmap::new(bounds).with_directed_edges(!space.is_symmetric()),
+            roadmap: Roadmap::new(bounds)
+                .with_directed_edges(!space.is_symmetric())
+                .with_range(params.range.unwrap_or(f64::INFINITY)),
             astar: AStar::default(),
             sampler,
             states,

@@ -50,6 +50,16 @@ struct KBest {
 }
 
 impl KBest {
+    /// The `k` best within `radius` (`INFINITY`: any distance).
+    fn within(k: usize, radius: f64) -> Self {
+        let mut best = Self::new(k);
+        if radius.is_finite() {
+            best.worst = radius;
+            best.worst_squared = radius * radius * (1.0 + 1e-12);
+        }
+        best
+    }
+
     fn new(k: usize) -> Self {
         Self {
             k,
@@ -59,7 +69,8 @@ impl KBest {
         }
     }
 
-    /// True once `k` candidates were kept at a cut (the bounds are finite).
+    /// True once `k` candidates were kept at a cut, or from the start with a finite
+    /// radius (the bounds are finite).
     fn is_full(&self) -> bool {
         self.worst.is_finite()
     }
@@ -215,8 +226,10 @@ impl XyGrid {
         }
     }
 
-    /// The `k` nearest stored ids to `q` under `metric` (excluding `exclude`), nearest
-    /// first. `w_t` must satisfy `metric(a, b) ≥ w_t·‖Δxy‖`.
+    /// The `k` nearest stored ids to `q` under `metric` within `radius` (`INFINITY`:
+    /// any distance), excluding `exclude`, nearest first. `w_t` must satisfy
+    /// `metric(a, b) ≥ w_t·‖Δxy‖`.
+    #[allow(clippy::too_many_arguments)]
     pub fn k_nearest(
         &self,
         q: &Pose2,
@@ -224,9 +237,11 @@ impl XyGrid {
         poses: &[Pose2],
         metric: &dyn StateSpace,
         w_t: f64,
+        radius: f64,
         exclude: Option<u32>,
     ) -> Vec<Neighbour> {
-        let mut best = KBest::new(k);
+        let mut best = KBest::within(k, radius);
+        let curved = !metric.is_holonomic();
         if k == 0 {
             return best.into_sorted();
         }
@@ -238,6 +253,10 @@ impl XyGrid {
             // The xy lower bound rejects most candidates without the full metric.
             let (dx, dy) = (q.x - p.x, q.y - p.y);
             if w_t * w_t * (dx * dx + dy * dy) > best.worst_squared() {
+                return;
+            }
+            // Curved models' distances are costly: try their cheaper bound first.
+            if curved && metric.distance_bound(q, p) > best.worst() {
                 return;
             }
             best.offer(Neighbour {
@@ -345,7 +364,7 @@ mod tests {
                 grid.insert(id as u32, p, &poses);
             }
             let q = Pose2::new(q.0, q.1, q.2);
-            let fast = grid.k_nearest(&q, k, &poses, &metric, 1.0, Some(0));
+            let fast = grid.k_nearest(&q, k, &poses, &metric, 1.0, f64::INFINITY, Some(0));
             let mut slow: Vec<Neighbour> = (1..poses.len() as u32)
                 .map(|id| Neighbour { distance: metric.distance(&q, &poses[id as usize]), id })
                 .collect();
@@ -372,7 +391,7 @@ mod tests {
             grid.insert(id as u32, p, &poses);
         }
         grid.remove(1, &poses[1]);
-        let got = grid.k_nearest(&poses[0], 1, &poses, &metric, 1.0, Some(0));
+        let got = grid.k_nearest(&poses[0], 1, &poses, &metric, 1.0, f64::INFINITY, Some(0));
         assert_eq!(got[0].id, 2);
         assert_eq!(grid.len(), 2);
     }

@@ -47,6 +47,8 @@ pub struct Roadmap {
     directed: bool,
     /// Whether some edge costs differ by direction (then repairs search afresh).
     asymmetric_costs: bool,
+    /// Longest connection (space distance); `INFINITY`: the k nearest at any distance.
+    range: f64,
     /// The costs of the edges in `adjacency`, in the same order (read by the searches
     /// without touching the edge array).
     adjacent_costs: Vec<Vec<f64>>,
@@ -74,6 +76,7 @@ impl Roadmap {
             incoming: Vec::new(),
             directed: false,
             asymmetric_costs: false,
+            range: f64::INFINITY,
             adjacent_costs: Vec::new(),
             edges: Vec::new(),
             grid: XyGrid::new(bounds, (w.max(h) / 8.0).max(1e-3)),
@@ -90,6 +93,13 @@ impl Roadmap {
     /// checked and removed on their own. Call before adding vertices.
     pub fn with_directed_edges(mut self, directed: bool) -> Self {
         self.directed = directed;
+        self
+    }
+
+    /// The same roadmap connecting vertices only to neighbours within `range` (space
+    /// distance; OMPL's LazyPRM range). Call before adding vertices.
+    pub fn with_range(mut self, range: f64) -> Self {
+        self.range = range;
         self
     }
 
@@ -150,7 +160,9 @@ impl Roadmap {
         objective: &dyn Objective,
     ) -> u32 {
         let id = self.poses.len() as u32;
-        let neighbours = self.grid.k_nearest(&pose, k, &self.poses, space, w_t, None);
+        let neighbours = self
+            .grid
+            .k_nearest(&pose, k, &self.poses, space, w_t, self.range, None);
         self.poses.push(pose);
         self.vertex_validity.push(validity);
         // Later vertices connect to this one too: room for about as many again.

@@ -45,8 +45,10 @@ impl DubinsSpace {
 
     /// The shortest Dubins curve from `a` to `b` (unit-radius form).
     pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
-        let (x, y, phi) = relative(a, b, self.radius);
-        shortest(x, y, phi)
+        crate::cached_curve(0, self.radius, a, b, || {
+            let (x, y, phi) = relative(a, b, self.radius);
+            shortest(x, y, phi)
+        })
     }
 }
 
@@ -67,6 +69,12 @@ impl StateSpace for DubinsSpace {
 
     fn lower_bound_weights(&self) -> (f64, f64) {
         (1.0, 0.0)
+    }
+
+    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        // A curve turns at most 1/r per metre: turning d(yaw) takes r·d(yaw) of it.
+        a.xy_distance(b)
+            .max(self.radius * smug_core::pose::angle_distance(a.yaw, b.yaw))
     }
 
     fn is_symmetric(&self) -> bool {

@@ -46,8 +46,10 @@ impl ReedsSheppSpace {
 
     /// The shortest Reeds–Shepp curve from `a` to `b` (unit-radius form).
     pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
-        let (x, y, phi) = relative(a, b, self.radius);
-        words::shortest(x, y, phi)
+        crate::cached_curve(1, self.radius, a, b, || {
+            let (x, y, phi) = relative(a, b, self.radius);
+            words::shortest(x, y, phi)
+        })
     }
 }
 
@@ -68,6 +70,12 @@ impl StateSpace for ReedsSheppSpace {
 
     fn lower_bound_weights(&self) -> (f64, f64) {
         (1.0, 0.0)
+    }
+
+    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        // A curve turns at most 1/r per metre: turning d(yaw) takes r·d(yaw) of it.
+        a.xy_distance(b)
+            .max(self.radius * smug_core::pose::angle_distance(a.yaw, b.yaw))
     }
 
     fn motion_extent(&self, a: &Pose2, b: &Pose2) -> MotionExtent {
