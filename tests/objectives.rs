@@ -271,6 +271,26 @@ fn idp_equals_dp_on_a_fixed_roadmap_under_every_objective() {
     }
 }
 
+#[test]
+fn idp_equals_dp_on_a_fixed_roadmap_under_every_motion_model() {
+    for space in ["se2", "reeds-shepp", "dubins"] {
+        let set = [format!("space.type=\"{space}\"")];
+        let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
+        let pipeline = Pipeline::assemble(&loaded).unwrap();
+        assert_eq!(pipeline.objective.is_symmetric(), space != "dubins", "{space}");
+        let (mut oracle, problem) = selection_setup(&pipeline, 4);
+        let dp = DpSelector::default().select(&mut oracle, &problem).unwrap();
+        let (mut oracle, problem) = selection_setup(&pipeline, 4);
+        let idp = IdpSelector::default().select(&mut oracle, &problem).unwrap();
+        assert!(
+            (idp.cost - dp.cost).abs() <= 1e-9 * dp.cost,
+            "{space}: IDP {} vs DP {}",
+            idp.cost,
+            dp.cost
+        );
+    }
+}
+
 fn plan(config_name: &str, set: &[&str]) -> Plan {
     let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
     let loaded = LoadedConfig::from_file(&config(config_name), &set).unwrap();

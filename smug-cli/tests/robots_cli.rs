@@ -1,0 +1,157 @@
+//! Every robot profile plans the lunar mission through the CLI, and the plans of the
+//! car-like models are checked from `plan.json` alone: consecutive waypoints never turn
+//! tighter than the turning radius, Dubins plans never back up, Reeds–Shepp waypoints
+//! marked `reversing` are driven backwards and the others forwards.
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+
+/// A smaller lunar mission, so every profile plans in seconds.
+const SMALL: [&str; 4] = [
+    "--set",
+    "world.params.targets=4",
+    "--set",
+    "world.params.pois_per_target=4",
+];
+
+fn plan(config: &str, set: &[&str]) -> Value {
+    let out_dir = workspace().join("target/cli-test-robots").join(config);
+    let mut args = vec!["plan", config, "--out", out_dir.to_str().unwrap()];
+    args.extend(set);
+    let run = smug(&args);
+    assert_eq!(run.status.code(), Some(0), "{config}: {}", stderr(&run));
+    let text = std::fs::read_to_string(out_dir.join("plan.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// `[x, y, z, yaw]` of every waypoint.
+fn waypoints(plan: &Value) -> Vec<[f64; 4]> {
+    plan["waypoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| {
+            let w: Vec<f64> = w
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect();
+            [w[0], w[1], w[2], w[3]]
+        })
+        .collect()
+}
+
+/// The shortest signed difference `b − a` of two angles.
+fn turn(a: f64, b: f64) -> f64 {
+    let d = (b - a).rem_euclid(std::f64::consts::TAU);
+    if d > std::f64::consts::PI {
+        d - std::f64::consts::TAU
+    } else {
+        d
+    }
+}
+
+/// Waypoints of curved models lie at most this far apart along the curve (the
+/// documented sampling of `smug plan`).
+const SPACING: f64 = 0.1;
+
+/// Checks curvature and direction of travel between consecutive waypoints; returns
+/// how many steps were driven backwards. A step's arc is at most the spacing and turns
+/// the heading by at most arc / r, so |Δyaw| ≤ spacing / r at every step (the chord
+/// alone says less: within a step the curve may bend both ways, or back up at a cusp).
+fn check_curve(plan: &Value, radius: f64, may_reverse: bool) -> usize {
+    let points = waypoints(plan);
+    let reversing: Vec<bool> = plan["reversing"]
+        .as_array()
+        .map(|r| r.iter().map(|v| v.as_bool().unwrap()).collect())
+        .unwrap_or_else(|| vec![false; points.len()]);
+    assert_eq!(reversing.len(), points.len());
+    let gear = |j: usize| reversing.get(j).copied();
+    let mut backwards = 0;
+    for (k, w) in points.windows(2).enumerate() {
+        let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+        let chord = dx.hypot(dy);
+        let dyaw = turn(w[0][3], w[1][3]).abs();
+        let near_cusp =
+            gear(k) != gear(k + 1) || gear(k + 2).is_some_and(|g| Some(g) != gear(k + 1));
+        assert!(
+            dyaw <= SPACING / radius * (1.0 + 1e-6) + 1e-9,
+            "step {k}: turns {dyaw} rad within {SPACING} m, tighter than r = {radius}"
+        );
+        assert!(
+            chord <= SPACING * (1.0 + 1e-6),
+            "step {k}: waypoints {chord} m apart"
+        );
+        if reversing[k + 1] {
+            assert!(may_reverse, "step {k} is marked reversing");
+            backwards += 1;
+        }
+        if chord < 1e-9 || near_cusp {
+            continue;
+        }
+        let heading = w[0][3] + 0.5 * turn(w[0][3], w[1][3]);
+        let along = (dx * heading.cos() + dy * heading.sin()) / chord;
+        if reversing[k + 1] {
+            assert!(
+                along < 1e-6,
+                "step {k} is marked reversing but drives forwards"
+            );
+        } else {
+            assert!(
+                along > -1e-6,
+                "step {k} drives backwards unmarked ({along})"
+            );
+        }
+    }
+    backwards
+}
+
+#[test]
+fn every_robot_profile_plans_the_lunar_mission() {
+    for config in ["configs/lunar.toml", "configs/lunar-wheeled.toml"] {
+        let plan = plan(config, &SMALL);
+        assert!(
+            plan["reversing"].is_null(),
+            "{config}: holonomic plans do not reverse"
+        );
+    }
+}
+
+#[test]
+fn reeds_shepp_plans_keep_the_turning_radius_and_mark_reverse_gear() {
+    let plan = plan("configs/lunar-rover.toml", &SMALL);
+    assert!(
+        check_curve(&plan, 1.5, true) > 0,
+        "the rover backs up somewhere"
+    );
+}
+
+#[test]
+fn dubins_plans_keep_the_turning_radius_and_never_reverse() {
+    let plan = plan("configs/flat-dubins.toml", &[]);
+    assert!(plan["reversing"].is_null());
+    assert_eq!(check_curve(&plan, 1.0, false), 0);
+}
+
+#[test]
+fn bad_turning_radii_and_unknown_models_name_the_key() {
+    for (set, needles) in [
+        (
+            "space.params.turning_radius=0.0",
+            &["turning_radius", "> 0"][..],
+        ),
+        ("space.params.turning_radius=nan", &["turning_radius"][..]),
+        (
+            "space.type=\"ackermann\"",
+            &["space.type", "dubins", "reeds-shepp", "se2"][..],
+        ),
+    ] {
+        assert_bad_input(
+            &smug(&["check", "configs/lunar-rover.toml", "--set", set]),
+            needles,
+        );
+    }
+}
