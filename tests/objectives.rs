@@ -277,11 +277,17 @@ fn idp_equals_dp_on_a_fixed_roadmap_under_every_motion_model() {
         let set = [format!("space.type=\"{space}\"")];
         let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
         let pipeline = Pipeline::assemble(&loaded).unwrap();
-        assert_eq!(pipeline.objective.is_symmetric(), space != "dubins", "{space}");
+        assert_eq!(
+            pipeline.objective.is_symmetric(),
+            space != "dubins",
+            "{space}"
+        );
         let (mut oracle, problem) = selection_setup(&pipeline, 4);
         let dp = DpSelector::default().select(&mut oracle, &problem).unwrap();
         let (mut oracle, problem) = selection_setup(&pipeline, 4);
-        let idp = IdpSelector::default().select(&mut oracle, &problem).unwrap();
+        let idp = IdpSelector::default()
+            .select(&mut oracle, &problem)
+            .unwrap();
         assert!(
             (idp.cost - dp.cost).abs() <= 1e-9 * dp.cost,
             "{space}: IDP {} vs DP {}",
@@ -415,4 +421,24 @@ fn bad_objectives_are_errors_naming_the_culprit() {
         message.contains("`time`") && message.contains("traversability layer"),
         "{message}"
     );
+}
+
+#[test]
+fn objectives_are_symmetric_only_on_symmetric_spaces() {
+    for space in ["se2", "reeds-shepp", "dubins"] {
+        for objective in OBJECTIVES {
+            let set = [
+                format!("space.type=\"{space}\""),
+                format!("objective.type=\"{objective}\""),
+            ];
+            let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
+            let pipeline = Pipeline::assemble(&loaded).unwrap();
+            let expected = space != "dubins" && objective != "energy";
+            assert_eq!(
+                pipeline.objective.is_symmetric(),
+                expected,
+                "{objective} on {space}"
+            );
+        }
+    }
 }

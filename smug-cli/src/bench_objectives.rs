@@ -27,6 +27,10 @@ pub struct BenchObjectivesArgs {
     /// Objectives to plan with (default: every registered one).
     #[arg(long, value_delimiter = ',')]
     objectives: Vec<String>,
+    /// A new world per seed (default: the world of seed 1 for every run; the planner's
+    /// seed still changes). Worlds without a `seed` parameter are the same anyway.
+    #[arg(long)]
+    vary_world: bool,
     /// Override a config key (every run).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
@@ -67,15 +71,27 @@ pub fn run(args: BenchObjectivesArgs) -> anyhow::Result<Outcome> {
     };
     let mut runs = Vec::new();
     for config in &args.configs {
+        let fixed_world = !args.vary_world && world_is_seeded(config);
         for objective in &objectives {
             for seed in 1..=args.runs {
-                runs.push(plan_once(config, objective, seed, &args.set)?);
+                let mut set = args.set.clone();
+                if fixed_world {
+                    set.push("world.params.seed=1".to_string());
+                }
+                runs.push(plan_once(config, objective, seed, &set)?);
             }
         }
     }
     let report = report(&args, &objectives, &runs);
     write_report(&report, &runs, args.out.as_deref(), args.json.as_deref())?;
     Ok(Outcome::Ok)
+}
+
+/// Whether the config's world takes a `seed` parameter (procedural worlds): the config
+/// assembles with it set.
+fn world_is_seeded(config: &std::path::Path) -> bool {
+    LoadedConfig::from_file(config, &["world.params.seed=1".to_string()])
+        .is_ok_and(|loaded| Pipeline::assemble(&loaded).is_ok())
 }
 
 fn plan_once(

@@ -19,7 +19,7 @@ pub const RISKY_TRAVERSABILITY: f64 = 0.5;
 pub struct PlanMetrics {
     /// The objective the plan was made with.
     pub objective: String,
-    /// Length in the plane, metres.
+    /// Length in the plane along the space's motions, metres.
     pub length_m: f64,
     /// Height climbed (Σ max(0, Δz) along the path, sampled every half cell), metres.
     pub climb_m: f64,
@@ -43,7 +43,11 @@ pub fn plan_metrics(
     objective: &str,
     states: &[Pose2],
 ) -> PlanMetrics {
-    let length_m = states.windows(2).map(|w| w[0].xy_distance(&w[1])).sum();
+    let space = ctx.space();
+    let length_m = states
+        .windows(2)
+        .map(|w| space.motion_extent(&w[0], &w[1]).length)
+        .sum();
     let mut costs = costs_under_other_objectives(ctx, objective, states);
     costs.insert(objective.to_string(), ctx.objective().path_cost(states));
     let mut metrics = PlanMetrics {
@@ -56,7 +60,6 @@ pub fn plan_metrics(
     if let Some(layer) = &world.traversability {
         let step = layer.geometry.resolution * 0.5;
         let (mut min, mut weighted, mut risky) = (f64::INFINITY, 0.0, 0.0);
-        let space = ctx.space();
         for w in states.windows(2) {
             integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, mid| {
                 let tau = layer.nearest(mid.x, mid.y).unwrap_or(0.0);

@@ -112,6 +112,11 @@ impl Objective for TravelTime {
     fn bound_weights(&self) -> (f64, f64) {
         (1.0 / self.params.max_speed, 1.0 / self.params.turn_rate)
     }
+
+    fn is_symmetric(&self) -> bool {
+        // The motion b → a is a → b reversed only on symmetric spaces.
+        self.space.is_symmetric()
+    }
 }
 
 fn build(params: TravelTimeParams, ctx: &BuildContext) -> Result<TravelTime> {

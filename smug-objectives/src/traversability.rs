@@ -89,6 +89,11 @@ impl Objective for RiskAware {
     fn bound_weights(&self) -> (f64, f64) {
         (self.params.translation_weight, self.params.rotation_weight)
     }
+
+    fn is_symmetric(&self) -> bool {
+        // The motion b → a is a → b reversed only on symmetric spaces.
+        self.space.is_symmetric()
+    }
 }
 
 fn build(params: RiskAwareParams, ctx: &BuildContext) -> Result<RiskAware> {

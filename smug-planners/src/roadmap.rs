@@ -173,7 +173,8 @@ impl Roadmap {
         self.components.push();
         self.grid.insert(id, &pose, &self.poses);
         self.by_pose.insert(pose_key(&pose), id);
-        let symmetric = objective.is_symmetric();
+        // On a directed roadmap the reverse edge is another motion: cost it on its own.
+        let symmetric = objective.is_symmetric() && !self.directed;
         for n in neighbours {
             let other = self.poses[n.id as usize];
             let there = objective.motion_cost(&pose, &other);

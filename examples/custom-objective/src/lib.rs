@@ -94,6 +94,11 @@ impl Objective for Steepness {
     fn bound_weights(&self) -> (f64, f64) {
         (1.0, 0.0)
     }
+
+    fn is_symmetric(&self) -> bool {
+        // The motion b → a is a → b reversed only on symmetric spaces.
+        self.space.is_symmetric()
+    }
 }
 
 fn build(params: SteepnessParams, ctx: &BuildContext) -> Result<Steepness> {
