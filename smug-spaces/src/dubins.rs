@@ -2,10 +2,9 @@
 //! minimum radius. The distance is the length of the shortest Dubins curve (Dubins
 //! 1957: one of the words LSL, RSR, LSR, RSL, RLR, LRL), which is not symmetric.
 
-use crate::curve::{relative, Curve, Steer};
+use crate::curvature::{CurvatureSpace, Solver};
+use crate::curve::{Curve, Steer};
 use serde::{Deserialize, Serialize};
-use smug_core::pose::Pose2;
-use smug_core::space::{MotionExtent, StateSpace};
 use std::f64::consts::TAU;
 
 /// Parameters of the `dubins` space.
@@ -24,75 +23,21 @@ impl Default for DubinsParams {
     }
 }
 
-/// Forward-only curvature-limited motion: shortest Dubins curves of a turning radius.
+/// The Dubins solver: forward-only shortest curves (asymmetric).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DubinsSpace {
-    radius: f64,
-}
+pub struct Dubins;
 
-impl DubinsSpace {
-    /// A space of turning radius `turning_radius` (finite and > 0).
-    pub fn new(turning_radius: f64) -> smug_core::Result<Self> {
-        Ok(Self {
-            radius: crate::check_turning_radius(turning_radius)?,
-        })
-    }
+impl Solver for Dubins {
+    const KIND: u8 = 0;
+    const SYMMETRIC: bool = false;
 
-    /// The minimum turning radius, metres.
-    pub fn turning_radius(&self) -> f64 {
-        self.radius
-    }
-
-    /// The shortest Dubins curve from `a` to `b` (unit-radius form).
-    pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
-        crate::cached_curve(0, self.radius, a, b, || {
-            let (x, y, phi) = relative(a, b, self.radius);
-            shortest(x, y, phi)
-        })
+    fn shortest(x: f64, y: f64, phi: f64) -> Curve {
+        shortest(x, y, phi)
     }
 }
 
-impl StateSpace for DubinsSpace {
-    fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.radius * self.curve(a, b).unit_length()
-    }
-
-    fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
-        if t <= 0.0 {
-            return *a;
-        }
-        if t >= 1.0 {
-            return *b;
-        }
-        self.curve(a, b).sample(a, self.radius, t)
-    }
-
-    fn lower_bound_weights(&self) -> (f64, f64) {
-        (1.0, 0.0)
-    }
-
-    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        // A curve turns at most 1/r per metre: turning d(yaw) takes r·d(yaw) of it.
-        a.xy_distance(b)
-            .max(self.radius * smug_core::pose::angle_distance(a.yaw, b.yaw))
-    }
-
-    fn is_symmetric(&self) -> bool {
-        false
-    }
-
-    fn motion_extent(&self, a: &Pose2, b: &Pose2) -> MotionExtent {
-        self.curve(a, b).extent(self.radius)
-    }
-
-    fn length_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.distance(a, b)
-    }
-
-    fn is_holonomic(&self) -> bool {
-        false
-    }
-}
+/// Forward-only curvature-limited motion: shortest Dubins curves of a turning radius.
+pub type DubinsSpace = CurvatureSpace<Dubins>;
 
 /// Rounding slack: a squared length or cosine this far outside its domain is taken as
 /// on its boundary (a tangent case).
@@ -201,6 +146,8 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use smug_core::pose::Pose2;
+    use smug_core::space::StateSpace;
     use std::f64::consts::PI;
 
     fn space(r: f64) -> DubinsSpace {

@@ -13,45 +13,15 @@
 
 #![warn(missing_docs)]
 
+pub mod curvature;
 pub mod curve;
 pub mod dubins;
 pub mod reeds_shepp;
 
+pub use curvature::{CurvatureSpace, Solver};
 pub use curve::{Curve, Segment, Steer};
-pub use dubins::{DubinsParams, DubinsSpace};
-pub use reeds_shepp::{ReedsSheppParams, ReedsSheppSpace};
-
-/// What a cached curve was computed for: the model, the radius and both poses, as bits.
-type CurveKey = (u8, [u64; 7]);
-
-thread_local! {
-    /// The last curve computed on this thread: a motion validator, a smoother or an
-    /// objective samples one motion many times in a row.
-    static LAST_CURVE: std::cell::Cell<Option<(CurveKey, Curve)>> = const { std::cell::Cell::new(None) };
-}
-
-/// The curve of model `kind` with `radius` from `a` to `b`: the last one computed on this
-/// thread when it was for the same motion, else `compute()` (then remembered).
-pub(crate) fn cached_curve(
-    kind: u8,
-    radius: f64,
-    a: &smug_core::Pose2,
-    b: &smug_core::Pose2,
-    compute: impl FnOnce() -> Curve,
-) -> Curve {
-    let key = (
-        kind,
-        [radius, a.x, a.y, a.yaw, b.x, b.y, b.yaw].map(f64::to_bits),
-    );
-    LAST_CURVE.with(|last| match last.get() {
-        Some((k, curve)) if k == key => curve,
-        _ => {
-            let curve = compute();
-            last.set(Some((key, curve)));
-            curve
-        }
-    })
-}
+pub use dubins::{Dubins, DubinsParams, DubinsSpace};
+pub use reeds_shepp::{ReedsShepp, ReedsSheppParams, ReedsSheppSpace};
 
 /// Checks a turning radius: finite and > 0, else the `space` stage's parameter error.
 pub(crate) fn check_turning_radius(turning_radius: f64) -> smug_core::Result<f64> {

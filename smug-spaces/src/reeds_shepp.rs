@@ -4,10 +4,9 @@
 
 pub mod words;
 
-use crate::curve::{relative, Curve};
+use crate::curvature::{CurvatureSpace, Solver};
+use crate::curve::Curve;
 use serde::{Deserialize, Serialize};
-use smug_core::pose::Pose2;
-use smug_core::space::{MotionExtent, StateSpace};
 
 /// Parameters of the `reeds-shepp` space.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -25,75 +24,21 @@ impl Default for ReedsSheppParams {
     }
 }
 
-/// Forward-and-reverse curvature-limited motion: shortest Reeds–Shepp curves.
+/// The Reeds–Shepp solver: shortest curves forwards and in reverse (a metric).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ReedsSheppSpace {
-    radius: f64,
-}
+pub struct ReedsShepp;
 
-impl ReedsSheppSpace {
-    /// A space of turning radius `turning_radius` (finite and > 0).
-    pub fn new(turning_radius: f64) -> smug_core::Result<Self> {
-        Ok(Self {
-            radius: crate::check_turning_radius(turning_radius)?,
-        })
-    }
+impl Solver for ReedsShepp {
+    const KIND: u8 = 1;
+    const SYMMETRIC: bool = true;
 
-    /// The minimum turning radius, metres.
-    pub fn turning_radius(&self) -> f64 {
-        self.radius
-    }
-
-    /// The shortest Reeds–Shepp curve from `a` to `b` (unit-radius form).
-    pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
-        crate::cached_curve(1, self.radius, a, b, || {
-            let (x, y, phi) = relative(a, b, self.radius);
-            words::shortest(x, y, phi)
-        })
+    fn shortest(x: f64, y: f64, phi: f64) -> Curve {
+        words::shortest(x, y, phi)
     }
 }
 
-impl StateSpace for ReedsSheppSpace {
-    fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.radius * self.curve(a, b).unit_length()
-    }
-
-    fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
-        if t <= 0.0 {
-            return *a;
-        }
-        if t >= 1.0 {
-            return *b;
-        }
-        self.curve(a, b).sample(a, self.radius, t)
-    }
-
-    fn lower_bound_weights(&self) -> (f64, f64) {
-        (1.0, 0.0)
-    }
-
-    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        // A curve turns at most 1/r per metre: turning d(yaw) takes r·d(yaw) of it.
-        a.xy_distance(b)
-            .max(self.radius * smug_core::pose::angle_distance(a.yaw, b.yaw))
-    }
-
-    fn motion_extent(&self, a: &Pose2, b: &Pose2) -> MotionExtent {
-        self.curve(a, b).extent(self.radius)
-    }
-
-    fn length_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        self.distance(a, b)
-    }
-
-    fn is_reversing(&self, a: &Pose2, b: &Pose2, t: f64) -> bool {
-        self.curve(a, b).is_reversing(t)
-    }
-
-    fn is_holonomic(&self) -> bool {
-        false
-    }
-}
+/// Forward-and-reverse curvature-limited motion: shortest Reeds–Shepp curves.
+pub type ReedsSheppSpace = CurvatureSpace<ReedsShepp>;
 
 smug_core::register_plugin!(
     smug_core::registry::SpaceStage,
@@ -106,6 +51,8 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use smug_core::pose::Pose2;
+    use smug_core::space::StateSpace;
     use std::f64::consts::PI;
 
     #[test]

@@ -1,0 +1,127 @@
+//! What the curvature-limited models share: a space of shortest curves of a turning
+//! radius, generic over the solver that finds them (Dubins, Reeds–Shepp).
+
+use crate::curve::{relative, Curve};
+use smug_core::pose::{angle_distance, Pose2};
+use smug_core::space::{MotionExtent, StateSpace};
+use std::cell::Cell;
+use std::fmt::Debug;
+use std::marker::PhantomData;
+
+/// A shortest-curve solver in unit-radius form.
+pub trait Solver: Copy + Debug + PartialEq + Send + Sync + 'static {
+    /// Tells this solver's curves apart in the per-thread cache.
+    const KIND: u8;
+    /// Whether the curve `b → a` is the curve `a → b` reversed (a metric).
+    const SYMMETRIC: bool;
+    /// The shortest curve to `(x, y, phi)` from the origin facing +x, unit radius.
+    fn shortest(x: f64, y: f64, phi: f64) -> Curve;
+}
+
+/// Curvature-limited motion: the shortest curves of [`Solver`] `S` at a turning radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvatureSpace<S: Solver> {
+    radius: f64,
+    solver: PhantomData<S>,
+}
+
+impl<S: Solver> CurvatureSpace<S> {
+    /// A space of turning radius `turning_radius` (finite and > 0).
+    pub fn new(turning_radius: f64) -> smug_core::Result<Self> {
+        Ok(Self {
+            radius: crate::check_turning_radius(turning_radius)?,
+            solver: PhantomData,
+        })
+    }
+
+    /// The minimum turning radius, metres.
+    pub fn turning_radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// The shortest curve from `a` to `b` (unit-radius form).
+    pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
+        cached_curve(S::KIND, self.radius, a, b, || {
+            let (x, y, phi) = relative(a, b, self.radius);
+            S::shortest(x, y, phi)
+        })
+    }
+}
+
+impl<S: Solver> StateSpace for CurvatureSpace<S> {
+    fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+        self.radius * self.curve(a, b).unit_length()
+    }
+
+    fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
+        if t <= 0.0 {
+            return *a;
+        }
+        if t >= 1.0 {
+            return *b;
+        }
+        self.curve(a, b).sample(a, self.radius, t)
+    }
+
+    fn lower_bound_weights(&self) -> (f64, f64) {
+        (1.0, 0.0)
+    }
+
+    fn distance_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        // A curve turns at most 1/r per metre: turning d(yaw) takes r·d(yaw) of it.
+        a.xy_distance(b)
+            .max(self.radius * angle_distance(a.yaw, b.yaw))
+    }
+
+    fn is_symmetric(&self) -> bool {
+        S::SYMMETRIC
+    }
+
+    fn motion_extent(&self, a: &Pose2, b: &Pose2) -> MotionExtent {
+        self.curve(a, b).extent(self.radius)
+    }
+
+    fn length_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
+        self.distance(a, b)
+    }
+
+    fn is_reversing(&self, a: &Pose2, b: &Pose2, t: f64) -> bool {
+        self.curve(a, b).is_reversing(t)
+    }
+
+    fn is_holonomic(&self) -> bool {
+        false
+    }
+}
+
+/// What a cached curve was computed for: the solver, the radius and both poses, as bits.
+type CurveKey = (u8, [u64; 7]);
+
+thread_local! {
+    /// The last curve computed on this thread: a motion validator, a smoother or an
+    /// objective samples one motion many times in a row.
+    static LAST_CURVE: Cell<Option<(CurveKey, Curve)>> = const { Cell::new(None) };
+}
+
+/// The curve of solver `kind` with `radius` from `a` to `b`: the last one computed on
+/// this thread when it was for the same motion, else `compute()` (then remembered).
+fn cached_curve(
+    kind: u8,
+    radius: f64,
+    a: &Pose2,
+    b: &Pose2,
+    compute: impl FnOnce() -> Curve,
+) -> Curve {
+    let key = (
+        kind,
+        [radius, a.x, a.y, a.yaw, b.x, b.y, b.yaw].map(f64::to_bits),
+    );
+    LAST_CURVE.with(|last| match last.get() {
+        Some((k, curve)) if k == key => curve,
+        _ => {
+            let curve = compute();
+            last.set(Some((key, curve)));
+            curve
+        }
+    })
+}
