@@ -442,3 +442,37 @@ fn objectives_are_symmetric_only_on_symmetric_spaces() {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Every state through which a path could beat `best` (by the objective's bound,
+    /// checked on a 0.5 m lattice of the whole map with random headings) lies in the
+    /// informed ellipse the samplers draw from.
+    #[test]
+    fn informed_sets_keep_every_state_that_could_improve_the_path(
+        s in unit_pose(), g in unit_pose(), slack in 1.0..2.0f64, yaw in -3.0..3.0f64,
+    ) {
+        let (s, g) = (pose(s), pose(g));
+        for (name, p) in pipelines() {
+            let objective = p.objective.as_ref();
+            let best = objective.cost_bound(&s, &g) * slack + 1e-3;
+            let set = smug_core::InformedSet { start: s, goal: g, best_cost: best };
+            let (w_t, w_r) = objective.bound_weights();
+            let ellipse = smug_samplers::informed::InformedEllipse::new(&set, w_t, w_r);
+            let bounds = p.world.as_ref().unwrap().bounds();
+            for i in 0..=((bounds.max[0] - bounds.min[0]) / 0.5) as usize {
+                for j in 0..=((bounds.max[1] - bounds.min[1]) / 0.5) as usize {
+                    let x = Pose2::new(bounds.min[0] + 0.5 * i as f64, bounds.min[1] + 0.5 * j as f64, yaw);
+                    if objective.cost_bound(&s, &x) + objective.cost_bound(&x, &g) < best {
+                        prop_assert!(
+                            ellipse.is_some_and(|e| e.contains(x.x, x.y)),
+                            "{name}: ({}, {}) could improve the path but lies outside the informed set",
+                            x.x, x.y
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

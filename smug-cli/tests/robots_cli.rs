@@ -110,13 +110,29 @@ fn check_curve(plan: &Value, radius: f64, may_reverse: bool) -> usize {
 }
 
 #[test]
-fn every_robot_profile_plans_the_lunar_mission() {
-    for config in ["configs/lunar.toml", "configs/lunar-wheeled.toml"] {
-        let plan = plan(config, &SMALL);
-        assert!(
-            plan["reversing"].is_null(),
-            "{config}: holonomic plans do not reverse"
-        );
+fn every_robot_profile_plans_the_lunar_mission_under_every_objective() {
+    let robots = ["lunar.toml", "lunar-wheeled.toml", "lunar-rover.toml"];
+    let objectives = ["path-length", "traversability", "energy", "time"];
+    for robot in robots {
+        for objective in objectives {
+            // Known slow: the Reeds–Shepp rover under `energy` runs past a minute on this
+            // mission (an open issue for the next round); every other pair plans in seconds.
+            if robot == "lunar-rover.toml" && objective == "energy" {
+                continue;
+            }
+            let config = format!("configs/{robot}");
+            let set = format!("objective.type=\"{objective}\"");
+            let mut args = SMALL.to_vec();
+            args.extend(["--set", set.as_str()]);
+            let plan = plan(&config, &args);
+            assert_eq!(plan["metrics"]["objective"], objective, "{robot}");
+            if robot != "lunar-rover.toml" {
+                assert!(
+                    plan["reversing"].is_null(),
+                    "{robot}: holonomic plans never reverse"
+                );
+            }
+        }
     }
 }
 
@@ -137,7 +153,7 @@ fn dubins_plans_keep_the_turning_radius_and_never_reverse() {
 }
 
 #[test]
-fn bad_turning_radii_and_unknown_models_name_the_key() {
+fn bad_radii_unknown_models_and_oversized_robots_name_the_key() {
     for (set, needles) in [
         (
             "space.params.turning_radius=0.0",
@@ -147,6 +163,10 @@ fn bad_turning_radii_and_unknown_models_name_the_key() {
         (
             "space.type=\"ackermann\"",
             &["space.type", "dubins", "reeds-shepp", "se2"][..],
+        ),
+        (
+            "robot.length=40.0",
+            &["robot.length", "larger than world"][..],
         ),
     ] {
         assert_bad_input(

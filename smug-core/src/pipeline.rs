@@ -27,6 +27,27 @@ const REMOVED_COST: &str =
      e.g. type = \"se2\") and `[objective]` (what a path costs, e.g. type = \"path-length\"); \
      both take the weights `translation_weight` and `rotation_weight`: move the section there";
 
+/// A robot whose base box is longer or wider than the world cannot stand anywhere in it:
+/// an error naming the key and both sizes.
+fn check_robot_fits(loaded: &LoadedConfig, world: &World) -> Result<()> {
+    let robot = &loaded.config.robot;
+    let [w, h] = world.bounds().extent();
+    let room = w.min(h);
+    for (key, size) in [("robot.length", robot.length), ("robot.width", robot.width)] {
+        if size > room {
+            let message = format!(
+                "the robot ({size} m) is larger than world `{}` ({w} × {h} m)",
+                world.name
+            );
+            return Err(loaded
+                .sources
+                .key_error(&KeyPath::dotted(key), message)
+                .into());
+        }
+    }
+    Ok(())
+}
+
 /// What a plugin's builder may use: the seed, the robot, and the stages built before it.
 #[derive(Clone)]
 pub struct BuildContext {
@@ -282,6 +303,7 @@ impl Pipeline {
         };
         if let Some(mut world) = world {
             world.mission.validate()?;
+            check_robot_fits(loaded, &world)?;
             if let Some(section) = &config.traversability {
                 let estimator = pipeline.build_stage::<TraversabilityStage>(&ctx, section)?;
                 let started = Instant::now();
