@@ -3,6 +3,7 @@
 //! traversability along it.
 
 use crate::config::PluginSection;
+use crate::grid::GridLayer;
 use crate::objective::integrate_motion;
 use crate::pipeline::BuildContext;
 use crate::pose::Pose2;
@@ -58,25 +59,40 @@ pub fn plan_metrics(
         ..PlanMetrics::default()
     };
     if let Some(layer) = &world.traversability {
-        let step = layer.geometry.resolution * 0.5;
-        let (mut min, mut weighted, mut risky) = (f64::INFINITY, 0.0, 0.0);
-        for w in states.windows(2) {
-            integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, mid| {
-                let tau = layer.nearest(mid.x, mid.y).unwrap_or(0.0);
-                let length = from.xy_distance(to);
-                min = min.min(tau);
-                weighted += tau * length;
-                if tau < RISKY_TRAVERSABILITY {
-                    risky += length;
-                }
-                0.0
-            });
-        }
-        metrics.traversability_min = min.is_finite().then_some(min);
-        metrics.traversability_mean = (length_m > 0.0).then(|| weighted / length_m);
+        let (min, mean, risky) = traversability_along(ctx, layer, states, length_m);
+        metrics.traversability_min = min;
+        metrics.traversability_mean = mean;
         metrics.risky_length_m = Some(risky);
     }
     metrics
+}
+
+/// The lowest and the length-weighted mean traversability along the space's motions
+/// through `states` (sampled every half cell), and the length below
+/// [`RISKY_TRAVERSABILITY`]; unknown traversability counts as 0.
+fn traversability_along(
+    ctx: &BuildContext,
+    layer: &GridLayer,
+    states: &[Pose2],
+    length_m: f64,
+) -> (Option<f64>, Option<f64>, f64) {
+    let step = layer.geometry.resolution * 0.5;
+    let space = ctx.space();
+    let (mut min, mut weighted, mut risky) = (f64::INFINITY, 0.0, 0.0);
+    for w in states.windows(2) {
+        integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, mid| {
+            let tau = layer.nearest(mid.x, mid.y).unwrap_or(0.0);
+            let length = from.xy_distance(to);
+            min = min.min(tau);
+            weighted += tau * length;
+            if tau < RISKY_TRAVERSABILITY {
+                risky += length;
+            }
+            0.0
+        });
+    }
+    let mean = (length_m > 0.0).then(|| weighted / length_m);
+    (min.is_finite().then_some(min), mean, risky)
 }
 
 /// Height climbed along the space's motions through `states`, sampled every half cell
