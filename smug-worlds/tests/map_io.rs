@@ -245,8 +245,12 @@ fn malformed_maps_are_typed_errors_naming_the_file() {
     assert!(matches!(err, MapFileError::Read { .. }), "{err}");
 }
 
+/// A pipeline config loading `map.yaml` in `dir` (with a robot small enough for the
+/// tiny test maps) with extra world `params`.
 fn map_config(dir: &Path, params: &str) -> Result<World, String> {
-    let text = format!("[world]\ntype = \"map\"\n[world.params]\nyaml = \"map.yaml\"\n{params}");
+    let robot = "[robot]\nlength = 0.4\nwidth = 0.3\n";
+    let text =
+        format!("{robot}[world]\ntype = \"map\"\n[world.params]\nyaml = \"map.yaml\"\n{params}");
     let loaded =
         LoadedConfig::from_text(&text, "test.toml", dir, &[]).map_err(|e| e.to_string())?;
     let pipeline = Pipeline::assemble(&loaded).map_err(|e| e.to_string())?;
