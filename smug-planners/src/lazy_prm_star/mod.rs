@@ -13,17 +13,22 @@
 //! empty (the path is optimal), or at its sample or time budget — an unreachable goal
 //! ends with "no path", never a hang.
 
+mod checks;
+mod focus;
+
+use self::checks::{timed_state_check, Checks, CountedMotions};
+use self::focus::{Focus, MIN_FOCUS_PERIOD};
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::{
-    Bounds2, BuildContext, Error, InformedSet, MotionCheck, MotionValidator, Objective, Path,
-    PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace,
-    StateValidityChecker, Termination, TimeBreakdown,
+    Bounds2, BuildContext, Error, InformedSet, MotionValidator, Objective, Path, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace, StateValidityChecker,
+    Termination, TimeBreakdown,
 };
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -44,78 +49,11 @@ pub enum SearchMode {
 /// LazySP rounds an `auto` attempt tries before switching to Lazy Weighted A*.
 const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 
-/// Samples a first-path focus gets at least before it widens.
-const MIN_FOCUS_PERIOD: u64 = 100;
-
 /// Samples between improvement attempts once a query has its first path:
 /// `attempt_every`, or `attempt_share` × the samples it drew to find that path if more.
 fn improvement_interval(params: &LazyPrmStarParams, samples_to_first_path: u64) -> u32 {
     let scaled = (params.attempt_share * samples_to_first_path as f64).ceil();
     (scaled.min(f64::from(u32::MAX)) as u32).max(params.attempt_every)
-}
-
-/// The focus of a query: the informed set of a provisional cost `(1 + excess) ×` the
-/// straight-line cost, its excess doubling each `period` samples — a region around
-/// the straight line that grows geometrically. While it does not cover the query's
-/// informed set (no path yet, or the best path costs more than the provisional cost),
-/// every other sample is drawn in it, the others in the informed set (the bounds
-/// before a path): a short query on a big map densifies its own neighbourhood first,
-/// and a detour found on a sparse roadmap is challenged where better paths lie.
-#[derive(Clone, Copy, Debug)]
-struct Focus {
-    /// The excess of the provisional cost over the straight-line cost (0: no focus).
-    excess: f64,
-    /// The straight-line cost of the query.
-    lower_bound: f64,
-    /// The provisional cost from which the focus holds the whole bounds.
-    whole: f64,
-    /// Samples until the focus widens.
-    left: u64,
-    /// True when the next sample is drawn in the focus.
-    focused: bool,
-}
-
-impl Focus {
-    fn new(excess: f64, lower_bound: f64, whole: f64, period: u64) -> Self {
-        Self {
-            excess,
-            lower_bound,
-            whole,
-            left: period,
-            focused: true,
-        }
-    }
-
-    /// The set of the next sample: the focus every other sample, else the bounds.
-    fn next_set(&mut self, start: &Pose2, goal: &Pose2) -> Option<InformedSet> {
-        self.focused = !self.focused;
-        let active =
-            !self.focused && self.excess > 0.0 && self.lower_bound > 0.0 && self.excess.is_finite();
-        active.then_some(InformedSet {
-            start: *start,
-            goal: *goal,
-            best_cost: (1.0 + self.excess) * self.lower_bound,
-        })
-    }
-
-    /// Counts a sample; true when the focus is due to widen.
-    fn tick(&mut self) -> bool {
-        self.left = self.left.saturating_sub(1);
-        self.left == 0
-    }
-
-    /// True when the focus covers the informed set of a path of cost `cost` (or the
-    /// whole bounds): its provisional cost is at least `cost` (always with no focus).
-    fn covers(&self, cost: f64) -> bool {
-        !(self.excess > 0.0 && self.excess.is_finite() && self.lower_bound > 0.0)
-            || (1.0 + self.excess) * self.lower_bound >= cost.min(self.whole)
-    }
-
-    /// Doubles the excess and restarts the count.
-    fn widen(&mut self, period: u64) {
-        self.excess *= 2.0;
-        self.left = period;
-    }
 }
 
 /// Parameters of LazyPRM*.
@@ -670,103 +608,6 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("astar_repairs".to_string(), c.repairs),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
-        }
-    }
-}
-
-/// A state check, counted and timed as vertex checking.
-fn timed_state_check(
-    states: &dyn StateValidityChecker,
-    counts: &mut Counts,
-    state: &Pose2,
-) -> bool {
-    let started = Instant::now();
-    let valid = states.is_valid(state);
-    counts.vertex_checks += 1;
-    counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
-    valid
-}
-
-/// A motion validator that counts and times the checks made through it (those of
-/// path post-processing, booked as edge checks).
-struct CountedMotions<'a> {
-    inner: &'a dyn MotionValidator,
-    checks: AtomicU64,
-    nanoseconds: AtomicU64,
-}
-
-impl<'a> CountedMotions<'a> {
-    fn new(inner: &'a dyn MotionValidator) -> Self {
-        Self {
-            inner,
-            checks: AtomicU64::new(0),
-            nanoseconds: AtomicU64::new(0),
-        }
-    }
-
-    fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
-        let started = Instant::now();
-        let result = check();
-        let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
-        self.checks.fetch_add(1, Relaxed);
-        self.nanoseconds.fetch_add(elapsed, Relaxed);
-        result
-    }
-}
-
-impl MotionValidator for CountedMotions<'_> {
-    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
-        self.timed(|| self.inner.is_valid_motion(a, b))
-    }
-
-    fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
-        self.timed(|| self.inner.check_motion(a, b))
-    }
-}
-
-/// The checks the searches run, with their counters.
-struct Checks<'a> {
-    states: &'a dyn StateValidityChecker,
-    motions: &'a dyn MotionValidator,
-    counts: &'a mut Counts,
-}
-
-impl Evaluator for Checks<'_> {
-    fn vertex(&mut self, map: &mut Roadmap, v: u32) -> bool {
-        match map.vertex_validity(v) {
-            Validity::Valid => true,
-            Validity::Invalid => false,
-            Validity::Unknown => {
-                let valid = timed_state_check(self.states, self.counts, map.pose(v));
-                if valid {
-                    map.mark_vertex_valid(v);
-                } else {
-                    map.remove_vertex(v);
-                }
-                valid
-            }
-        }
-    }
-
-    fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
-        let edge = *map.edge(e);
-        match edge.validity {
-            Validity::Valid => true,
-            Validity::Invalid => false,
-            Validity::Unknown => {
-                let started = Instant::now();
-                let valid = self
-                    .motions
-                    .is_valid_motion(map.pose(edge.a), map.pose(edge.b));
-                self.counts.edge_checks += 1;
-                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
-                if valid {
-                    map.mark_edge_valid(e);
-                } else {
-                    map.remove_edge(e);
-                }
-                valid
-            }
         }
     }
 }
