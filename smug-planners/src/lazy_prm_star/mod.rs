@@ -14,20 +14,23 @@
 //! ends with "no path", never a hang.
 
 mod checks;
+mod expansion;
 mod focus;
 
 use self::checks::{timed_state_check, Checks, CountedMotions};
+use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
+use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
     Bounds2, BuildContext, Error, InformedSet, MotionValidator, Objective, Path, PlannerOutcome,
     PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace, StateValidityChecker,
     Termination, TimeBreakdown,
 };
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
@@ -113,6 +116,24 @@ pub struct LazyPrmStarParams {
     /// models need one: their k-th nearest is a turn-around away, so unlimited
     /// connections reach across the map.
     pub range: Option<f64>,
+    /// A query without a path after this many samples starts expanding its endpoints:
+    /// samples along the motion model's curves out of the start and into the goal (see
+    /// `expand_share`). Queries that find a path sooner are unaffected.
+    pub expand_after: u64,
+    /// The share of a query's samples expanded from its endpoints once `expand_after`
+    /// passed without a path (0: never): each endpoint grows a tree of valid samples
+    /// along the model's own curves, which reaches poses that uniform samples seldom
+    /// connect (a car parked facing a rock, a narrow door). In [0, 1].
+    pub expand_share: f64,
+    /// How far an expansion sample reaches from its tree, metres (its curve's target
+    /// is drawn within this distance).
+    pub expand_reach: f64,
+    /// Retry query endpoints found cut off: when a query ends without a path, the
+    /// endpoint whose roadmap component is the smaller one (less than half the roadmap:
+    /// a pocket the robot could not leave or enter within the budget) is cut off, and
+    /// later queries from or to it answer "no path" at once. True: every query spends
+    /// its whole budget again.
+    pub retry_cut_off: bool,
 }
 
 impl Default for LazyPrmStarParams {
@@ -132,6 +153,10 @@ impl Default for LazyPrmStarParams {
             search: SearchMode::Auto,
             incremental_attempts: true,
             range: None,
+            expand_after: 500,
+            expand_share: 0.5,
+            expand_reach: 3.0,
+            retry_cut_off: false,
         }
     }
 }
@@ -146,6 +171,8 @@ struct Counts {
     searches: u64,
     /// Attempts answered by repairing the previous search.
     repairs: u64,
+    /// Queries answered "no path" at once: an endpoint was cut off.
+    cut_off_queries: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -164,6 +191,9 @@ pub struct LazyPrmStar {
     grown: bool,
     /// Vertices with ids from this one on were added after the latest search.
     fresh_from: u32,
+    expansion: Expansion,
+    /// Endpoints of failed queries found in pockets (see `retry_cut_off`).
+    cut_off: BTreeSet<u32>,
     counts: Counts,
 }
 
@@ -206,6 +236,24 @@ impl LazyPrmStar {
         if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
         }
+        if !(0.0..=1.0).contains(&params.expand_share) {
+            return Err(Error::invalid_param(
+                "planner",
+                format!(
+                    "expand_share must be in [0, 1], got {}",
+                    params.expand_share
+                ),
+            ));
+        }
+        if !(params.expand_reach.is_finite() && params.expand_reach > 0.0) {
+            return Err(Error::invalid_param(
+                "planner",
+                format!(
+                    "expand_reach must be finite and > 0, got {}",
+                    params.expand_reach
+                ),
+            ));
+        }
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
@@ -222,8 +270,21 @@ impl LazyPrmStar {
             w_t,
             grown: false,
             fresh_from: 0,
+            expansion: Expansion::new(
+                stage_rng(0, EXPANSION_STREAM),
+                params.expand_reach,
+                params.expand_share,
+            ),
+            cut_off: BTreeSet::new(),
             counts: Counts::default(),
         })
+    }
+
+    /// Draws the endpoint expansions (see [`LazyPrmStarParams::expand_share`]) from
+    /// `rng` (by default a fixed stream of seed 0).
+    pub fn with_expansion_rng(mut self, rng: StageRng) -> Self {
+        self.expansion = Expansion::new(rng, self.params.expand_reach, self.params.expand_share);
+        self
     }
 
     /// The roadmap (for inspection and tests).
@@ -246,6 +307,29 @@ impl LazyPrmStar {
         self.counts.samples += 1;
         self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
         sample
+    }
+
+    /// Draws an expansion sample and adds it (checked first unless vertices are lazy) to
+    /// the roadmap and to its end's tree; true if added.
+    fn insert_expansion_sample(&mut self) -> bool {
+        let started = Instant::now();
+        let drawn = self.expansion.sample(self.space.as_ref(), &self.bounds);
+        self.counts.samples += 1;
+        self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+        let Some((end, sample, (from, to))) = drawn else {
+            return false;
+        };
+        let added = self.insert_sample(sample);
+        if added {
+            let started = Instant::now();
+            let joined = self.motions.is_valid_motion(&from, &to);
+            self.counts.edge_checks += 1;
+            self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
+            if joined {
+                self.expansion.grow(end, sample);
+            }
+        }
+        added
     }
 
     fn check_state(&mut self, state: &Pose2) -> bool {
@@ -428,7 +512,28 @@ impl LazyPrmStar {
         );
         let max_stall = self.params.max_stall;
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
+        self.expansion.begin(start, goal);
         while !clock.is_done() && !stalled(&best, stall) {
+            if best.is_none()
+                && clock.iterations() >= self.params.expand_after
+                && self.expansion.is_due()
+            {
+                clock.tick();
+                if !self.insert_expansion_sample() {
+                    continue;
+                }
+                since_attempt += 1;
+                if since_attempt >= wait && self.roadmap.maybe_connected(s, g) {
+                    since_attempt = 0;
+                    if let Some(path) = self.attempt(s, g, f64::INFINITY, 0) {
+                        interval = improvement_interval(&self.params, clock.iterations());
+                        best = Some(path);
+                    } else {
+                        wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
+                    }
+                }
+                continue;
+            }
             // `best` changes only at the end of an iteration.
             let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
             let focusing = !focus.covers(best_cost);
@@ -493,6 +598,10 @@ impl LazyPrmStar {
             if found.is_none() && best.is_none() {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
             }
+            if found.is_none() && best.is_some() && focus.covers(best_cost) {
+                // No cheaper path: a stalled attempt, as a repair that finds none.
+                stall += 1;
+            }
             if let Some(path) = found {
                 if best.is_none() {
                     interval = improvement_interval(&self.params, clock.iterations());
@@ -511,7 +620,33 @@ impl LazyPrmStar {
                 }
             }
         }
+        if best.is_none() && since_attempt > 0 && self.roadmap.maybe_connected(s, g) {
+            // The samples since the last attempt may have connected the endpoints.
+            best = self.attempt(s, g, f64::INFINITY, 0);
+        }
+        if best.is_none() {
+            self.cut_off_pocket(s, g);
+        }
         best
+    }
+
+    /// After a failed query: cuts off the endpoint whose component is the smaller one
+    /// if it holds less than half the roadmap (both on a tie), unless retried.
+    fn cut_off_pocket(&mut self, s: u32, g: u32) {
+        if self.params.retry_cut_off {
+            return;
+        }
+        self.roadmap.refresh_components();
+        let half = self.roadmap.live_vertex_count() / 2;
+        let (size_s, size_g) = (
+            self.roadmap.component_size(s),
+            self.roadmap.component_size(g),
+        );
+        for (v, size, other) in [(s, size_s, size_g), (g, size_g, size_s)] {
+            if size <= other && size < half {
+                self.cut_off.insert(v);
+            }
+        }
     }
 
     /// A cost whose informed set holds the whole bounds: every corner's sum of
@@ -583,6 +718,10 @@ impl PointToPointPlanner for LazyPrmStar {
                 states: vec![*start],
                 cost: 0.0,
             }),
+            (Some(s), Some(g)) if self.cut_off.contains(&s) || self.cut_off.contains(&g) => {
+                self.counts.cut_off_queries += 1;
+                PlannerOutcome::NoPath
+            }
             (Some(s), Some(g)) => match self.solve(start, goal, s, g) {
                 Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
                 None => PlannerOutcome::NoPath,
@@ -606,22 +745,27 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("edge_checks".to_string(), c.edge_checks),
                 ("astar_searches".to_string(), c.searches),
                 ("astar_repairs".to_string(), c.repairs),
+                ("cut_off_queries".to_string(), c.cut_off_queries),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
         }
     }
 }
 
+/// The random stream of the endpoint expansions.
+const EXPANSION_STREAM: &str = "planner-expansion";
+
 fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
-    LazyPrmStar::new(
+    Ok(LazyPrmStar::new(
         params,
         ctx.new_sampler()?,
         ctx.state_validity()?,
         ctx.motion_validator()?,
         (ctx.space(), ctx.objective()),
         bounds,
-    )
+    )?
+    .with_expansion_rng(ctx.rng(EXPANSION_STREAM)))
 }
 
 smug_core::register_plugin!(
@@ -773,5 +917,98 @@ mod tests {
         let path = outcome.exact_path().expect("a path");
         assert!((path.cost - a.xy_distance(&b)).abs() < 1e-9);
         assert!(p.stats().counters["samples"] < p.params.max_samples);
+    }
+
+    /// Invalid on a ring 2 to 3 m around (8, 8): the disc inside is a closed pocket.
+    struct Ring;
+
+    impl Ring {
+        fn free(p: &Pose2) -> bool {
+            let d = (p.x - 8.0).hypot(p.y - 8.0);
+            !(2.0..=3.0).contains(&d)
+        }
+    }
+
+    impl StateValidityChecker for Ring {
+        fn is_valid(&self, p: &Pose2) -> bool {
+            Self::free(p)
+        }
+    }
+
+    impl MotionValidator for Ring {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            let steps = (a.xy_distance(b) / 0.05).ceil().max(1.0) as usize;
+            (0..=steps).all(|i| {
+                let t = i as f64 / steps as f64;
+                Self::free(&Pose2::new(
+                    a.x + t * (b.x - a.x),
+                    a.y + t * (b.y - a.y),
+                    0.0,
+                ))
+            })
+        }
+
+        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+            if self.is_valid_motion(a, b) {
+                MotionCheck::Valid
+            } else {
+                MotionCheck::Invalid { last_valid: None }
+            }
+        }
+    }
+
+    fn ring_planner(retry_cut_off: bool) -> LazyPrmStar {
+        let params = LazyPrmStarParams {
+            max_samples: 1_000,
+            retry_cut_off,
+            ..LazyPrmStarParams::default()
+        };
+        LazyPrmStar::new(
+            params,
+            Box::new(Lcg(7)),
+            Arc::new(Ring),
+            Arc::new(Ring),
+            (
+                Arc::new(Se2Space::default()),
+                Arc::new(PathLength::default()),
+            ),
+            Bounds2 {
+                min: [0.0, 0.0],
+                max: [10.0, 10.0],
+            },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
+        let pocket = Pose2::new(8.0, 8.0, 0.0);
+        let mut p = ring_planner(false);
+        let first = p.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
+        assert!(matches!(first, PlannerOutcome::NoPath));
+        let spent = p.stats().counters["samples"];
+        assert!(spent >= 1_000, "the whole budget: {spent}");
+        let second = p.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
+        assert!(matches!(second, PlannerOutcome::NoPath));
+        assert_eq!(
+            p.stats().counters["samples"],
+            spent,
+            "no budget spent again"
+        );
+        assert_eq!(p.stats().counters["cut_off_queries"], 1);
+        let free = p.plan(&Pose2::new(1.0, 9.0, 0.0), &Pose2::new(1.0, 1.0, 0.0));
+        assert!(
+            free.unwrap().exact_path().is_some(),
+            "the other end is not cut off"
+        );
+
+        let mut retried = ring_planner(true);
+        retried.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
+        retried.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
+        assert!(
+            retried.stats().counters["samples"] >= 2_000,
+            "a second budget"
+        );
+        assert_eq!(retried.stats().counters["cut_off_queries"], 0);
     }
 }
