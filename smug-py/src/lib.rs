@@ -7,17 +7,14 @@
 //! lets a Python callable act as the pipeline's traversability estimator.
 
 use numpy::ndarray::Array2;
-use numpy::{
-    IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray,
-    PyUntypedArrayMethods,
-};
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use smug_core::mission_run::Unreachable;
 use smug_core::{
-    plan_mission, Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline,
-    PlannerOutcome, Pose2, TraversabilityEstimator, World,
+    plan_mission, Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome,
+    Pose2, TraversabilityEstimator, World,
 };
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -146,7 +143,10 @@ fn shape_text(shape: &[usize]) -> String {
 
 /// Checks that every value of a traversability layer is NaN or in `[0, 1]`.
 fn check_unit_range(what: &str, size: [usize; 2], data: &[f32]) -> Result<(), String> {
-    match data.iter().position(|v| !v.is_nan() && !(0.0..=1.0).contains(v)) {
+    match data
+        .iter()
+        .position(|v| !v.is_nan() && !(0.0..=1.0).contains(v))
+    {
         None => Ok(()),
         Some(k) => Err(format!(
             "{what}: value {} at [{}, {}] (row, column) is outside [0, 1] (NaN = unknown)",
@@ -359,7 +359,11 @@ fn bool_grid(what: &str, obj: &Bound<'_, PyAny>) -> PyResult<([usize; 2], Vec<bo
         )));
     }
     let a = obj.cast::<PyArray2<bool>>().map_err(|_| {
-        let dtype = array.dtype().str().map(|s| s.to_string()).unwrap_or_default();
+        let dtype = array
+            .dtype()
+            .str()
+            .map(|s| s.to_string())
+            .unwrap_or_default();
         input_error(format!(
             "{what}: dtype {dtype} is not supported; use bool (True = occupied)"
         ))
@@ -494,8 +498,14 @@ fn load_world(
     let mut loaded = load(&config, set, seed)?;
     // Only the world and its traversability are needed.
     let c = &mut loaded.config;
-    (c.validity, c.motion, c.sampler, c.planner, c.sequencer, c.selector) =
-        (None, None, None, None, None, None);
+    (
+        c.validity,
+        c.motion,
+        c.sampler,
+        c.planner,
+        c.sequencer,
+        c.selector,
+    ) = (None, None, None, None, None, None);
     let world = py
         .detach(|| Pipeline::assemble(&loaded).map(|p| p.world))
         .map_err(to_py)?;
@@ -580,10 +590,13 @@ fn p2p(
     };
     let results = py.detach(move || -> smug_core::Result<serde_json::Value> {
         let mut pipeline = Pipeline::assemble_with(&loaded, given_world, None)?;
-        let planner = pipeline.planner.as_mut().ok_or_else(|| Error::MissingStage {
-            stage: "p2p".into(),
-            needed: "planner",
-        })?;
+        let planner = pipeline
+            .planner
+            .as_mut()
+            .ok_or_else(|| Error::MissingStage {
+                stage: "p2p".into(),
+                needed: "planner",
+            })?;
         let started = Instant::now();
         let mut rows = Vec::with_capacity(queries.len());
         for (start, goal) in &queries {

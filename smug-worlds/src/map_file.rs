@@ -65,6 +65,8 @@ pub const DEFAULT_ELEVATION_SCALE: f64 = 0.001;
 pub const MAX_PIXELS: u64 = 100_000_000;
 /// Default height given to occupied cells above the ground, metres.
 pub const DEFAULT_OBSTACLE_HEIGHT: f64 = 2.0;
+/// Default cell size of a rasterised point cloud, metres.
+pub const DEFAULT_CELL_SIZE: f64 = 0.1;
 
 /// How pixel values become occupancy (`map_server`'s `mode`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -387,6 +389,15 @@ pub struct MapLayers {
 }
 
 impl MapLayers {
+    /// Layers of an elevation alone (a DEM or a rasterised point cloud).
+    pub fn from_elevation(elevation: GridLayer) -> Self {
+        Self {
+            elevation,
+            traversability: None,
+            mission_file: None,
+        }
+    }
+
     /// A world of these layers and `mission`; errors when a pose lies outside the map.
     /// `yaml` names the map in errors.
     pub fn into_world(
@@ -688,6 +699,16 @@ pub struct MapParams {
     pub obstacle_height: f64,
     /// Name in reports (default: the YAML file's stem).
     pub name: Option<String>,
+    /// A GeoTIFF DEM instead of `yaml` (relative to the config file): heights,
+    /// resolution and origin come from the file.
+    pub dem: Option<PathBuf>,
+    /// A point cloud (PLY or PCD) instead of `yaml` (relative to the config file),
+    /// rasterised into cells of `cell_size`.
+    pub point_cloud: Option<PathBuf>,
+    /// Cell size of a rasterised point cloud, metres.
+    pub cell_size: f64,
+    /// How a cell's points make its height: `max` (default) or `mean`.
+    pub reduce: crate::point_cloud::Reduce,
 }
 
 impl Default for MapParams {
@@ -698,6 +719,10 @@ impl Default for MapParams {
             mission: None,
             obstacle_height: DEFAULT_OBSTACLE_HEIGHT,
             name: None,
+            dem: None,
+            point_cloud: None,
+            cell_size: DEFAULT_CELL_SIZE,
+            reduce: crate::point_cloud::Reduce::default(),
         }
     }
 }
@@ -731,14 +756,45 @@ fn map_mission(
 
 /// Builds the `map` world described by `params`.
 fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Error> {
-    if params.yaml.as_os_str().is_empty() {
-        return Err(Error::invalid_param(
-            "world",
-            "`yaml` is required: the map's YAML file",
-        ));
+    let given = [
+        !params.yaml.as_os_str().is_empty(),
+        params.dem.is_some(),
+        params.point_cloud.is_some(),
+    ];
+    match given.iter().filter(|g| **g).count() {
+        0 => {
+            return Err(Error::invalid_param(
+                "world",
+                "`yaml` is required: the map's YAML file (or `dem`, a GeoTIFF, or \
+                 `point_cloud`, a PLY or PCD file)",
+            ))
+        }
+        1 => {}
+        _ => {
+            return Err(Error::invalid_param(
+                "world",
+                "give one of `yaml`, `dem` and `point_cloud`",
+            ))
+        }
     }
-    let yaml = ctx.resolve_path(&params.yaml);
-    let layers = load_map(&yaml, params.obstacle_height).map_err(|e| Error::stage("world", e))?;
+    let (yaml, layers) = if let Some(dem) = &params.dem {
+        let path = ctx.resolve_path(dem);
+        let dem = crate::geotiff::read_geotiff(&path).map_err(|e| Error::stage("world", e))?;
+        (path, MapLayers::from_elevation(dem.elevation))
+    } else if let Some(cloud) = &params.point_cloud {
+        let path = ctx.resolve_path(cloud);
+        let points =
+            crate::point_cloud::read_point_cloud(&path).map_err(|e| Error::stage("world", e))?;
+        let elevation =
+            crate::point_cloud::rasterise(&points, params.cell_size, params.reduce, &path)
+                .map_err(|e| Error::stage("world", e))?;
+        (path, MapLayers::from_elevation(elevation))
+    } else {
+        let yaml = ctx.resolve_path(&params.yaml);
+        let layers =
+            load_map(&yaml, params.obstacle_height).map_err(|e| Error::stage("world", e))?;
+        (yaml, layers)
+    };
     let mission = map_mission(params, &layers, &yaml, ctx)?;
     let name = params.name.clone().unwrap_or_else(|| file_stem(&yaml));
     layers
@@ -756,7 +812,7 @@ pub fn file_stem(path: &Path) -> String {
 smug_core::register_plugin!(
     smug_core::registry::WorldStage,
     name = "map",
-    summary = "ROS map_server-style YAML + PGM/PNG occupancy (elevation, traversability images)",
+    summary = "ROS map_server-style YAML + PGM/PNG occupancy (elevation, traversability images), a GeoTIFF DEM or a PLY/PCD point cloud",
     params = MapParams,
     build = |params, ctx| Ok(Box::new(build_map_world(&params, ctx)?)),
 );
