@@ -2,7 +2,7 @@
 //!
 //! Plugins: `flat` (a flat floor with box obstacles and a mission written in the
 //! config), `lunar` and `indoor` (procedural, seeded), `map` (ROS map_server-style
-//! YAML + images and a mission file). Also MovingAI map conversion and writing, seeded
+//! YAML + images, a GeoTIFF DEM or a PLY/PCD point cloud, and a mission). Also MovingAI map conversion and writing, seeded
 //! grid map generators, optimal octile lengths, world export and SVG rendering.
 
 #![warn(missing_docs)]

@@ -777,18 +777,16 @@ fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Erro
             ))
         }
     }
-    let (yaml, layers) = if let Some(dem) = &params.dem {
-        let path = ctx.resolve_path(dem);
-        let dem = crate::geotiff::read_geotiff(&path).map_err(|e| Error::stage("world", e))?;
-        (path, MapLayers::from_elevation(dem.elevation))
-    } else if let Some(cloud) = &params.point_cloud {
-        let path = ctx.resolve_path(cloud);
-        let points =
-            crate::point_cloud::read_point_cloud(&path).map_err(|e| Error::stage("world", e))?;
-        let elevation =
-            crate::point_cloud::rasterise(&points, params.cell_size, params.reduce, &path)
-                .map_err(|e| Error::stage("world", e))?;
-        (path, MapLayers::from_elevation(elevation))
+    let terrain = params.dem.as_ref().or(params.point_cloud.as_ref());
+    let (yaml, layers) = if let Some(file) = terrain {
+        let path = ctx.resolve_path(file);
+        let kind = match params.dem {
+            Some(_) => TerrainKind::Dem,
+            None => TerrainKind::PointCloud,
+        };
+        let layers = load_terrain(&path, kind, params.cell_size, params.reduce)
+            .map_err(|e| Error::stage("world", e))?;
+        (path, layers)
     } else {
         let yaml = ctx.resolve_path(&params.yaml);
         let layers =
@@ -800,6 +798,56 @@ fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Erro
     layers
         .into_world(name, mission, &yaml)
         .map_err(|e| Error::stage("world", e))
+}
+
+/// A terrain file that is not a map YAML.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TerrainKind {
+    /// A GeoTIFF DEM.
+    Dem,
+    /// A PLY or PCD point cloud.
+    PointCloud,
+}
+
+impl TerrainKind {
+    /// The kind a file's extension names: `.tif`/`.tiff` a DEM, `.ply`/`.pcd` a cloud.
+    pub fn of(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "tif" | "tiff" => Some(TerrainKind::Dem),
+            "ply" | "pcd" => Some(TerrainKind::PointCloud),
+            _ => None,
+        }
+    }
+}
+
+/// Why a DEM or a point cloud could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum TerrainError {
+    /// A bad GeoTIFF.
+    #[error(transparent)]
+    GeoTiff(#[from] crate::geotiff::GeoTiffError),
+    /// A bad point cloud.
+    #[error(transparent)]
+    PointCloud(#[from] crate::point_cloud::PointCloudError),
+}
+
+/// The elevation of a GeoTIFF DEM, or of a point cloud rasterised into cells of
+/// `cell_size` with `reduce` (see [`crate::geotiff`] and [`crate::point_cloud`]).
+pub fn load_terrain(
+    path: &Path,
+    kind: TerrainKind,
+    cell_size: f64,
+    reduce: crate::point_cloud::Reduce,
+) -> Result<MapLayers, TerrainError> {
+    let elevation = match kind {
+        TerrainKind::Dem => crate::geotiff::read_geotiff(path)?.elevation,
+        TerrainKind::PointCloud => {
+            let points = crate::point_cloud::read_point_cloud(path)?;
+            crate::point_cloud::rasterise(&points, cell_size, reduce, path)?
+        }
+    };
+    Ok(MapLayers::from_elevation(elevation))
 }
 
 /// The file name of `path` without its extension (`map` when there is none).

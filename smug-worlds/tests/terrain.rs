@@ -636,3 +636,88 @@ fn the_map_world_reads_a_dem_or_a_point_cloud() {
     let err = world_of(&dir, "dem = \"bad.tif\"").unwrap_err();
     assert!(err.contains("bad.tif: not a readable TIFF"), "{err}");
 }
+
+// --- malformed files: an error, never a panic -------------------------------------------
+
+mod corrupted {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Valid files of every reader, written once.
+    fn originals() -> &'static [(PathBuf, Vec<u8>)] {
+        static FILES: std::sync::OnceLock<Vec<(PathBuf, Vec<u8>)>> = std::sync::OnceLock::new();
+        FILES.get_or_init(write_originals)
+    }
+
+    fn write_originals() -> Vec<(PathBuf, Vec<u8>)> {
+        let dir = scratch("corrupt-originals");
+        let mut files = Vec::new();
+        let writers: [(&str, Box<dyn Fn(&Path)>); 5] = [
+            (
+                "a.tif",
+                Box::new(|p| {
+                    write_geotiff(
+                        p,
+                        [4, 3],
+                        Samples::I16(pixels(|z| z as i16)),
+                        TIE,
+                        false,
+                        Some("-9999"),
+                    )
+                }),
+            ),
+            ("a.ply", Box::new(write_ply_ascii)),
+            ("le.ply", Box::new(|p| write_ply_binary(p, true))),
+            ("a.pcd", Box::new(|p| write_pcd(p, false))),
+            ("b.pcd", Box::new(|p| write_pcd(p, true))),
+        ];
+        for (name, write) in writers {
+            let path = dir.join(name);
+            write(&path);
+            files.push((path.clone(), std::fs::read(&path).unwrap()));
+        }
+        files
+    }
+
+    fn read(path: &Path) -> Result<(), String> {
+        if path.extension().is_some_and(|e| e == "tif") {
+            read_geotiff(path).map(|_| ()).map_err(|e| e.to_string())
+        } else {
+            read_point_cloud(path)
+                .map(|_| ())
+                .map_err(|e| e.to_string())
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Flipped bytes and truncations give an error naming the file, or a reading.
+        #[test]
+        fn readers_survive_corruption(
+            which in 0usize..5,
+            flips in proptest::collection::vec((any::<prop::sample::Index>(), any::<u8>()), 0..6),
+            cut in any::<prop::sample::Index>(),
+            truncate in any::<bool>(),
+        ) {
+            let originals = originals();
+            let (path, bytes) = &originals[which];
+            let mut bytes = bytes.clone();
+            for (at, value) in flips {
+                let k = at.index(bytes.len());
+                bytes[k] = value;
+            }
+            if truncate {
+                bytes.truncate(cut.index(bytes.len()));
+            }
+            let target = path.with_file_name(format!(
+                "corrupt-{}-{}",
+                std::process::id(),
+                path.file_name().unwrap().to_string_lossy()
+            ));
+            std::fs::write(&target, &bytes).unwrap();
+            if let Err(err) = read(&target) {
+                prop_assert!(err.starts_with(&target.display().to_string()), "{}", err);
+            }
+        }
+    }
+}
