@@ -8,6 +8,9 @@ use std::path::{Path, PathBuf};
 use tiff::encoder::{colortype, TiffEncoder};
 use tiff::tags::Tag;
 
+/// Writes a test file at the path it is given.
+type Writer = Box<dyn Fn(&Path)>;
+
 /// A fresh, empty folder for one test.
 fn scratch(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("terrain-{name}"));
@@ -207,7 +210,7 @@ fn float32_nan_nodata_and_pixel_is_point() {
 #[test]
 fn bad_geotiffs_name_the_file_and_the_fault() {
     let dir = scratch("bad");
-    let cases: Vec<(&str, Box<dyn Fn(&Path)>, &str)> = vec![
+    let cases: Vec<(&str, Writer, &str)> = vec![
         (
             "nogeo.tif",
             Box::new(|p| {
@@ -402,7 +405,7 @@ fn write_pcd(path: &Path, binary: bool) {
 #[test]
 fn ply_and_pcd_in_every_encoding_read_the_same_points() {
     let dir = scratch("clouds");
-    let files: [(&str, Box<dyn Fn(&Path)>); 5] = [
+    let files: [(&str, Writer); 5] = [
         ("a.ply", Box::new(write_ply_ascii)),
         ("le.ply", Box::new(|p| write_ply_binary(p, true))),
         ("be.ply", Box::new(|p| write_ply_binary(p, false))),
@@ -652,7 +655,7 @@ mod corrupted {
     fn write_originals() -> Vec<(PathBuf, Vec<u8>)> {
         let dir = scratch("corrupt-originals");
         let mut files = Vec::new();
-        let writers: [(&str, Box<dyn Fn(&Path)>); 5] = [
+        let writers: [(&str, Writer); 5] = [
             (
                 "a.tif",
                 Box::new(|p| {
