@@ -63,8 +63,8 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         path: path.to_path_buf(),
         message,
     };
-    let file = std::fs::File::open(path).map_err(|e| fail(format!("cannot read: {e}")))?;
-    let mut decoder = Decoder::new(std::io::BufReader::new(file))
+    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let mut decoder = Decoder::new(std::io::Cursor::new(&bytes[..]))
         .map_err(|e| fail(format!("not a readable TIFF: {e}")))?;
     let (width, height) = decoder
         .dimensions()
@@ -104,13 +104,18 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         Ok(None) => None,
         Err(e) => return Err(fail(format!("bad GDAL_NODATA tag: {e}"))),
     };
-    let mut limits = Limits::default();
-    limits.decoding_buffer_size = (MAX_PIXELS * 8) as usize;
-    limits.intermediate_buffer_size = (MAX_PIXELS * 8) as usize;
-    let mut decoder = decoder.with_limits(limits);
-    let image = decoder
-        .read_image()
-        .map_err(|e| fail(format!("cannot decode the image: {e}")))?;
+    let image = match read_lzw(&mut decoder, &bytes, [width, height]).map_err(&fail)? {
+        Some(image) => image,
+        None => {
+            let mut limits = Limits::default();
+            limits.decoding_buffer_size = (MAX_PIXELS * 8) as usize;
+            limits.intermediate_buffer_size = (MAX_PIXELS * 8) as usize;
+            let mut decoder = decoder.with_limits(limits);
+            decoder
+                .read_image()
+                .map_err(|e| fail(format!("cannot decode the image: {e}")))?
+        }
+    };
     let values = heights(image, nodata).map_err(&fail)?;
     let expected = width as usize * height as usize;
     if values.len() != expected {
@@ -129,6 +134,170 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         raster_type,
         nodata,
     })
+}
+
+const COMPRESSION_LZW: u16 = 5;
+
+fn u64_tags<R: std::io::Read + std::io::Seek>(
+    decoder: &mut Decoder<R>,
+    tag: Tag,
+) -> Result<Option<Vec<u64>>, String> {
+    match decoder.find_tag(tag) {
+        Ok(Some(value)) => value
+            .into_u64_vec()
+            .map(Some)
+            .map_err(|e| format!("bad {tag:?} tag: {e}")),
+        Ok(None) => Ok(None),
+        Err(e) => Err(format!("bad {tag:?} tag: {e}")),
+    }
+}
+
+fn u16_tag<R: std::io::Read + std::io::Seek>(
+    decoder: &mut Decoder<R>,
+    tag: Tag,
+    default: u16,
+) -> Result<u16, String> {
+    decoder
+        .find_tag_unsigned::<u16>(tag)
+        .map(|v| v.unwrap_or(default))
+        .map_err(|e| format!("bad {tag:?} tag: {e}"))
+}
+
+/// Decodes an LZW-compressed image (strips or tiles, no predictor or horizontal
+/// differencing of integers) chunk by chunk; `None` for anything else.
+///
+/// The `tiff` crate 0.11 fails on some valid LZW tiles ("no lzw end code found", e.g.
+/// GDAL's int16 DEMs in 256 × 256 tiles): this path decodes each chunk's bytes with
+/// `weezl` without requiring the end code, as libtiff does.
+fn read_lzw<R: std::io::Read + std::io::Seek>(
+    decoder: &mut Decoder<R>,
+    file: &[u8],
+    [width, height]: [u32; 2],
+) -> Result<Option<DecodingResult>, String> {
+    if u16_tag(decoder, Tag::Compression, 1)? != COMPRESSION_LZW {
+        return Ok(None);
+    }
+    let predictor = u16_tag(decoder, Tag::Predictor, 1)?;
+    let bits = u16_tag(decoder, Tag::BitsPerSample, 1)?;
+    let format = u16_tag(decoder, Tag::SampleFormat, 1)?;
+    if !matches!(bits, 8 | 16 | 32 | 64) || !matches!(format, 1..=3) {
+        return Ok(None);
+    }
+    let integer = format == 1 || format == 2;
+    if !(predictor == 1 || (predictor == 2 && integer)) {
+        return Ok(None);
+    }
+    let (tiled, chunk) = match decoder.find_tag_unsigned::<u32>(Tag::TileWidth) {
+        Ok(Some(tw)) => {
+            let th = decoder
+                .find_tag_unsigned::<u32>(Tag::TileLength)
+                .map_err(|e| format!("bad TileLength tag: {e}"))?
+                .ok_or("has TileWidth but no TileLength")?;
+            (true, [tw, th])
+        }
+        Ok(None) => {
+            let rows = decoder
+                .find_tag_unsigned::<u32>(Tag::RowsPerStrip)
+                .map_err(|e| format!("bad RowsPerStrip tag: {e}"))?
+                .unwrap_or(height);
+            (false, [width, rows.min(height)])
+        }
+        Err(e) => return Err(format!("bad TileWidth tag: {e}")),
+    };
+    if chunk[0] == 0 || chunk[1] == 0 || u64::from(chunk[0]) * u64::from(chunk[1]) > MAX_PIXELS {
+        return Err(format!("bad chunk size {}×{}", chunk[0], chunk[1]));
+    }
+    let (offsets, counts) = if tiled {
+        (Tag::TileOffsets, Tag::TileByteCounts)
+    } else {
+        (Tag::StripOffsets, Tag::StripByteCounts)
+    };
+    let offsets = u64_tags(decoder, offsets)?.ok_or("has no chunk offsets")?;
+    let counts = u64_tags(decoder, counts)?.ok_or("has no chunk byte counts")?;
+    let across = width.div_ceil(chunk[0]) as usize;
+    let down = height.div_ceil(chunk[1]) as usize;
+    if offsets.len() < across * down || counts.len() < across * down {
+        return Err(format!(
+            "has {} chunk offsets and {} byte counts for {} chunks",
+            offsets.len(),
+            counts.len(),
+            across * down
+        ));
+    }
+    let little = decoder.byte_order() == tiff::tags::ByteOrder::LittleEndian;
+    let size = bits as usize / 8;
+    let (w, h) = (width as usize, height as usize);
+    // Raw samples as u64 bit patterns (the predictor adds them modulo 2^bits).
+    let mut raw = vec![0u64; w * h];
+    for cy in 0..down {
+        for cx in 0..across {
+            let k = cy * across + cx;
+            let (start, count) = (offsets[k] as usize, counts[k] as usize);
+            let compressed = file
+                .get(start..start.saturating_add(count))
+                .ok_or_else(|| format!("chunk {k} lies beyond the end of the file"))?;
+            let mut bytes = Vec::new();
+            let result = weezl::decode::Decoder::with_tiff_size_switch(weezl::BitOrder::Msb, 8)
+                .into_vec(&mut bytes)
+                .decode(compressed);
+            result
+                .status
+                .map_err(|e| format!("chunk {k}: bad LZW data: {e}"))?;
+            let (cw, x0, y0) = (
+                chunk[0] as usize,
+                cx * chunk[0] as usize,
+                cy * chunk[1] as usize,
+            );
+            // Tiles are padded to full size; the last strip holds only the rows left.
+            let rows = if tiled {
+                chunk[1] as usize
+            } else {
+                (chunk[1] as usize).min(h - y0)
+            };
+            if bytes.len() < cw * rows * size {
+                return Err(format!(
+                    "chunk {k} decodes to {} bytes; {cw}×{rows} samples of {size} bytes need {}",
+                    bytes.len(),
+                    cw * rows * size
+                ));
+            }
+            let mask = if bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << bits) - 1
+            };
+            for r in 0..rows.min(h - y0) {
+                let mut previous = 0u64;
+                for c in 0..cw {
+                    let at = (r * cw + c) * size;
+                    let mut v = 0u64;
+                    for b in 0..size {
+                        let byte = u64::from(bytes[at + if little { size - 1 - b } else { b }]);
+                        v = (v << 8) | byte;
+                    }
+                    if predictor == 2 {
+                        v = v.wrapping_add(previous) & mask;
+                        previous = v;
+                    }
+                    if x0 + c < w {
+                        raw[(y0 + r) * w + x0 + c] = v;
+                    }
+                }
+            }
+        }
+    }
+    let image = match (format, bits) {
+        (1, 8) => DecodingResult::U8(raw.iter().map(|&v| v as u8).collect()),
+        (2, 8) => DecodingResult::I8(raw.iter().map(|&v| v as u8 as i8).collect()),
+        (1, 16) => DecodingResult::U16(raw.iter().map(|&v| v as u16).collect()),
+        (2, 16) => DecodingResult::I16(raw.iter().map(|&v| v as u16 as i16).collect()),
+        (1, 32) => DecodingResult::U32(raw.iter().map(|&v| v as u32).collect()),
+        (2, 32) => DecodingResult::I32(raw.iter().map(|&v| v as u32 as i32).collect()),
+        (3, 32) => DecodingResult::F32(raw.iter().map(|&v| f32::from_bits(v as u32)).collect()),
+        (3, 64) => DecodingResult::F64(raw.iter().map(|&v| f64::from_bits(v)).collect()),
+        _ => return Ok(None),
+    };
+    Ok(Some(image))
 }
 
 /// The raster type from the GeoKey directory (`PixelIsArea` when absent).

@@ -47,8 +47,28 @@ fn write_geotiff(
     point: bool,
     nodata: Option<&str>,
 ) {
+    write_geotiff_coded(path, size, samples, georef, point, nodata, None);
+}
+
+/// Like [`write_geotiff`], LZW-compressed (with horizontal differencing when `predictor`).
+#[allow(clippy::too_many_arguments)]
+fn write_geotiff_coded(
+    path: &Path,
+    size: [u32; 2],
+    samples: Samples,
+    georef: Georef,
+    point: bool,
+    nodata: Option<&str>,
+    lzw_predictor: Option<bool>,
+) {
     let file = std::fs::File::create(path).unwrap();
     let mut tiff = TiffEncoder::new(std::io::BufWriter::new(file)).unwrap();
+    if let Some(predictor) = lzw_predictor {
+        tiff = tiff.with_compression(tiff::encoder::Compression::Lzw);
+        if predictor {
+            tiff = tiff.with_predictor(tiff::encoder::Predictor::Horizontal);
+        }
+    }
     macro_rules! write {
         ($colour:ty, $data:expr) => {{
             let mut image = tiff.new_image::<$colour>(size[0], size[1]).unwrap();
@@ -186,6 +206,33 @@ fn int16_with_nodata() {
     assert_eq!(at(0, 0), 0.0);
     assert_eq!(at(3, 2), 23.0);
     assert_eq!(layer.data.iter().filter(|v| v.is_nan()).count(), 1);
+}
+
+#[test]
+fn lzw_compressed_dems_with_and_without_the_predictor() {
+    let dir = scratch("lzw");
+    for predictor in [false, true] {
+        let path = dir.join(format!("i16-{predictor}.tif"));
+        let values: Vec<i16> = pixels(|z| (z.floor() as i16) * 300 - 3000);
+        let samples = Samples::I16(values);
+        write_geotiff_coded(&path, [4, 3], samples, TIE, false, None, Some(predictor));
+        let dem = read_geotiff(&path).unwrap();
+        let l = &dem.elevation;
+        assert_eq!(l.geometry.origin, [100.0, 48.5]);
+        for (c, r) in [(0, 0), (3, 0), (1, 1), (3, 2)] {
+            let want = (known(c, r).floor() * 300.0 - 3000.0) as f32;
+            assert_eq!(
+                l.data[l.geometry.index(c, 2 - r)],
+                want,
+                "{predictor} ({c}, {r})"
+            );
+        }
+    }
+    // (horizontal differencing is for integers)
+    let path = dir.join("f32.tif");
+    let samples = Samples::F32(pixels(|z| z as f32));
+    write_geotiff_coded(&path, [4, 3], samples, TIE, false, None, Some(false));
+    assert_known_heights(&read_geotiff(&path).unwrap().elevation);
 }
 
 #[test]
