@@ -10,7 +10,9 @@
 //! - `ModelTransformation` (a 4 × 4 matrix) without rotation terms and with a negative
 //!   y scale.
 //!
-//! Cells must be square (`sx = sy`, within 1e-9 relative). The raster type
+//! Cells must be square (`sx = sy`, within 1e-9 relative), and the model projected
+//! (metres): a DEM in geographic coordinates (`GTModelTypeGeoKey` = 2, degrees) is
+//! refused with a hint to reproject it. The raster type
 //! (`GTRasterTypeGeoKey`) decides what a raster point is: `PixelIsArea` (default) puts
 //! raster point `(0, 0)` at the upper-left corner of the upper-left pixel, `PixelIsPoint`
 //! at its centre (as GDAL reads it, half a pixel in from the corner). The `GDAL_NODATA`
@@ -56,6 +58,7 @@ pub struct Dem {
 }
 
 const GT_RASTER_TYPE_GEO_KEY: u16 = 1025;
+const GT_MODEL_TYPE_GEO_KEY: u16 = 1024;
 
 /// Reads the GeoTIFF DEM at `path` (see the [module documentation](self)).
 pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
@@ -314,7 +317,18 @@ fn raster_type<R: std::io::Read + std::io::Seek>(
     // Header: version, revision, minor, number of keys; then 4 shorts per key:
     // id, location (0 = the value is inline), count, value.
     let count = keys.get(3).copied().unwrap_or(0) as usize;
-    for key in keys.get(4..).unwrap_or(&[]).chunks_exact(4).take(count) {
+    let entries = keys.get(4..).unwrap_or(&[]).chunks_exact(4).take(count);
+    if entries
+        .clone()
+        .any(|key| key[0] == GT_MODEL_TYPE_GEO_KEY && key[1] == 0 && key[3] == 2)
+    {
+        return Err(
+            "is in geographic coordinates (degrees), SMUG plans in metres: \
+                    reproject it to a projected CRS first (e.g. `gdalwarp -t_srs EPSG:326NN`)"
+                .into(),
+        );
+    }
+    for key in entries {
         if key[0] == GT_RASTER_TYPE_GEO_KEY && key[1] == 0 {
             return match key[3] {
                 1 => Ok(RasterType::PixelIsArea),

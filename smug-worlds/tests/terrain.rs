@@ -86,10 +86,16 @@ fn write_geotiff_coded(
                 Georef::Matrix(m) => dir.write_tag(Tag::ModelTransformationTag, &m[..]).unwrap(),
                 Georef::None => {}
             }
-            // GeoKeyDirectory: version 1.1.0, 2 keys: GTModelType = projected (1),
-            // GTRasterType = area (1) or point (2).
+            // GeoKeyDirectory: version 1.1.0, 2 keys: GTModelType = projected (1, or
+            // geographic 2 for the `nodata` text "geographic"), GTRasterType = area (1)
+            // or point (2).
             let raster = if point { 2u16 } else { 1 };
-            let keys: [u16; 12] = [1, 1, 0, 2, 1024, 0, 1, 1, 1025, 0, 1, raster];
+            let model = if nodata == Some("geographic") {
+                2u16
+            } else {
+                1
+            };
+            let keys: [u16; 12] = [1, 1, 0, 2, 1024, 0, 1, model, 1025, 0, 1, raster];
             dir.write_tag(Tag::GeoKeyDirectoryTag, &keys[..]).unwrap();
             if let Some(nodata) = nodata {
                 dir.write_tag(Tag::GdalNodata, nodata).unwrap();
@@ -324,6 +330,20 @@ fn bad_geotiffs_name_the_file_and_the_fault() {
                 )
             }),
             "GDAL_NODATA `none` is not a number",
+        ),
+        (
+            "degrees.tif",
+            Box::new(|p| {
+                write_geotiff(
+                    p,
+                    [4, 3],
+                    Samples::F32(pixels(|z| z as f32)),
+                    TIE,
+                    false,
+                    Some("geographic"),
+                )
+            }),
+            "is in geographic coordinates (degrees)",
         ),
         (
             "text.tif",
