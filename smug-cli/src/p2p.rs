@@ -171,7 +171,7 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         results.planner.vertices
     );
     if let Some(out) = &args.out {
-        std::fs::write(out, serde_json::to_string_pretty(&results)?)
+        smug_core::output::write_atomic(out, serde_json::to_string_pretty(&results)?.as_bytes())
             .map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
     }
     Ok(if exact == results.queries.len() {

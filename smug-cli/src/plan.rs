@@ -33,6 +33,12 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         set.push(format!("seed={seed}"));
     }
     let loaded = LoadedConfig::from_file(&args.config, &set)?;
+    let out = args
+        .out
+        .clone()
+        .or_else(|| loaded.config.output.dir.clone())
+        .unwrap_or_else(|| PathBuf::from("out"));
+    refuse_overwriting_inputs(&out, &loaded)?;
     let progress = Progress::start("building the world and the checkers");
     let mut pipeline = Pipeline::assemble(&loaded)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
@@ -48,11 +54,6 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         Err(err) => return Err(err.into()),
     };
     let world = pipeline.world.clone().expect("plan_mission needs a world");
-    let out = args
-        .out
-        .clone()
-        .or_else(|| pipeline.config.output.dir.clone())
-        .unwrap_or_else(|| PathBuf::from("out"));
     write_outputs(&plan, &world, &pipeline, &out)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
@@ -99,9 +100,10 @@ fn write_outputs(
     let output = &pipeline.config.output;
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
+    // Each file whole or not at all: a killed run leaves the previous plan intact.
     let write = |name: &str, text: String| {
         let path = dir.join(name);
-        std::fs::write(&path, text)
+        smug_core::output::write_atomic(&path, text.as_bytes())
             .map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
     };
     if output.json {
@@ -114,6 +116,22 @@ fn write_outputs(
         write("plan.svg", render_svg(world, &render_options(plan, world)))?;
     }
     Ok(())
+}
+
+/// The files `smug plan` writes into `dir`.
+const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
+
+/// Refuses an output directory where a plan file would overwrite one of the run's
+/// inputs (its config files, maps, missions, layers).
+fn refuse_overwriting_inputs(dir: &Path, loaded: &LoadedConfig) -> anyhow::Result<()> {
+    let outputs: Vec<PathBuf> = OUTPUT_FILES.iter().map(|name| dir.join(name)).collect();
+    match smug_core::output::output_over_input(&outputs, &loaded.input_files()) {
+        Some(path) => anyhow::bail!(
+            "{}: is an input of this run; choose another --out (or [output] dir)",
+            path.display()
+        ),
+        None => Ok(()),
+    }
 }
 
 /// `plan.csv`: `x,y,z,yaw` per waypoint, and a `reversing` column (0/1) when the

@@ -156,7 +156,7 @@ fn show(args: ShowArgs) -> anyhow::Result<Outcome> {
     };
     let svg = smug_worlds::render_svg(&world, &options);
     create_parent(&args.out)?;
-    std::fs::write(&args.out, svg)
+    smug_core::output::write_atomic(&args.out, svg.as_bytes())
         .with_context(|| format!("{}: cannot write", args.out.display()))?;
     println!("wrote {}: {}", args.out.display(), describe(&world));
     Ok(Outcome::Ok)

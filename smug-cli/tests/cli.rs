@@ -343,3 +343,60 @@ fn an_unreachable_target_exits_with_1_and_is_named() {
         stdout(&skip)
     );
 }
+
+#[test]
+fn an_output_that_would_overwrite_an_input_is_refused() {
+    // A mission config that happens to be named like an output, planned into its own
+    // folder: the plan must not replace it.
+    let dir = workspace().join("target/cli-test-overwrite");
+    std::fs::create_dir_all(&dir).unwrap();
+    let anymal = workspace().join("configs/robots/anymal.toml");
+    let text = std::fs::read_to_string(workspace().join("configs/flat-demo.toml"))
+        .unwrap()
+        .replace(
+            "include = \"robots/anymal.toml\"",
+            &format!("include = {:?}", anymal.to_str().unwrap()),
+        );
+    let config = dir.join("plan.json");
+    std::fs::write(&config, &text).unwrap();
+    let run = smug(&[
+        "plan",
+        config.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("plan.json") && stderr(&run).contains("is an input"),
+        "{}",
+        stderr(&run)
+    );
+    assert_eq!(std::fs::read_to_string(&config).unwrap(), text, "untouched");
+}
+
+#[test]
+fn a_killed_run_leaves_the_previous_plan_intact() {
+    let out = workspace().join("target/cli-test-killed");
+    let out_arg = out.to_str().unwrap();
+    let first = smug(&["plan", "configs/flat-demo.toml", "--out", out_arg]);
+    assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
+    let before = std::fs::read(out.join("plan.json")).unwrap();
+    // A mission of many seconds, killed while it plans.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["plan", "configs/lunar-rover.toml", "--out", out_arg])
+        .current_dir(workspace())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_eq!(std::fs::read(out.join("plan.json")).unwrap(), before);
+    let leftovers: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}

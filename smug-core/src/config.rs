@@ -262,6 +262,11 @@ impl SourceMap {
         &self.base_dir
     }
 
+    /// The config files read (the main file and its includes), as named.
+    pub fn files(&self) -> impl Iterator<Item = &Path> {
+        self.files.iter().map(|f| Path::new(f.path.as_str()))
+    }
+
     /// Where `key` was written: the override that set it (or created its table), or
     /// the line in the file of highest precedence that holds the longest prefix of it.
     pub fn locate(&self, key: &KeyPath) -> Origin {
@@ -418,6 +423,32 @@ pub struct LoadedConfig {
 const MAX_INCLUDE_DEPTH: usize = 8;
 
 impl LoadedConfig {
+    /// The files this config makes a run read: the config files, and every string
+    /// value that names an existing file (relative to the main file's directory or as
+    /// given): maps, missions, layers. Outputs must never overwrite them.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        fn strings<'a>(value: &'a toml::Value, out: &mut Vec<&'a str>) {
+            match value {
+                toml::Value::String(s) => out.push(s),
+                toml::Value::Array(items) => items.iter().for_each(|v| strings(v, out)),
+                toml::Value::Table(table) => table.values().for_each(|v| strings(v, out)),
+                _ => {}
+            }
+        }
+        let mut values = Vec::new();
+        self.table.values().for_each(|v| strings(v, &mut values));
+        let base = self.sources.base_dir();
+        let mut files: Vec<PathBuf> = self.sources.files().map(Path::to_path_buf).collect();
+        for value in values {
+            for candidate in [base.join(value), PathBuf::from(value)] {
+                if candidate.is_file() {
+                    files.push(candidate);
+                }
+            }
+        }
+        files
+    }
+
     /// Loads `path` (with its includes) and applies `overrides` (`key=value` each).
     pub fn from_file(path: &Path, overrides: &[String]) -> Result<Self, ConfigError> {
         let mut files = Vec::new();

@@ -17,6 +17,7 @@ pub mod mission;
 pub mod mission_run;
 pub mod objective;
 pub mod oracle;
+pub mod output;
 pub mod path;
 pub mod pipeline;
 pub mod plan;

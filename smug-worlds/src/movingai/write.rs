@@ -92,7 +92,7 @@ fn create_dir(dir: &Path) -> Result<(), ExportError> {
 
 fn write_text(path: &Path, text: &str) -> Result<(), MovingAiError> {
     create_dir(path.parent().unwrap_or(Path::new("")))?;
-    std::fs::write(path, text).map_err(|source| {
+    smug_core::output::write_atomic(path, text.as_bytes()).map_err(|source| {
         ExportError::Write {
             path: path.to_path_buf(),
             source,
