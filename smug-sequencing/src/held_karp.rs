@@ -93,6 +93,16 @@ impl Sequencer for HeldKarp {
     }
 }
 
+/// The cheaper of two `(node, cost)` candidates, the first on a tie; any candidate
+/// beats none (`usize::MAX`), so that infinite costs (no path) still give an order.
+fn cheaper(acc: (usize, f64), candidate: (usize, f64)) -> (usize, f64) {
+    if candidate.1 < acc.1 || acc.0 == usize::MAX {
+        candidate
+    } else {
+        acc
+    }
+}
+
 /// Iterates over the set bits of a mask, lowest first.
 fn bits(mut mask: usize) -> impl Iterator<Item = usize> {
     std::iter::from_fn(move || {
@@ -165,16 +175,9 @@ impl Table {
         let rest = set & !(1 << j);
         let row = &self.into[j * m..(j + 1) * m];
         let base = rest * m;
-        bits(rest).map(|k| (k, self.best[base + k] + row[k])).fold(
-            (usize::MAX, f64::INFINITY),
-            |acc, cand| {
-                if cand.1 < acc.1 {
-                    cand
-                } else {
-                    acc
-                }
-            },
-        )
+        bits(rest)
+            .map(|k| (k, self.best[base + k] + row[k]))
+            .fold((usize::MAX, f64::INFINITY), cheaper)
     }
 
     /// The optimal visiting order, start first (and end last for an open path).
@@ -188,13 +191,7 @@ impl Table {
         if full != 0 {
             let mut last = bits(full)
                 .map(|j| (j, self.best[full * m + j] + self.finish[j]))
-                .fold((usize::MAX, f64::INFINITY), |acc, c| {
-                    if c.1 < acc.1 {
-                        c
-                    } else {
-                        acc
-                    }
-                })
+                .fold((usize::MAX, f64::INFINITY), cheaper)
                 .0;
             let mut set = full;
             while set.count_ones() > 1 {
@@ -254,9 +251,11 @@ mod tests {
     #[test]
     fn no_finite_tour_still_gives_a_permutation() {
         let m = CostMatrix::from_fn(5, |i, j| if i == j { 0.0 } else { f64::INFINITY }).unwrap();
-        let tour = solve(&m, TourKind::OpenTo(3));
-        assert!(tour.is_valid_for(5, TourKind::OpenTo(3)));
-        assert_eq!(tour.cost, f64::INFINITY);
+        for kind in [TourKind::OpenTo(3), TourKind::Closed] {
+            let tour = solve(&m, kind);
+            assert!(tour.is_valid_for(5, kind), "{kind:?}");
+            assert_eq!(tour.cost, f64::INFINITY);
+        }
     }
 
     #[test]

@@ -432,9 +432,20 @@ fn build_instance(
         }
         kind => {
             let coords = coords.ok_or_else(|| cursor.invalid("NODE_COORD_SECTION is missing"))?;
-            (coordinate_matrix(kind, &coords), format!("{kind:?}"))
+            let data = coordinate_matrix(kind, &coords);
+            if let Some(k) = data.iter().position(|d| !d.is_finite()) {
+                return Err(cursor.invalid(format!(
+                    "the {kind:?} distance between nodes {} and {} is {}: coordinates this \
+                     large overflow",
+                    k / n + 1,
+                    k % n + 1,
+                    data[k]
+                )));
+            }
+            (data, format!("{kind:?}"))
         }
     };
+    check_tour_costs_finite(cursor, n, &data)?;
     let costs = CostMatrix::from_rows(n, data).map_err(|e| cursor.invalid(e.to_string()))?;
     Ok(TsplibInstance {
         name: header.name,
@@ -472,6 +483,21 @@ fn fill_explicit(
         }
     }
     Ok(data)
+}
+
+/// Refuses weights so large that a tour's cost (a sum of `n` of them) could overflow.
+fn check_tour_costs_finite(cursor: &Cursor, n: usize, data: &[f64]) -> Result<(), TsplibError> {
+    let largest = data
+        .iter()
+        .copied()
+        .filter(|w| w.is_finite())
+        .fold(0.0, f64::max);
+    if (largest * n as f64).is_finite() {
+        return Ok(());
+    }
+    Err(cursor.invalid(format!(
+        "a weight of {largest} times {n} nodes overflows: a tour's cost must stay finite"
+    )))
 }
 
 fn coordinate_matrix(kind: WeightType, coords: &[(f64, f64)]) -> Vec<f64> {
@@ -597,6 +623,28 @@ fn check_permutation(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn coordinates_whose_distances_or_tours_overflow_are_refused() {
+        let instance = |coords: &str| {
+            format!(
+                "NAME: big\nTYPE: TSP\nDIMENSION: 3\nEDGE_WEIGHT_TYPE: EUC_2D\n\
+                 NODE_COORD_SECTION\n{coords}EOF\n"
+            )
+        };
+        let infinite = instance("1 1e308 0\n2 -1e308 0\n3 0 0\n");
+        let err = parse_tsplib(&infinite, "big.tsp").unwrap_err().to_string();
+        assert!(
+            err.contains("big.tsp") && err.contains("nodes 1 and 2"),
+            "{err}"
+        );
+        let tour_overflow = instance("1 4e307 0\n2 -4e307 0\n3 0 0\n");
+        let err = parse_tsplib(&tour_overflow, "big.tsp")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("overflows"), "{err}");
+        assert!(parse_tsplib(&instance("1 1e300 0\n2 -1e300 0\n3 0 0\n"), "ok.tsp").is_ok());
+    }
 
     /// A symmetric 4-node matrix in every explicit layout.
     const MATRIX: [[f64; 4]; 4] = [
