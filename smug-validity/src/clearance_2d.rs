@@ -5,7 +5,9 @@
 
 use crate::edt::squared_edt_2d;
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Counters, Error, GridGeometry, Pose2, StateValidityChecker, World};
+use smug_core::{
+    BuildContext, Counters, DiscOnGrid, Error, GridGeometry, Pose2, StateValidityChecker, World,
+};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// Parameters of the disc checker.
@@ -158,6 +160,14 @@ impl StateValidityChecker for Clearance2dChecker {
             self.obstacle_distance_within(x, y, reach).max(bound)
         };
         Some(border.min(obstacle) - r)
+    }
+
+    fn disc_on_grid(&self) -> Option<DiscOnGrid> {
+        Some(DiscOnGrid {
+            radius: self.radius,
+            geometry: self.geometry,
+            blocked: self.obstacles.clone(),
+        })
     }
 
     fn counters(&self) -> Counters {
