@@ -222,9 +222,8 @@ fn run_planner(
     let (mut solved, mut planned, mut optimal) = (0, 0.0, 0.0);
     let (mut ratio_sum, mut ratio_worst, mut ratio_count) = (0.0, f64::NAN, 0usize);
     let mut queries = Vec::with_capacity(map.queries.len());
-    let samples = |p: &dyn PointToPointPlanner| {
-        p.stats().counters.get("samples").copied().unwrap_or(0)
-    };
+    let samples =
+        |p: &dyn PointToPointPlanner| p.stats().counters.get("samples").copied().unwrap_or(0);
     let mut query_time = 0.0;
     for (k, (start, goal, octile)) in map.queries.iter().enumerate() {
         let (query_started, samples_before) = (Instant::now(), samples(planner));
@@ -346,7 +345,8 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     }
     let mut results = Vec::new();
     for map in &maps {
-        if !map.map.exists() || !map.scen.exists() {
+        let named = args.maps.iter().any(|m| *m == map.name);
+        if !named && (!map.map.exists() || !map.scen.exists()) {
             eprintln!(
                 "{}: skipped, {} or {} is missing",
                 map.name,

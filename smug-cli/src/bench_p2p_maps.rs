@@ -21,7 +21,10 @@ pub const MOVINGAI_MAPS: [(&str, &str); 7] = [
     ("dao/arena2.map", "dao/arena2.map.scen"),
     ("room/8room_000.map", "room/8room_000.map.scen"),
     ("street/Berlin_0_512.map", "street/Berlin_0_512.map.scen"),
-    ("random/random512-10-0.map", "random/random512-10-0.map.scen"),
+    (
+        "random/random512-10-0.map",
+        "random/random512-10-0.map.scen",
+    ),
     ("maze/maze512-1-0.map", "maze/maze512-1-0.map.scen"),
 ];
 

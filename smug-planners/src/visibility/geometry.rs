@@ -220,6 +220,11 @@ impl Grid {
         };
         let mut windows: Vec<(f64, f64)> = vec![(-1.0 - EPS, 1.0 + EPS)];
         let mut next: Vec<(f64, f64)> = Vec::new();
+        let mut cuts: Vec<(f64, f64)> = Vec::new();
+        // A source on a grid line sends a ray along it (slope 0), which no cell's
+        // interior holds: it is cut where both cells beside it are blocked (a zero-width
+        // gap no disc passes), else it would run to the border along every wall.
+        let on_line = sw.fract() == 0.0;
         let mut iu = su.floor() as i64;
         let limit = (self.nx.max(self.ny) as i64) * 2 + 4;
         while !windows.is_empty() && iu.abs() <= limit {
@@ -229,7 +234,7 @@ impl Grid {
             for &(lo, hi) in &windows {
                 let wmin = sw + (lo * u0).min(lo * u1);
                 let wmax = sw + (hi * u0).max(hi * u1);
-                let mut pieces = vec![(lo, hi)];
+                cuts.clear();
                 for iw in (wmin - EPS).floor() as i64..=(wmax + EPS).floor() as i64 {
                     let (i, j) = to_cell(iu, iw);
                     if !self.blocked(i, j) {
@@ -257,25 +262,35 @@ impl Grid {
                         smin = smin.min(m);
                         smax = smax.max(m);
                     }
-                    if smax - smin <= 2.0 * EPS {
-                        continue;
+                    if smax - smin > 2.0 * EPS {
+                        cuts.push((smin + EPS, smax - EPS));
                     }
-                    let (cut_lo, cut_hi) = (smin + EPS, smax - EPS);
-                    pieces = pieces
-                        .into_iter()
-                        .flat_map(|(a, b)| {
-                            let mut out = Vec::with_capacity(2);
-                            if a < cut_lo {
-                                out.push((a, b.min(cut_lo)));
-                            }
-                            if b > cut_hi {
-                                out.push((a.max(cut_hi), b));
-                            }
-                            out
-                        })
-                        .collect();
+                    if on_line && iw as f64 == sw && {
+                        let (bi, bj) = to_cell(iu, iw - 1);
+                        self.blocked(bi, bj)
+                    } {
+                        cuts.push((-2.0 * EPS, 2.0 * EPS));
+                    }
                 }
-                next.extend(pieces);
+                // The window less the cuts (open intervals), in order.
+                cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let (mut from, mut alive) = (lo, true);
+                for &(a, b) in &cuts {
+                    if a > hi {
+                        break;
+                    }
+                    if a >= from {
+                        next.push((from, a));
+                    }
+                    from = from.max(b);
+                    if from > hi {
+                        alive = false;
+                        break;
+                    }
+                }
+                if alive {
+                    next.push((from, hi));
+                }
             }
             std::mem::swap(&mut windows, &mut next);
             iu += 1;
