@@ -76,6 +76,13 @@ pub trait PointToPointPlanner: Send + Sync {
         goals.iter().map(|goal| self.plan(start, goal)).collect()
     }
 
+    /// True when [`plan_many`](Self::plan_many) is cheaper than one query per goal:
+    /// the path oracle then plans a cost-matrix row or a DP layer in one call
+    /// (default false: pairs are planned one by one, in the order they are asked).
+    fn answers_many(&self) -> bool {
+        false
+    }
+
     /// Statistics accumulated over all queries so far.
     fn stats(&self) -> PlannerStats;
 }

@@ -263,6 +263,10 @@ impl PointToPointPlanner for Visibility {
         Ok(outcomes)
     }
 
+    fn answers_many(&self) -> bool {
+        true
+    }
+
     fn stats(&self) -> PlannerStats {
         let c = &self.graph.counts;
         PlannerStats {
