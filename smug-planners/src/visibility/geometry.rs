@@ -407,3 +407,76 @@ pub fn point_tangents(s: Pt, b: Pt, r: f64) -> Vec<Pt> {
 pub fn dist(p: Pt, q: Pt) -> f64 {
     (q[0] - p[0]).hypot(q[1] - p[1])
 }
+
+impl Grid {
+    /// True when the arc of the circle of radius `r` around `corner`, between the
+    /// relative normal angles `a` and `b`, keeps at least `need` from every blocked
+    /// cell. Each cell's inflated square (by `need`) can only be entered where the
+    /// circle crosses its boundary: the angles of every such crossing split the arc
+    /// into pieces, and one point per piece decides it.
+    pub fn arc_clear(&self, corner: &Corner, r: f64, a: f64, b: f64, need: f64) -> bool {
+        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+        let v = corner.at;
+        let reach = r + need;
+        let rel = |theta: f64| {
+            let mut x = theta - corner.q0;
+            while x < -PI {
+                x += TAU;
+            }
+            while x >= PI {
+                x -= TAU;
+            }
+            x
+        };
+        let mut cuts: Vec<f64> = Vec::new();
+        for j in (v[1] - reach).floor() as i64..=(v[1] + reach).floor() as i64 {
+            for i in (v[0] - reach).floor() as i64..=(v[0] + reach).floor() as i64 {
+                if !self.blocked(i, j) {
+                    continue;
+                }
+                cuts.clear();
+                cuts.extend([lo, hi]);
+                let (x0, x1, y0, y1) = (i as f64, i as f64 + 1.0, j as f64, j as f64 + 1.0);
+                // The inflated square's edge lines: x = x0 − need, x1 + need; y likewise.
+                for x in [x0 - need, x1 + need] {
+                    let c = (x - v[0]) / r;
+                    if c.abs() <= 1.0 {
+                        let t = c.acos();
+                        cuts.extend([rel(t), rel(-t)]);
+                    }
+                }
+                for y in [y0 - need, y1 + need] {
+                    let s = (y - v[1]) / r;
+                    if s.abs() <= 1.0 {
+                        let t = s.asin();
+                        cuts.extend([rel(t), rel(PI - t)]);
+                    }
+                }
+                // Its rounded corners: circles of radius `need` around the cell's corners.
+                for w in [[x0, y0], [x1, y0], [x0, y1], [x1, y1]] {
+                    let d = dist(v, w);
+                    if d > 0.0 && d <= r + need && d >= (r - need).abs() {
+                        let base = (w[1] - v[1]).atan2(w[0] - v[0]);
+                        let c = ((r * r + d * d - need * need) / (2.0 * r * d)).clamp(-1.0, 1.0);
+                        let t = c.acos();
+                        cuts.extend([rel(base + t), rel(base - t)]);
+                    }
+                }
+                cuts.retain(|&t| t >= lo && t <= hi);
+                cuts.sort_by(f64::total_cmp);
+                for w in cuts.windows(2) {
+                    let p = corner.point(r, 0.5 * (w[0] + w[1]));
+                    if point_box_distance(p, i, j) < need - EPS {
+                        return false;
+                    }
+                }
+                for &t in &cuts {
+                    if point_box_distance(corner.point(r, t), i, j) < need - EPS {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+}

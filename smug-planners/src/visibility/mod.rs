@@ -23,8 +23,9 @@
 //! The planner refuses, naming the config key, a robot that is not a disc on a 2D
 //! grid (`validity.type` other than `clearance-2d`), a curved motion model
 //! (`space.type`), an objective other than path length (`objective.type`), a terrain
-//! world (a `[traversability]` layer), and a disc of 0.49 cell or more (arcs could
-//! then touch cells beyond their corner; not supported yet).
+//! world (a `[traversability]` layer). Discs of any radius are served: from about half
+//! a cell on, arcs can pass near cells other than their corner's and are checked
+//! exactly too (the crossings of the circle with each nearby cell's inflated square).
 
 mod geometry;
 mod search;
@@ -58,9 +59,6 @@ const RADIUS_MARGIN: f64 = 1e-7;
 
 /// Largest arc piece of a returned path, radians (excess ≤ tan(δ/2)/(δ/2) − 1 = 0.021 %).
 const ARC_STEP: f64 = 0.05;
-
-/// Largest supported radius, cells.
-const MAX_RADIUS_CELLS: f64 = 0.49;
 
 /// The exact planner.
 pub struct Visibility {
@@ -101,13 +99,10 @@ impl Visibility {
         }
         let g = disc.geometry;
         let radius = disc.radius / g.resolution;
-        if !(radius.is_finite() && (0.0..MAX_RADIUS_CELLS).contains(&radius)) {
+        if !(radius.is_finite() && radius >= 0.0) {
             return Err(refuse(
                 "validity.params.radius",
-                format!(
-                    "the disc's radius {} m is {radius:.3} cells; supported: below {MAX_RADIUS_CELLS} cells",
-                    disc.radius
-                ),
+                format!("the disc's radius must be ≥ 0, got {} m", disc.radius),
             ));
         }
         if disc.blocked.len() != g.len() {
@@ -166,24 +161,43 @@ impl Visibility {
         )
     }
 
-    /// The polyline of a route: arcs by circumscribed polygons, headings the start's
-    /// but the last.
-    fn path_of(&self, start: &Pose2, goal: &Pose2, route: &Route) -> Path {
+    /// The polygon circumscribing the arc of a visit: its vertices outside the circle
+    /// (the path stays valid), pieces of at most `step` radians.
+    fn arc_points(&self, v: &Visit, step_max: f64) -> Vec<Pt> {
         let r = self.graph.r;
+        let corner = self.graph.grid.corners[v.corner as usize];
+        let span = v.rel_out - v.rel_in;
+        let mut points = vec![corner.point(r, v.rel_in)];
+        if span.abs() > EPS {
+            let pieces = (span.abs() / step_max).ceil().max(1.0) as usize;
+            let step = span / pieces as f64;
+            let out = r / (step / 2.0).cos();
+            for k in 0..pieces {
+                points.push(corner.point(out, v.rel_in + (k as f64 + 0.5) * step));
+            }
+        }
+        points.push(corner.point(r, v.rel_out));
+        points
+    }
+
+    /// The polyline of a route: arcs by circumscribed polygons (finer where a disc of
+    /// half a cell or more passes close to another cell), headings the start's but the
+    /// last.
+    fn path_of(&self, start: &Pose2, goal: &Pose2, route: &Route) -> Path {
         let mut points: Vec<Pt> = vec![self.to_grid(start)];
         for v in &route.visits {
-            let corner = self.graph.grid.corners[v.corner as usize];
-            let span = v.rel_out - v.rel_in;
-            let pieces = (span.abs() / ARC_STEP).ceil().max(1.0) as usize;
-            let step = span / pieces as f64;
-            points.push(corner.point(r, v.rel_in));
-            if span.abs() > EPS {
-                let out = r / (step / 2.0).cos();
-                for k in 0..pieces {
-                    points.push(corner.point(out, v.rel_in + (k as f64 + 0.5) * step));
-                }
+            let mut step = ARC_STEP;
+            let mut arc = self.arc_points(v, step);
+            while self.graph.big
+                && step > 1e-5
+                && !arc
+                    .windows(2)
+                    .all(|w| self.graph.grid.segment_clear(w[0], w[1], self.radius))
+            {
+                step /= 4.0;
+                arc = self.arc_points(v, step);
             }
-            points.push(corner.point(r, v.rel_out));
+            points.extend(arc);
         }
         points.push(self.to_grid(goal));
         let mut states: Vec<Pose2> = Vec::with_capacity(points.len());

@@ -29,6 +29,9 @@ pub struct Departure {
     pub arrive_lane: Lane,
     /// Segment length.
     pub len: f64,
+    /// True when the arc on to the next departure of the lane is clear (always for
+    /// discs below half a cell, whose arcs no other cell can reach).
+    pub clear_to_next: bool,
 }
 
 /// A corner's departures, per lane in travel order, and the id of its first node.
@@ -137,6 +140,9 @@ pub struct TangentGraph {
     pub r: f64,
     /// Clearance every segment must keep (grid units): the robot's radius plus a margin.
     pub r_check: f64,
+    /// True when arcs may come near cells other than their corner's (radius about half
+    /// a cell or more): arcs are then checked too.
+    pub big: bool,
     lanes: Vec<Option<Lanes>>,
     /// Corner of each node.
     node_corner: Vec<u32>,
@@ -159,6 +165,7 @@ impl TangentGraph {
             grid,
             r,
             r_check,
+            big: r + r_check > 1.0 - 1e-6,
             lanes: vec![None; n],
             node_corner: Vec::new(),
             stamp_corner: vec![0; n],
@@ -221,11 +228,21 @@ impl TangentGraph {
                     arrive_rel: rel_b,
                     arrive_lane: Lane::of(nb, t),
                     len: dist(pa, pb),
+                    clear_to_next: true,
                 });
             }
         }
         lanes.lanes[0].sort_by(|x, y| x.rel.total_cmp(&y.rel));
         lanes.lanes[1].sort_by(|x, y| y.rel.total_cmp(&x.rel));
+        if self.big {
+            for list in &mut lanes.lanes {
+                for k in 0..list.len().saturating_sub(1) {
+                    let (from, to) = (list[k].rel, list[k + 1].rel);
+                    list[k].clear_to_next =
+                        self.grid.arc_clear(&ca, self.r, from, to, self.r_check);
+                }
+            }
+        }
         lanes.first = self.node_corner.len() as u32;
         let count = lanes.lanes[0].len() + lanes.lanes[1].len();
         self.node_corner.extend(std::iter::repeat_n(a, count));
@@ -407,7 +424,10 @@ impl TangentGraph {
             };
             let c = self.node_corner[id as usize];
             // Along the arc to the next departure of the lane.
-            let next = self.lanes(c).lanes[lane.index()].get(k + 1).map(|d| d.rel);
+            let next = self.lanes(c).lanes[lane.index()]
+                .get(k + 1)
+                .filter(|_| dep.clear_to_next)
+                .map(|d| d.rel);
             if let Some(rel) = next {
                 let nid = self.node_id(c, lane, k + 1);
                 let cost = g + self.r * (rel - dep.rel).abs();
@@ -480,7 +500,17 @@ impl TangentGraph {
         goal_base: u32,
     ) {
         self.build_corner(c);
-        if let Some((k, rel)) = self.first_after(c, lane, rel_in) {
+        let corner = self.grid.corners[c as usize];
+        let arc_clear = |graph: &Self, to: f64| {
+            !graph.big
+                || graph
+                    .grid
+                    .arc_clear(&corner, graph.r, rel_in, to, graph.r_check)
+        };
+        if let Some((k, rel)) = self
+            .first_after(c, lane, rel_in)
+            .filter(|&(_, rel)| arc_clear(self, rel))
+        {
             let id = self.node_id(c, lane, k);
             let cost = g0 + self.r * (rel - rel_in).abs();
             self.relax(id, cost, Via::Tangent { from, rel_in }, h, heap);
@@ -490,7 +520,7 @@ impl TangentGraph {
                 Lane::Ccw => e.rel >= rel_in,
                 Lane::Cw => e.rel <= rel_in,
             };
-            if e.lane != lane || !ahead {
+            if e.lane != lane || !ahead || !arc_clear(self, e.rel) {
                 continue;
             }
             let cost = g0 + self.r * (e.rel - rel_in).abs() + e.len;

@@ -305,7 +305,9 @@ fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Option<f64> {
             .collect();
         on.sort_by(|x, y| x.0.total_cmp(&y.0));
         for w in on.windows(2) {
-            edges.push((w[0].1, w[1].1, rc * (w[1].0 - w[0].0)));
+            if grid.arc_clear(&corners[a], rc, w[0].0, w[1].0, need) {
+                edges.push((w[0].1, w[1].1, rc * (w[1].0 - w[0].0)));
+            }
         }
     }
     dijkstra(points.len(), &edges, 0, 1)
@@ -339,6 +341,77 @@ fn valid_everywhere(check: &DiscCheck, path: &Path) -> bool {
     })
 }
 
+/// One query of a disc against the brute-force tangent graph (see the property tests).
+fn disc_case(
+    nx: usize,
+    ny: usize,
+    mut blocked: Vec<bool>,
+    (a, b): (usize, usize),
+    r: f64,
+    ds: (f64, f64, f64, f64),
+) -> Result<(), TestCaseError> {
+    blocked[a] = false;
+    blocked[b] = false;
+    let check = DiscCheck {
+        nx,
+        ny,
+        blocked: blocked.clone(),
+        r,
+    };
+    let s = [(a % nx) as f64 + 0.5 + ds.0, (a / nx) as f64 + 0.5 + ds.1];
+    let g = [(b % nx) as f64 + 0.5 + ds.2, (b / nx) as f64 + 0.5 + ds.3];
+    let (sp, gp) = (Pose2::new(s[0], s[1], 0.3), Pose2::new(g[0], g[1], -2.0));
+    let mut p = planner(nx, ny, &blocked, r);
+    let outcome = p.plan(&sp, &gp).unwrap();
+    if !check.is_valid(&sp) {
+        prop_assert_eq!(outcome.status(), "invalid_start");
+        return Ok(());
+    }
+    if !check.is_valid(&gp) {
+        prop_assert_eq!(outcome.status(), "invalid_goal");
+        return Ok(());
+    }
+    let expected = brute_force_disc(&check, s, g, r);
+    match (expected, &outcome) {
+        (None, PlannerOutcome::NoPath) => {}
+        (Some(len), PlannerOutcome::Exact(path)) => {
+            let optimum = p.last_optimum()[0].unwrap();
+            prop_assert!(
+                (optimum - len).abs() < 1e-7,
+                "optimum {optimum} vs brute force {len}"
+            );
+            prop_assert!(
+                path.cost >= optimum - 1e-9 && path.cost <= optimum * 1.001 + 1e-9,
+                "{} vs {optimum}",
+                path.cost
+            );
+            prop_assert!(valid_everywhere(&check, path));
+            prop_assert_eq!(path.states[0], sp);
+            prop_assert_eq!(*path.states.last().unwrap(), gp);
+        }
+        (e, o) => prop_assert!(false, "brute force {e:?}, planner {}", o.status()),
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    /// Discs wider than half a cell on sparser, bigger grids, where arcs pass near
+    /// other cells.
+    #[test]
+    fn wide_discs_match_brute_force_on_sparse_grids(
+        (nx, ny, blocked, a, b) in (10usize..16, 10usize..16, 0.03f64..0.15).prop_flat_map(|(nx, ny, d)| (
+            Just(nx), Just(ny),
+            proptest::collection::vec(proptest::bool::weighted(d), nx * ny),
+            0..nx * ny, 0..nx * ny)),
+        r in 0.5f64..1.4,
+        ds in (-0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3),
+    ) {
+        disc_case(nx, ny, blocked, (a, b), r, ds)?;
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
@@ -370,36 +443,8 @@ proptest! {
     /// corner circles; the returned path is valid at every millimetre and at most
     /// 0.1 % above the exact length.
     #[test]
-    fn disc_matches_brute_force_tangent_graph((nx, ny, mut blocked, a, b) in arb_grid(), r in prop_oneof![Just(0.1), Just(0.25), Just(0.4), 0.01f64..0.48], ds in (-0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3)) {
-        blocked[a] = false;
-        blocked[b] = false;
-        let check = DiscCheck { nx, ny, blocked: blocked.clone(), r };
-        let s = [(a % nx) as f64 + 0.5 + ds.0, (a / nx) as f64 + 0.5 + ds.1];
-        let g = [(b % nx) as f64 + 0.5 + ds.2, (b / nx) as f64 + 0.5 + ds.3];
-        let (sp, gp) = (Pose2::new(s[0], s[1], 0.3), Pose2::new(g[0], g[1], -2.0));
-        let mut p = planner(nx, ny, &blocked, r);
-        let outcome = p.plan(&sp, &gp).unwrap();
-        if !check.is_valid(&sp) {
-            prop_assert_eq!(outcome.status(), "invalid_start");
-            return Ok(());
-        }
-        if !check.is_valid(&gp) {
-            prop_assert_eq!(outcome.status(), "invalid_goal");
-            return Ok(());
-        }
-        let expected = brute_force_disc(&check, s, g, r);
-        match (expected, &outcome) {
-            (None, PlannerOutcome::NoPath) => {}
-            (Some(len), PlannerOutcome::Exact(path)) => {
-                let optimum = p.last_optimum()[0].unwrap();
-                prop_assert!((optimum - len).abs() < 1e-7, "optimum {optimum} vs brute force {len}");
-                prop_assert!(path.cost >= optimum - 1e-9 && path.cost <= optimum * 1.001 + 1e-9, "{} vs {optimum}", path.cost);
-                prop_assert!(valid_everywhere(&check, path));
-                prop_assert_eq!(path.states[0], sp);
-                prop_assert_eq!(*path.states.last().unwrap(), gp);
-            }
-            (e, o) => prop_assert!(false, "brute force {e:?}, planner {}", o.status()),
-        }
+    fn disc_matches_brute_force_tangent_graph((nx, ny, blocked, a, b) in arb_grid(), r in prop_oneof![Just(0.1), Just(0.25), Just(0.4), Just(0.5), 0.01f64..0.48, 0.48f64..1.6], ds in (-0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3)) {
+        disc_case(nx, ny, blocked, (a, b), r, ds)?;
     }
 
     /// One start to many goals gives what one query per goal gives.
@@ -482,25 +527,50 @@ fn invalid_endpoints_and_unreachable_goals_are_named() {
 }
 
 #[test]
-fn refuses_large_discs_and_other_objectives() {
-    let check = || {
-        Arc::new(DiscCheck {
-            nx: 2,
-            ny: 2,
-            blocked: vec![false; 4],
-            r: 0.6,
-        })
-    };
+fn refuses_a_negative_radius_naming_the_key() {
+    let check = Arc::new(DiscCheck {
+        nx: 2,
+        ny: 2,
+        blocked: vec![false; 4],
+        r: 0.0,
+    });
     let err = Visibility::new(
         VisibilityParams::default(),
-        disc(2, 2, &[false; 4], 0.6),
-        check(),
+        disc(2, 2, &[false; 4], -0.6),
+        check,
         Arc::new(PathLength::default()),
     )
     .err()
     .unwrap()
     .to_string();
     assert!(err.contains("validity.params.radius"), "{err}");
+}
+
+#[test]
+fn a_disc_wider_than_a_cell_turns_in_a_three_cell_corridor() {
+    // A U-turn around a wall: r = 1.2 cells, corridors 3 cells wide (2.4 needed).
+    let (nx, ny) = (9, 9);
+    let mut blocked = vec![false; nx * ny];
+    for j in 0..6 {
+        blocked[j * nx + 4] = true; // the wall x ∈ [4, 5], y ∈ [0, 6]
+    }
+    let check = DiscCheck {
+        nx,
+        ny,
+        blocked: blocked.clone(),
+        r: 1.2,
+    };
+    let mut p = planner(nx, ny, &blocked, 1.2);
+    let (s, g) = (Pose2::new(2.0, 1.5, 0.0), Pose2::new(7.0, 1.5, 0.0));
+    let PlannerOutcome::Exact(path) = p.plan(&s, &g).unwrap() else {
+        panic!("no path");
+    };
+    assert!(valid_everywhere(&check, &path));
+    let optimum = p.last_optimum()[0].unwrap();
+    let expected = brute_force_disc(&check, [2.0, 1.5], [7.0, 1.5], 1.2).unwrap();
+    assert!((optimum - expected).abs() < 1e-7, "{optimum} vs {expected}");
+    // At least up and down the wall's side plus the wall's width.
+    assert!(optimum > 2.0 * 4.5 + 1.0, "{optimum}");
 }
 
 proptest! {
@@ -523,4 +593,39 @@ proptest! {
         grid.visible_cells(s, |i, j| seen |= (i, j) == target);
         prop_assert!(seen, "cell {:?} of {:?} not found from {:?}", target, t, s);
     }
+}
+
+#[test]
+fn an_arc_through_a_closed_diagonal_gap_is_refused() {
+    // An L-shaped wall (column 5 and row 5, up to the corner cell (5, 5)) and a cell
+    // (7, 7): the gap between (5, 5) and (7, 7) (√2) is closed for r = 0.9, yet the
+    // circle around the corner (6, 6) is clear at both ends of its quarter: only the
+    // arc check keeps the path from hugging the corner through the gap.
+    let (nx, ny, r) = (14, 14, 0.9);
+    let mut blocked = vec![false; nx * ny];
+    for k in 0..6 {
+        blocked[k * nx + 5] = true;
+        blocked[5 * nx + k] = true;
+    }
+    blocked[7 * nx + 7] = true;
+    let check = DiscCheck {
+        nx,
+        ny,
+        blocked: blocked.clone(),
+        r,
+    };
+    let mut p = planner(nx, ny, &blocked, r);
+    let (s, g) = ([6.95, 1.0], [1.0, 6.95]);
+    let PlannerOutcome::Exact(path) = p
+        .plan(&Pose2::new(s[0], s[1], 0.0), &Pose2::new(g[0], g[1], 0.0))
+        .unwrap()
+    else {
+        panic!("no path");
+    };
+    assert!(valid_everywhere(&check, &path));
+    let expected = brute_force_disc(&check, s, g, r).unwrap();
+    let optimum = p.last_optimum()[0].unwrap();
+    assert!((optimum - expected).abs() < 1e-7, "{optimum} vs {expected}");
+    // Around the far side of (7, 7), well beyond the corner hug (≈ 11.4).
+    assert!(optimum > 13.0, "{optimum}");
 }
