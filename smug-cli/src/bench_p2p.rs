@@ -345,7 +345,7 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     }
     let mut results = Vec::new();
     for map in &maps {
-        let named = args.maps.iter().any(|m| *m == map.name);
+        let named = args.maps.contains(&map.name);
         if !named && (!map.map.exists() || !map.scen.exists()) {
             eprintln!(
                 "{}: skipped, {} or {} is missing",

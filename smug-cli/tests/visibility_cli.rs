@@ -8,7 +8,11 @@ mod common;
 use common::{assert_bad_input, smug, stderr, stdout};
 
 fn plan_cost(dir: &std::path::Path, set: &[&str]) -> f64 {
-    let mut args = vec!["plan", "configs/imported-map.toml", "--out"];
+    plan_cost_of("configs/imported-map.toml", dir, set)
+}
+
+fn plan_cost_of(config: &str, dir: &std::path::Path, set: &[&str]) -> f64 {
+    let mut args = vec!["plan", config, "--out"];
     let out_dir = dir.to_str().unwrap();
     args.push(out_dir);
     for s in set {
@@ -47,6 +51,20 @@ fn plans_the_imported_map_mission_no_dearer_than_lazy_prm_star() {
     );
     let lazy = plan_cost(&root.join("lazy0"), &set);
     assert!(exact <= lazy, "exact {exact} > lazy {lazy} (length only)");
+    std::fs::remove_dir_all(&root).ok();
+}
+
+#[test]
+fn plans_the_indoor_mission_for_a_disc_no_dearer_than_lazy_prm_star() {
+    let root = std::env::temp_dir().join(format!("smug-visibility-indoor-{}", std::process::id()));
+    let config = "configs/indoor-disc.toml";
+    let exact = plan_cost_of(
+        config,
+        &root.join("exact"),
+        &["planner.type=visibility", "planner.params={}"],
+    );
+    let lazy = plan_cost_of(config, &root.join("lazy"), &[]);
+    assert!(exact <= lazy, "exact {exact} > lazy {lazy}");
     std::fs::remove_dir_all(&root).ok();
 }
 

@@ -289,7 +289,7 @@ impl PointToPointPlanner for Visibility {
             edges: c.departures,
             breakdown: TimeBreakdown {
                 sampling_s: self.build_s,
-                ..self.breakdown.clone()
+                ..self.breakdown
             },
             counters: BTreeMap::from([
                 ("corners".to_string(), self.graph.grid.corners.len() as u64),

@@ -95,12 +95,17 @@ fn dijkstra(n: usize, edges: &[(usize, usize, f64)], s: usize, g: usize) -> Opti
     best[g].is_finite().then_some(best[g])
 }
 
-#[derive(PartialEq, PartialOrd)]
+#[derive(PartialEq)]
 struct OrdF(f64);
 impl Eq for OrdF {}
 impl Ord for OrdF {
     fn cmp(&self, o: &Self) -> std::cmp::Ordering {
         self.0.total_cmp(&o.0)
+    }
+}
+impl PartialOrd for OrdF {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
     }
 }
 
@@ -296,7 +301,7 @@ fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Option<f64> {
             }
         }
     }
-    for a in 0..corners.len() {
+    for (a, corner) in corners.iter().enumerate() {
         let mut on: Vec<(f64, usize)> = points
             .iter()
             .enumerate()
@@ -305,7 +310,7 @@ fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Option<f64> {
             .collect();
         on.sort_by(|x, y| x.0.total_cmp(&y.0));
         for w in on.windows(2) {
-            if grid.arc_clear(&corners[a], rc, w[0].0, w[1].0, need) {
+            if grid.arc_clear(corner, rc, w[0].0, w[1].0, need) {
                 edges.push((w[0].1, w[1].1, rc * (w[1].0 - w[0].0)));
             }
         }
