@@ -29,16 +29,34 @@ pub struct Departure {
     pub arrive_lane: Lane,
     /// Segment length.
     pub len: f64,
-    /// True when the arc on to the next departure of the lane is clear (always for
-    /// discs below half a cell, whose arcs no other cell can reach).
-    pub clear_to_next: bool,
+    /// True when the lane has a next departure and the arc on to it is clear (always
+    /// for discs below half a cell, whose arcs no other cell can reach).
+    pub to_next: bool,
 }
 
-/// A corner's departures, per lane in travel order, and the id of its first node.
-#[derive(Clone, Debug, Default)]
+/// Where a built corner's departures sit among the nodes: its counter-clockwise lane
+/// from `first`, then its clockwise lane, each in travel order.
+#[derive(Clone, Copy, Debug, Default)]
 struct Lanes {
-    lanes: [Vec<Departure>; 2],
     first: u32,
+    ccw: u32,
+    cw: u32,
+}
+
+impl Lanes {
+    /// The node ids of `lane`.
+    fn range(&self, lane: Lane) -> std::ops::Range<usize> {
+        let start = self.first as usize
+            + match lane {
+                Lane::Ccw => 0,
+                Lane::Cw => self.ccw as usize,
+            };
+        let len = match lane {
+            Lane::Ccw => self.ccw,
+            Lane::Cw => self.cw,
+        } as usize;
+        start..start + len
+    }
 }
 
 /// Where a path to a node or goal came from.
@@ -144,6 +162,8 @@ pub struct TangentGraph {
     /// a cell or more): arcs are then checked too.
     pub big: bool,
     lanes: Vec<Option<Lanes>>,
+    /// Every node's departure, corner by corner.
+    nodes: Vec<Departure>,
     /// Corner of each node.
     node_corner: Vec<u32>,
     stamp_corner: Vec<u32>,
@@ -167,6 +187,7 @@ impl TangentGraph {
             r_check,
             big: r + r_check > 1.0 - 1e-6,
             lanes: vec![None; n],
+            nodes: Vec::new(),
             node_corner: Vec::new(),
             stamp_corner: vec![0; n],
             stamp: 0,
@@ -206,7 +227,7 @@ impl TangentGraph {
             return;
         }
         let ca = self.grid.corners[a as usize];
-        let mut lanes = Lanes::default();
+        let mut lanes: [Vec<Departure>; 2] = [Vec::new(), Vec::new()];
         for b in self.visible_corners(ca.at, Some(a)) {
             let cb = self.grid.corners[b as usize];
             for (na, nb) in circle_tangents(ca.at, cb.at, self.r) {
@@ -221,37 +242,49 @@ impl TangentGraph {
                     continue;
                 }
                 let t = [pb[0] - pa[0], pb[1] - pa[1]];
-                lanes.lanes[Lane::of(na, t).index()].push(Departure {
+                lanes[Lane::of(na, t).index()].push(Departure {
                     rel: rel_a,
                     point: pa,
                     to: b,
                     arrive_rel: rel_b,
                     arrive_lane: Lane::of(nb, t),
                     len: dist(pa, pb),
-                    clear_to_next: true,
+                    to_next: true,
                 });
             }
         }
-        lanes.lanes[0].sort_by(|x, y| x.rel.total_cmp(&y.rel));
-        lanes.lanes[1].sort_by(|x, y| y.rel.total_cmp(&x.rel));
-        if self.big {
-            for list in &mut lanes.lanes {
-                for k in 0..list.len().saturating_sub(1) {
-                    let (from, to) = (list[k].rel, list[k + 1].rel);
-                    list[k].clear_to_next =
-                        self.grid.arc_clear(&ca, self.r, from, to, self.r_check);
-                }
+        lanes[0].sort_by(|x, y| x.rel.total_cmp(&y.rel));
+        lanes[1].sort_by(|x, y| y.rel.total_cmp(&x.rel));
+        for list in &mut lanes {
+            let n = list.len();
+            for k in 0..n {
+                list[k].to_next = k + 1 < n
+                    && (!self.big
+                        || self.grid.arc_clear(
+                            &ca,
+                            self.r,
+                            list[k].rel,
+                            list[k + 1].rel,
+                            self.r_check,
+                        ));
             }
         }
-        lanes.first = self.node_corner.len() as u32;
-        let count = lanes.lanes[0].len() + lanes.lanes[1].len();
+        let entry = Lanes {
+            first: self.nodes.len() as u32,
+            ccw: lanes[0].len() as u32,
+            cw: lanes[1].len() as u32,
+        };
+        let count = lanes[0].len() + lanes[1].len();
+        let [ccw, cw] = lanes;
+        self.nodes.extend(ccw);
+        self.nodes.extend(cw);
         self.node_corner.extend(std::iter::repeat_n(a, count));
-        self.node_query.resize(self.node_corner.len(), 0);
-        self.cost.resize(self.node_corner.len(), f64::INFINITY);
-        self.via.resize(self.node_corner.len(), Via::Chain(0));
+        self.node_query.resize(self.nodes.len(), 0);
+        self.cost.resize(self.nodes.len(), f64::INFINITY);
+        self.via.resize(self.nodes.len(), Via::Chain(0));
         self.counts.corners_built += 1;
         self.counts.departures += count as u64;
-        self.lanes[a as usize] = Some(lanes);
+        self.lanes[a as usize] = Some(entry);
     }
 
     /// Builds every corner.
@@ -261,39 +294,20 @@ impl TangentGraph {
         }
     }
 
-    fn lanes(&self, c: u32) -> &Lanes {
-        self.lanes[c as usize].as_ref().expect("corner built")
+    fn lanes(&self, c: u32) -> Lanes {
+        self.lanes[c as usize].expect("corner built")
     }
 
-    /// The node's departure, its lane and its index in the lane.
-    fn departure(&self, id: u32) -> (&Departure, Lane, usize) {
-        let lanes = self.lanes(self.node_corner[id as usize]);
-        let k = (id - lanes.first) as usize;
-        let n0 = lanes.lanes[0].len();
-        if k < n0 {
-            (&lanes.lanes[0][k], Lane::Ccw, k)
-        } else {
-            (&lanes.lanes[1][k - n0], Lane::Cw, k - n0)
-        }
-    }
-
-    fn node_id(&self, c: u32, lane: Lane, k: usize) -> u32 {
-        let lanes = self.lanes(c);
-        lanes.first
-            + match lane {
-                Lane::Ccw => k,
-                Lane::Cw => lanes.lanes[0].len() + k,
-            } as u32
-    }
-
-    /// The first departure of `lane` at corner `c` at or after `rel` in travel order.
-    fn first_after(&self, c: u32, lane: Lane, rel: f64) -> Option<(usize, f64)> {
-        let list = &self.lanes(c).lanes[lane.index()];
+    /// The first departure of `lane` at corner `c` at or after `rel` in travel order:
+    /// its node id and angle.
+    fn first_after(&self, c: u32, lane: Lane, rel: f64) -> Option<(u32, f64)> {
+        let range = self.lanes(c).range(lane);
+        let list = &self.nodes[range.clone()];
         let k = match lane {
             Lane::Ccw => list.partition_point(|d| d.rel < rel),
             Lane::Cw => list.partition_point(|d| d.rel > rel),
         };
-        list.get(k).map(|d| (k, d.rel))
+        list.get(k).map(|d| ((range.start + k) as u32, d.rel))
     }
 
     fn node_cost(&self, id: u32) -> f64 {
@@ -418,20 +432,12 @@ impl TangentGraph {
                 continue;
             }
             self.counts.expansions += 1;
-            let (dep, lane, k) = {
-                let (d, lane, k) = self.departure(id);
-                (*d, lane, k)
-            };
-            let c = self.node_corner[id as usize];
+            let dep = self.nodes[id as usize];
             // Along the arc to the next departure of the lane.
-            let next = self.lanes(c).lanes[lane.index()]
-                .get(k + 1)
-                .filter(|_| dep.clear_to_next)
-                .map(|d| d.rel);
-            if let Some(rel) = next {
-                let nid = self.node_id(c, lane, k + 1);
+            if dep.to_next {
+                let rel = self.nodes[id as usize + 1].rel;
                 let cost = g + self.r * (rel - dep.rel).abs();
-                self.relax(nid, cost, Via::Chain(id), &h, &mut heap);
+                self.relax(id + 1, cost, Via::Chain(id), &h, &mut heap);
             }
             // Along the segment, then the arc at the corner it arrives at.
             self.arrive(
@@ -476,7 +482,7 @@ impl TangentGraph {
             self.node_query[i] = self.query;
             self.cost[i] = cost;
             self.via[i] = via;
-            let point = self.departure(id).0.point;
+            let point = self.nodes[i].point;
             heap.push(Entry {
                 f: cost + h(point),
                 g: cost,
@@ -507,11 +513,10 @@ impl TangentGraph {
                     .grid
                     .arc_clear(&corner, graph.r, rel_in, to, graph.r_check)
         };
-        if let Some((k, rel)) = self
+        if let Some((id, rel)) = self
             .first_after(c, lane, rel_in)
             .filter(|&(_, rel)| arc_clear(self, rel))
         {
-            let id = self.node_id(c, lane, k);
             let cost = g0 + self.r * (rel - rel_in).abs();
             self.relax(id, cost, Via::Tangent { from, rel_in }, h, heap);
         }
@@ -551,7 +556,7 @@ impl TangentGraph {
         let mut cur = via.from;
         let mut pending: Option<f64> = None;
         while let Src::Node(id) = cur {
-            let rel = self.departure(id).0.rel;
+            let rel = self.nodes[id as usize].rel;
             let out_rel = *pending.get_or_insert(rel);
             match self.via[id as usize] {
                 Via::Chain(prev) => cur = Src::Node(prev),
