@@ -205,8 +205,9 @@ impl Visibility {
             let last = k + 1 == points.len();
             let yaw = if last { goal.yaw } else { start.yaw };
             let pose = self.to_world(*p, yaw);
+            let single = states.len() == 1;
             match states.last_mut() {
-                Some(prev) if prev.xy_distance(&pose) < 1e-12 => {
+                Some(prev) if prev.xy_distance(&pose) < 1e-12 && !(last && single) => {
                     if last {
                         *prev = *goal;
                     }
@@ -219,9 +220,6 @@ impl Visibility {
                     pose
                 }),
             }
-        }
-        if states.len() == 1 {
-            states.push(*goal);
         }
         Path::new(states, self.objective.as_ref())
     }

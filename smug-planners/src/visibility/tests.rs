@@ -512,6 +512,20 @@ fn straight_line_on_an_empty_map_and_around_one_corner() {
 }
 
 #[test]
+fn a_goal_at_the_start_turns_on_the_spot() {
+    let mut p = planner(3, 3, &[false; 9], 0.25);
+    let outcome = p
+        .plan(&Pose2::new(1.5, 1.5, 0.0), &Pose2::new(1.5, 1.5, 1.0))
+        .unwrap();
+    let path = outcome.exact_path().unwrap();
+    assert_eq!(
+        path.states,
+        vec![Pose2::new(1.5, 1.5, 0.0), Pose2::new(1.5, 1.5, 1.0)]
+    );
+    assert_eq!(p.last_optimum()[0], Some(0.0));
+}
+
+#[test]
 fn invalid_endpoints_and_unreachable_goals_are_named() {
     // A wall across the middle column of a 3×3 map.
     let blocked = [false, true, false, false, true, false, false, true, false];
