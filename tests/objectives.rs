@@ -31,7 +31,14 @@ fn config(name: &str) -> std::path::PathBuf {
 }
 
 fn lunar(objective: &str, step: Option<f64>) -> Pipeline {
-    let mut set = vec![format!("objective.type=\"{objective}\"")];
+    lunar_in(objective, step, "se2")
+}
+
+fn lunar_in(objective: &str, step: Option<f64>, space: &str) -> Pipeline {
+    let mut set = vec![
+        format!("objective.type=\"{objective}\""),
+        format!("space.type=\"{space}\""),
+    ];
     set.extend(step.map(|s| format!("objective.params.step={s}")));
     let loaded = LoadedConfig::from_file(&config("lunar.toml"), &set).unwrap();
     Pipeline::assemble(&loaded).unwrap()
@@ -41,6 +48,21 @@ fn lunar(objective: &str, step: Option<f64>) -> Pipeline {
 fn pipelines() -> &'static Vec<(&'static str, Pipeline)> {
     static PIPELINES: OnceLock<Vec<(&'static str, Pipeline)>> = OnceLock::new();
     PIPELINES.get_or_init(|| OBJECTIVES.iter().map(|&o| (o, lunar(o, None))).collect())
+}
+
+/// The lunar pipeline under each objective on each curvature-limited space, default
+/// parameters (names `objective/space`).
+fn curved_pipelines() -> &'static Vec<(String, Pipeline)> {
+    static PIPELINES: OnceLock<Vec<(String, Pipeline)>> = OnceLock::new();
+    PIPELINES.get_or_init(|| {
+        let mut all = Vec::new();
+        for space in ["reeds-shepp", "dubins"] {
+            for &o in &OBJECTIVES {
+                all.push((format!("{o}/{space}"), lunar_in(o, None, space)));
+            }
+        }
+        all
+    })
 }
 
 /// Integration step of the additivity checks: a split motion samples the terrain at other
@@ -85,6 +107,25 @@ proptest! {
         for (name, p) in fine_pipelines() {
             let (a, b, c) = (pose(a), pose(b), pose(c));
             let split = if *name == "path-length" { 1e-9 } else { 0.02 };
+            check_objective(p.objective.as_ref(), p.space.as_ref(), (&a, &b, &c), t, split)
+                .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+        }
+    }
+
+    #[test]
+    fn every_objective_bounds_curved_motions_from_below(
+        a in unit_pose(), b in unit_pose(), c in unit_pose(), t in 0.0..1.0f64,
+    ) {
+        // The cost of a curve sums its arcs, never its chords (which would fall below
+        // the shortest curve's length, the bound's length term): at the default step,
+        // where a chord falls short of its arc by ~0.2%. Additivity is checked for
+        // path length only (to 1e-6: a split at a tangency rounds as the solvers do,
+        // see tools/ompl-peer/SPACES.md): where several shortest curves tie, the curve
+        // to a point of the motion may be another one of the same length over other
+        // ground.
+        for (name, p) in curved_pipelines() {
+            let (a, b, c) = (pose(a), pose(b), pose(c));
+            let split = if name.starts_with("path-length") { 1e-6 } else { f64::INFINITY };
             check_objective(p.objective.as_ref(), p.space.as_ref(), (&a, &b, &c), t, split)
                 .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
         }
@@ -307,7 +348,9 @@ fn plan(config_name: &str, set: &[&str]) -> Plan {
 #[test]
 fn path_length_plans_are_the_recorded_ones() {
     // Costs of the shipped configs before objectives were separated from the space
-    // (seed 1, main at b754893): `path-length` must keep them to the last bit.
+    // (seed 1, main at b754893): `path-length` must keep them to the last bit. The
+    // planner's endpoint expansion came later and changes `indoor.toml` (one query
+    // needs more than `expand_after` samples; 73.57 → 70.54 with it), so it is off here.
     for (name, cost) in [
         ("lunar.toml", 96.81261847501415f64),
         ("indoor.toml", 73.57378109544727),
@@ -316,7 +359,7 @@ fn path_length_plans_are_the_recorded_ones() {
         ("lunar-full-collision.toml", 97.41288009955495),
         ("flat-demo.toml", 41.56167971049054),
     ] {
-        let plan = plan(name, &[]);
+        let plan = plan(name, &["planner.params.expand_share=0"]);
         assert_eq!(
             plan.cost.to_bits(),
             cost.to_bits(),

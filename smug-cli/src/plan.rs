@@ -108,16 +108,31 @@ fn write_outputs(
         write("plan.json", serde_json::to_string_pretty(plan)?)?;
     }
     if output.csv {
-        let mut csv = String::from("x,y,z,yaw\n");
-        for w in &plan.waypoints {
-            csv += &format!("{},{},{},{}\n", w.x, w.y, w.z, w.yaw);
-        }
-        write("plan.csv", csv)?;
+        write("plan.csv", plan_csv(plan))?;
     }
     if output.svg {
         write("plan.svg", render_svg(world, &render_options(plan, world)))?;
     }
     Ok(())
+}
+
+/// `plan.csv`: `x,y,z,yaw` per waypoint, and a `reversing` column (0/1) when the
+/// plan ever drives backwards (as `plan.json`'s `reversing`).
+fn plan_csv(plan: &Plan) -> String {
+    let gears = plan.reversing.len() == plan.waypoints.len() && !plan.reversing.is_empty();
+    let mut csv = String::from(if gears {
+        "x,y,z,yaw,reversing\n"
+    } else {
+        "x,y,z,yaw\n"
+    });
+    for (i, w) in plan.waypoints.iter().enumerate() {
+        csv += &format!("{},{},{},{}", w.x, w.y, w.z, w.yaw);
+        if gears {
+            csv += if plan.reversing[i] { ",1" } else { ",0" };
+        }
+        csv.push('\n');
+    }
+    csv
 }
 
 fn render_options(plan: &Plan, world: &World) -> RenderOptions {

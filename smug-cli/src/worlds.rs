@@ -10,7 +10,10 @@ use anyhow::{bail, Context};
 use clap::Subcommand;
 use smug_core::{LoadedConfig, Mission, Pipeline, Pose2, World};
 use smug_worlds::export::ExportOptions;
-use smug_worlds::map_file::{check_mission_inside, file_stem, DEFAULT_OBSTACLE_HEIGHT};
+use smug_worlds::map_file::{
+    check_mission_inside, file_stem, load_terrain, MapLayers, TerrainKind, DEFAULT_OBSTACLE_HEIGHT,
+};
+use smug_worlds::point_cloud::Reduce;
 use smug_worlds::render::RasterLayer;
 use smug_worlds::{load_map, load_mission, RenderOptions};
 use std::path::{Path, PathBuf};
@@ -28,6 +31,10 @@ enum WorldsCommand {
     Show(ShowArgs),
     /// Convert a MovingAI `.map` grid into a map YAML + PGM.
     ConvertMovingai(ConvertArgs),
+    /// Convert a GeoTIFF DEM (`.tif`) or a point cloud (`.ply`, `.pcd`) into a map YAML +
+    /// occupancy PGM + 16-bit elevation PNG + mission TOML (what `smug worlds export`
+    /// writes).
+    Convert(ExportArgs),
     /// Generate a seeded grid map (random, rooms, maze, terrain) as a MovingAI `.map`,
     /// with scenarios and a map YAML + PGM on request.
     Generate(crate::worlds_generate::GenerateArgs),
@@ -50,6 +57,20 @@ struct WorldSource {
     /// A mission file (TOML or JSON) replacing the world's mission.
     #[arg(long, value_name = "FILE")]
     mission: Option<PathBuf>,
+    /// Cell size of a rasterised point cloud (`.ply`, `.pcd`), metres.
+    #[arg(long, default_value_t = smug_worlds::map_file::DEFAULT_CELL_SIZE)]
+    cell_size: f64,
+    /// How a point cloud cell's points make its height.
+    #[arg(long, value_enum, default_value_t = ReduceArg::Max)]
+    reduce: ReduceArg,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum ReduceArg {
+    /// The highest point.
+    Max,
+    /// The mean height.
+    Mean,
 }
 
 #[derive(clap::Args, Debug)]
@@ -110,6 +131,15 @@ pub fn run(args: WorldsArgs) -> anyhow::Result<Outcome> {
         WorldsCommand::ConvertMovingai(args) => convert(args),
         WorldsCommand::Generate(args) => crate::worlds_generate::run(args),
         WorldsCommand::Export(args) => export(args),
+        WorldsCommand::Convert(args) => {
+            if !matches!(world_spec(&args.source.world)?, WorldSpec::Terrain(..)) {
+                bail!(
+                    "{}: not a GeoTIFF DEM (.tif, .tiff) or a point cloud (.ply, .pcd)",
+                    args.source.world
+                );
+            }
+            export(args)
+        }
     }
 }
 
@@ -157,17 +187,24 @@ fn export(args: ExportArgs) -> anyhow::Result<Outcome> {
 /// How the command line names a world.
 enum WorldSpec<'a> {
     Map(&'a Path),
+    Terrain(&'a Path, TerrainKind),
     Config(&'a Path),
     Plugin(&'a str),
 }
 
 fn world_spec(text: &str) -> anyhow::Result<WorldSpec<'_>> {
     let path = Path::new(text);
+    if let Some(kind) = TerrainKind::of(path) {
+        return Ok(WorldSpec::Terrain(path, kind));
+    }
     match path.extension().and_then(|e| e.to_str()) {
         Some("yaml" | "yml") => Ok(WorldSpec::Map(path)),
         Some("toml") => Ok(WorldSpec::Config(path)),
         _ if text.contains(['/', '\\']) || path.is_file() => {
-            bail!("{text}: not a world plugin name, a pipeline config (.toml) or a map (.yaml)")
+            bail!(
+                "{text}: not a world plugin name, a pipeline config (.toml), a map (.yaml), \
+                 a GeoTIFF DEM (.tif) or a point cloud (.ply, .pcd)"
+            )
         }
         _ => Ok(WorldSpec::Plugin(text)),
     }
@@ -188,6 +225,20 @@ fn load_world(source: &WorldSource) -> anyhow::Result<World> {
                 );
             }
             return load_map_world(path, source.mission.as_deref());
+        }
+        WorldSpec::Terrain(path, kind) => {
+            if !source.set.is_empty() {
+                bail!(
+                    "{}: --set applies to world plugins and pipeline configs, not to terrain files",
+                    path.display()
+                );
+            }
+            let reduce = match source.reduce {
+                ReduceArg::Max => Reduce::Max,
+                ReduceArg::Mean => Reduce::Mean,
+            };
+            let layers = load_terrain(path, kind, source.cell_size, reduce)?;
+            return layers_world(layers, path, source.mission.as_deref());
         }
         WorldSpec::Config(path) => {
             let loaded = LoadedConfig::from_file(path, &overrides)?;
@@ -228,6 +279,12 @@ fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<World> {
 /// world gets an empty one starting at the map's centre.
 fn load_map_world(path: &Path, mission: Option<&Path>) -> anyhow::Result<World> {
     let layers = load_map(path, DEFAULT_OBSTACLE_HEIGHT)?;
+    layers_world(layers, path, mission)
+}
+
+/// The world of imported layers; without a mission (given, or the layers' own) an empty
+/// one starting at the map's centre.
+fn layers_world(layers: MapLayers, path: &Path, mission: Option<&Path>) -> anyhow::Result<World> {
     let mission = match mission.or(layers.mission_file.as_deref()) {
         Some(file) => load_mission(file)?,
         None => {

@@ -115,11 +115,6 @@ fn every_robot_profile_plans_the_lunar_mission_under_every_objective() {
     let objectives = ["path-length", "traversability", "energy", "time"];
     for robot in robots {
         for objective in objectives {
-            // Known slow: the Reeds–Shepp rover under `energy` runs past a minute on this
-            // mission (an open issue for the next round); every other pair plans in seconds.
-            if robot == "lunar-rover.toml" && objective == "energy" {
-                continue;
-            }
             let config = format!("configs/{robot}");
             let set = format!("objective.type=\"{objective}\"");
             let mut args = SMALL.to_vec();
@@ -143,6 +138,25 @@ fn reeds_shepp_plans_keep_the_turning_radius_and_mark_reverse_gear() {
         check_curve(&plan, 1.5, true) > 0,
         "the rover backs up somewhere"
     );
+    // plan.csv carries the same gears in a fifth column.
+    let csv_path = workspace().join("target/cli-test-robots/configs/lunar-rover.toml/plan.csv");
+    let csv = std::fs::read_to_string(csv_path).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,y,z,yaw,reversing"));
+    let gears: Vec<bool> = lines
+        .map(|line| match line.rsplit(',').next() {
+            Some("1") => true,
+            Some("0") => false,
+            other => panic!("gear {other:?} in {line}"),
+        })
+        .collect();
+    let expected: Vec<bool> = plan["reversing"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_bool().unwrap())
+        .collect();
+    assert_eq!(gears, expected);
 }
 
 #[test]

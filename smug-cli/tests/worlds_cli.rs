@@ -461,3 +461,69 @@ fn the_example_mission_lies_in_free_cells_reachable_from_its_start() {
         }
     }
 }
+
+#[test]
+fn convert_a_point_cloud_and_bad_terrain_files_exit_2() {
+    let dir = scratch("convert-terrain");
+    // A 6 × 4 m ramp, 5 points per 0.5 m cell side, as ASCII PLY.
+    let mut ply = String::from(
+        "ply\nformat ascii 1.0\nelement vertex 960\nproperty float x\nproperty float y\n\
+         property float z\nend_header\n",
+    );
+    for j in 0..24 {
+        for i in 0..40 {
+            let (x, y) = (0.05 + 0.15 * i as f64, 0.05 + 0.15 * j as f64 + 0.2);
+            ply += &format!("{x} {y} {}\n", 0.01 * x);
+        }
+    }
+    let cloud = dir.join("ramp.ply");
+    std::fs::write(&cloud, ply).unwrap();
+    let out = smug(&[
+        "worlds",
+        "convert",
+        text(&cloud),
+        "--out",
+        text(&dir.join("map")),
+        "--cell-size",
+        "0.5",
+        "--reduce",
+        "mean",
+    ]);
+    assert_ok(&out);
+    assert!(
+        stdout(&out).contains("12×8 cells at 0.5 m"),
+        "{}",
+        stdout(&out)
+    );
+    let yaml = std::fs::read_to_string(dir.join("map/ramp.yaml")).unwrap();
+    assert!(yaml.contains("resolution: 0.5"), "{yaml}");
+    assert!(dir.join("map/ramp.elevation.png").is_file());
+
+    // Not terrain, a bad GeoTIFF, a bad PLY: exit 2 naming the file and the fault.
+    let out = smug(&[
+        "worlds",
+        "convert",
+        "configs/lunar.toml",
+        "--out",
+        text(&dir),
+    ]);
+    assert_bad_input(&out, &["configs/lunar.toml", "not a GeoTIFF DEM"]);
+    let tif = dir.join("broken.tif");
+    std::fs::write(&tif, b"II*\0garbage").unwrap();
+    let out = smug(&[
+        "worlds",
+        "show",
+        text(&tif),
+        "--out",
+        text(&dir.join("x.svg")),
+    ]);
+    assert_bad_input(&out, &["broken.tif", "not a readable TIFF"]);
+    let ply = dir.join("broken.ply");
+    std::fs::write(
+        &ply,
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n",
+    )
+    .unwrap();
+    let out = smug(&["worlds", "convert", text(&ply), "--out", text(&dir)]);
+    assert_bad_input(&out, &["broken.ply", "no vertex property `y` (found: x)"]);
+}

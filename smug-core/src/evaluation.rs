@@ -80,9 +80,9 @@ fn traversability_along(
     let space = ctx.space();
     let (mut min, mut weighted, mut risky) = (f64::INFINITY, 0.0, 0.0);
     for w in states.windows(2) {
-        integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, mid| {
-            let tau = layer.nearest(mid.x, mid.y).unwrap_or(0.0);
-            let length = from.xy_distance(to);
+        integrate_motion(space.as_ref(), &w[0], &w[1], step, |piece| {
+            let tau = layer.nearest(piece.middle.x, piece.middle.y).unwrap_or(0.0);
+            let length = piece.length;
             min = min.min(tau);
             weighted += tau * length;
             if tau < RISKY_TRAVERSABILITY {
@@ -104,8 +104,8 @@ fn climb(ctx: &BuildContext, world: &World, states: &[Pose2]) -> f64 {
     states
         .windows(2)
         .map(|w| {
-            integrate_motion(space.as_ref(), &w[0], &w[1], step, |from, to, _| {
-                match (height(from), height(to)) {
+            integrate_motion(space.as_ref(), &w[0], &w[1], step, |piece| {
+                match (height(&piece.from), height(&piece.to)) {
                     (Some(a), Some(b)) => (b - a).max(0.0),
                     _ => 0.0,
                 }

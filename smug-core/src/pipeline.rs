@@ -14,6 +14,7 @@ use crate::rng::{stage_rng, StageRng};
 use crate::space::{Se2Space, StateSpace};
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
+    TraversabilityEstimator,
 };
 use crate::world::World;
 use serde::de::DeserializeOwned;
@@ -254,15 +255,30 @@ pub struct Pipeline {
 impl Pipeline {
     /// Builds every stage the config names.
     pub fn assemble(loaded: &LoadedConfig) -> Result<Self> {
-        Self::assemble_inner(loaded, None)
+        Self::assemble_inner(loaded, None, None)
     }
 
     /// Builds every stage, using `world` instead of the config's `[world]` section.
     pub fn assemble_with_world(loaded: &LoadedConfig, world: World) -> Result<Self> {
-        Self::assemble_inner(loaded, Some(world))
+        Self::assemble_inner(loaded, Some(world), None)
     }
 
-    fn assemble_inner(loaded: &LoadedConfig, given_world: Option<World>) -> Result<Self> {
+    /// Builds every stage, with `world` (when given) instead of the config's `[world]`
+    /// section and `estimator` (when given) instead of its `[traversability]` section.
+    /// The estimator is recorded as stage `traversability`, plugin `name`.
+    pub fn assemble_with(
+        loaded: &LoadedConfig,
+        world: Option<World>,
+        estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
+    ) -> Result<Self> {
+        Self::assemble_inner(loaded, world, estimator)
+    }
+
+    fn assemble_inner(
+        loaded: &LoadedConfig,
+        given_world: Option<World>,
+        given_estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
+    ) -> Result<Self> {
         let config = loaded.config.clone();
         let mut ctx = BuildContext::new(config.seed, config.robot);
         ctx.sources = loaded.sources.clone();
@@ -304,8 +320,24 @@ impl Pipeline {
         if let Some(mut world) = world {
             world.mission.validate()?;
             check_robot_fits(loaded, &world)?;
-            if let Some(section) = &config.traversability {
-                let estimator = pipeline.build_stage::<TraversabilityStage>(&ctx, section)?;
+            let estimator = match (given_estimator, &config.traversability) {
+                (Some((name, estimator)), _) => {
+                    let section = PluginSection::new("traversability", name);
+                    pipeline.resolved.push(ResolvedStage {
+                        key: section.key.clone(),
+                        plugin: section.kind.clone(),
+                        params: toml::Table::new(),
+                    });
+                    Some((section, estimator))
+                }
+                (None, Some(section)) => Some((
+                    section.clone(),
+                    pipeline.build_stage::<TraversabilityStage>(&ctx, section)?,
+                )),
+                (None, None) => None,
+            };
+            if let Some((section, estimator)) = estimator {
+                let section = &section;
                 let started = Instant::now();
                 world.traversability = Some(check_layer_fits(
                     estimator.estimate(&world)?,

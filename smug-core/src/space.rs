@@ -57,6 +57,15 @@ pub trait StateSpace: Send + Sync + Debug {
         w_t * a.xy_distance(b) + w_r * angle_distance(a.yaw, b.yaw)
     }
 
+    /// `distance(a, b)` when it is at most `bound`, else `None`; models whose distance
+    /// is costly skip the work a farther answer would need (nearest-neighbour searches
+    /// ask with the k-th nearest distance found so far). The answer is bit-identical to
+    /// `distance`.
+    fn distance_within(&self, a: &Pose2, b: &Pose2, bound: f64) -> Option<f64> {
+        let d = self.distance(a, b);
+        (d <= bound).then_some(d)
+    }
+
     /// True when the robot drives backwards at fraction `t` of the motion `a → b`
     /// (a Reeds–Shepp gear change); forward-only models never do.
     fn is_reversing(&self, _a: &Pose2, _b: &Pose2, _t: f64) -> bool {

@@ -119,7 +119,8 @@ pub fn check_objective_path(
 /// Checks the axioms every SMUG state space must satisfy on the poses `a`, `b`, `c`
 /// and the interpolation fraction `t`: non-negativity, identity, symmetry (when the
 /// space says it is symmetric), triangle inequality, the additive lower bound of
-/// `lower_bound_weights`, `length_bound` between `‖Δxy‖` and the motion's length,
+/// `lower_bound_weights`, `distance_within` the distance exactly when within the bound,
+/// `length_bound` between `‖Δxy‖` and the motion's length,
 /// interpolation endpoints, and that interpolation splits the distance
 /// (`c(a, m) + c(m, b) = c(a, b)`).
 pub fn check_metric_axioms(
@@ -157,6 +158,22 @@ pub fn check_metric_axioms(
         "distance bound {} > c(a, b) = {ab}",
         metric.distance_bound(a, b)
     );
+    for bound in [
+        0.0,
+        0.5 * ab,
+        ab,
+        ab.next_up(),
+        ab.next_down(),
+        2.0 * ab,
+        f64::INFINITY,
+    ] {
+        let within = metric.distance_within(a, b, bound);
+        let expected = (ab <= bound).then_some(ab);
+        prop_assert!(
+            within.map(f64::to_bits) == expected.map(f64::to_bits),
+            "distance_within(a, b, {bound}) = {within:?}, distance {ab}"
+        );
+    }
     let extent = metric.motion_extent(a, b);
     let length_bound = metric.length_bound(a, b);
     prop_assert!(

@@ -65,16 +65,19 @@ impl Energy {
 impl Objective for Energy {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
         let (mg, mu) = (self.weight(), self.params.friction);
-        integrate_motion(
-            self.space.as_ref(),
-            a,
-            b,
-            self.params.step,
-            |from, to, _| {
-                let climb = self.terrain.rise((from.x, from.y), (to.x, to.y)).max(0.0);
-                mu * mg * from.xy_distance(to) + mg * climb
-            },
-        )
+        // Climbs between consecutive known heights: where a curve leaves the known
+        // ground (off the map), the climb resumes from the last height known, so the
+        // total is never below the net rise of the bound.
+        let mut last = self.terrain.height(a.x, a.y);
+        integrate_motion(self.space.as_ref(), a, b, self.params.step, |piece| {
+            let to = self.terrain.height(piece.to.x, piece.to.y);
+            let climb = match (last, to) {
+                (Some(z0), Some(z1)) => (z1 - z0).max(0.0),
+                _ => 0.0,
+            };
+            last = to.or(last);
+            mu * mg * piece.length + mg * climb
+        })
     }
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {

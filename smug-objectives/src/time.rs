@@ -98,9 +98,9 @@ impl TravelTime {
 impl Objective for TravelTime {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
         let p = &self.params;
-        integrate_motion(self.space.as_ref(), a, b, p.step, |from, to, mid| {
-            from.xy_distance(to) / self.speed(from, to, mid)
-                + angle_distance(from.yaw, to.yaw) / p.turn_rate
+        integrate_motion(self.space.as_ref(), a, b, p.step, |piece| {
+            piece.length / self.speed(&piece.from, &piece.to, &piece.middle)
+                + angle_distance(piece.from.yaw, piece.to.yaw) / p.turn_rate
         })
     }
 

@@ -74,9 +74,9 @@ impl RiskAware {
 impl Objective for RiskAware {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
         let p = &self.params;
-        integrate_motion(self.space.as_ref(), a, b, p.step, |from, to, mid| {
-            p.translation_weight * from.xy_distance(to) * self.factor(mid.x, mid.y)
-                + p.rotation_weight * angle_distance(from.yaw, to.yaw)
+        integrate_motion(self.space.as_ref(), a, b, p.step, |piece| {
+            p.translation_weight * piece.length * self.factor(piece.middle.x, piece.middle.y)
+                + p.rotation_weight * angle_distance(piece.from.yaw, piece.to.yaw)
         })
     }
 

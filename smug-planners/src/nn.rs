@@ -255,14 +255,21 @@ impl XyGrid {
             if w_t * w_t * (dx * dx + dy * dy) > best.worst_squared() {
                 return;
             }
-            // Curved models' distances are costly: try their cheaper bound first.
-            if curved && metric.distance_bound(q, p) > best.worst() {
+            if !curved {
+                best.offer(Neighbour {
+                    distance: metric.distance(q, p),
+                    id,
+                });
                 return;
             }
-            best.offer(Neighbour {
-                distance: metric.distance(q, p),
-                id,
-            });
+            // Curved models' distances are costly: try their cheaper bound first, then
+            // ask only for distances that can still make the k nearest.
+            if metric.distance_bound(q, p) > best.worst() {
+                return;
+            }
+            if let Some(distance) = metric.distance_within(q, p, best.worst()) {
+                best.offer(Neighbour { distance, id });
+            }
         };
         if !self.inside(q) {
             self.buckets

@@ -277,6 +277,13 @@ impl Roadmap {
         self.components.find(a) == self.components.find(b)
     }
 
+    /// The number of vertices in `v`'s connected component (exact once components are
+    /// refreshed; removed vertices are components of their own).
+    pub fn component_size(&mut self, v: u32) -> usize {
+        let root = self.components.find(v);
+        self.components.size[root as usize] as usize
+    }
+
     /// Recomputes the connected components if edges were removed; returns whether
     /// they changed.
     pub fn refresh_components(&mut self) -> bool {

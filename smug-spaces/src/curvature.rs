@@ -16,6 +16,14 @@ pub trait Solver: Copy + Debug + PartialEq + Send + Sync + 'static {
     const SYMMETRIC: bool;
     /// The shortest curve to `(x, y, phi)` from the origin facing +x, unit radius.
     fn shortest(x: f64, y: f64, phi: f64) -> Curve;
+
+    /// [`Solver::shortest`] when its unit length is at most `bound`, else `None`; a
+    /// solver may skip the words that cannot come within it, but returns the same curve
+    /// as `shortest` whenever it returns one.
+    fn shortest_within(x: f64, y: f64, phi: f64, bound: f64) -> Option<Curve> {
+        let curve = Self::shortest(x, y, phi);
+        (curve.unit_length() <= bound).then_some(curve)
+    }
 }
 
 /// Curvature-limited motion: the shortest curves of [`Solver`] `S` at a turning radius.
@@ -51,6 +59,15 @@ impl<S: Solver> CurvatureSpace<S> {
 impl<S: Solver> StateSpace for CurvatureSpace<S> {
     fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
         self.radius * self.curve(a, b).unit_length()
+    }
+
+    fn distance_within(&self, a: &Pose2, b: &Pose2, bound: f64) -> Option<f64> {
+        // The unit bound is widened by far more than its rounding, so that no curve
+        // within `bound` metres is skipped; the answer is then checked in metres.
+        let (x, y, phi) = relative(a, b, self.radius);
+        let curve = S::shortest_within(x, y, phi, bound / self.radius * (1.0 + 1e-9))?;
+        let distance = self.radius * curve.unit_length();
+        (distance <= bound).then_some(distance)
     }
 
     fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {

@@ -35,6 +35,10 @@ impl Solver for ReedsShepp {
     fn shortest(x: f64, y: f64, phi: f64) -> Curve {
         words::shortest(x, y, phi)
     }
+
+    fn shortest_within(x: f64, y: f64, phi: f64, bound: f64) -> Option<Curve> {
+        words::shortest_within(x, y, phi, bound)
+    }
 }
 
 /// Forward-and-reverse curvature-limited motion: shortest Reeds–Shepp curves.

@@ -65,6 +65,8 @@ pub const DEFAULT_ELEVATION_SCALE: f64 = 0.001;
 pub const MAX_PIXELS: u64 = 100_000_000;
 /// Default height given to occupied cells above the ground, metres.
 pub const DEFAULT_OBSTACLE_HEIGHT: f64 = 2.0;
+/// Default cell size of a rasterised point cloud, metres.
+pub const DEFAULT_CELL_SIZE: f64 = 0.1;
 
 /// How pixel values become occupancy (`map_server`'s `mode`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -387,6 +389,15 @@ pub struct MapLayers {
 }
 
 impl MapLayers {
+    /// Layers of an elevation alone (a DEM or a rasterised point cloud).
+    pub fn from_elevation(elevation: GridLayer) -> Self {
+        Self {
+            elevation,
+            traversability: None,
+            mission_file: None,
+        }
+    }
+
     /// A world of these layers and `mission`; errors when a pose lies outside the map.
     /// `yaml` names the map in errors.
     pub fn into_world(
@@ -688,6 +699,16 @@ pub struct MapParams {
     pub obstacle_height: f64,
     /// Name in reports (default: the YAML file's stem).
     pub name: Option<String>,
+    /// A GeoTIFF DEM instead of `yaml` (relative to the config file): heights,
+    /// resolution and origin come from the file.
+    pub dem: Option<PathBuf>,
+    /// A point cloud (PLY or PCD) instead of `yaml` (relative to the config file),
+    /// rasterised into cells of `cell_size`.
+    pub point_cloud: Option<PathBuf>,
+    /// Cell size of a rasterised point cloud, metres.
+    pub cell_size: f64,
+    /// How a cell's points make its height: `max` (default) or `mean`.
+    pub reduce: crate::point_cloud::Reduce,
 }
 
 impl Default for MapParams {
@@ -698,6 +719,10 @@ impl Default for MapParams {
             mission: None,
             obstacle_height: DEFAULT_OBSTACLE_HEIGHT,
             name: None,
+            dem: None,
+            point_cloud: None,
+            cell_size: DEFAULT_CELL_SIZE,
+            reduce: crate::point_cloud::Reduce::default(),
         }
     }
 }
@@ -731,19 +756,98 @@ fn map_mission(
 
 /// Builds the `map` world described by `params`.
 fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Error> {
-    if params.yaml.as_os_str().is_empty() {
-        return Err(Error::invalid_param(
-            "world",
-            "`yaml` is required: the map's YAML file",
-        ));
+    let given = [
+        !params.yaml.as_os_str().is_empty(),
+        params.dem.is_some(),
+        params.point_cloud.is_some(),
+    ];
+    match given.iter().filter(|g| **g).count() {
+        0 => {
+            return Err(Error::invalid_param(
+                "world",
+                "`yaml` is required: the map's YAML file (or `dem`, a GeoTIFF, or \
+                 `point_cloud`, a PLY or PCD file)",
+            ))
+        }
+        1 => {}
+        _ => {
+            return Err(Error::invalid_param(
+                "world",
+                "give one of `yaml`, `dem` and `point_cloud`",
+            ))
+        }
     }
-    let yaml = ctx.resolve_path(&params.yaml);
-    let layers = load_map(&yaml, params.obstacle_height).map_err(|e| Error::stage("world", e))?;
+    let terrain = params.dem.as_ref().or(params.point_cloud.as_ref());
+    let (yaml, layers) = if let Some(file) = terrain {
+        let path = ctx.resolve_path(file);
+        let kind = match params.dem {
+            Some(_) => TerrainKind::Dem,
+            None => TerrainKind::PointCloud,
+        };
+        let layers = load_terrain(&path, kind, params.cell_size, params.reduce)
+            .map_err(|e| Error::stage("world", e))?;
+        (path, layers)
+    } else {
+        let yaml = ctx.resolve_path(&params.yaml);
+        let layers =
+            load_map(&yaml, params.obstacle_height).map_err(|e| Error::stage("world", e))?;
+        (yaml, layers)
+    };
     let mission = map_mission(params, &layers, &yaml, ctx)?;
     let name = params.name.clone().unwrap_or_else(|| file_stem(&yaml));
     layers
         .into_world(name, mission, &yaml)
         .map_err(|e| Error::stage("world", e))
+}
+
+/// A terrain file that is not a map YAML.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TerrainKind {
+    /// A GeoTIFF DEM.
+    Dem,
+    /// A PLY or PCD point cloud.
+    PointCloud,
+}
+
+impl TerrainKind {
+    /// The kind a file's extension names: `.tif`/`.tiff` a DEM, `.ply`/`.pcd` a cloud.
+    pub fn of(path: &Path) -> Option<Self> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "tif" | "tiff" => Some(TerrainKind::Dem),
+            "ply" | "pcd" => Some(TerrainKind::PointCloud),
+            _ => None,
+        }
+    }
+}
+
+/// Why a DEM or a point cloud could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum TerrainError {
+    /// A bad GeoTIFF.
+    #[error(transparent)]
+    GeoTiff(#[from] crate::geotiff::GeoTiffError),
+    /// A bad point cloud.
+    #[error(transparent)]
+    PointCloud(#[from] crate::point_cloud::PointCloudError),
+}
+
+/// The elevation of a GeoTIFF DEM, or of a point cloud rasterised into cells of
+/// `cell_size` with `reduce` (see [`crate::geotiff`] and [`crate::point_cloud`]).
+pub fn load_terrain(
+    path: &Path,
+    kind: TerrainKind,
+    cell_size: f64,
+    reduce: crate::point_cloud::Reduce,
+) -> Result<MapLayers, TerrainError> {
+    let elevation = match kind {
+        TerrainKind::Dem => crate::geotiff::read_geotiff(path)?.elevation,
+        TerrainKind::PointCloud => {
+            let points = crate::point_cloud::read_point_cloud(path)?;
+            crate::point_cloud::rasterise(&points, cell_size, reduce, path)?
+        }
+    };
+    Ok(MapLayers::from_elevation(elevation))
 }
 
 /// The file name of `path` without its extension (`map` when there is none).
@@ -756,7 +860,7 @@ pub fn file_stem(path: &Path) -> String {
 smug_core::register_plugin!(
     smug_core::registry::WorldStage,
     name = "map",
-    summary = "ROS map_server-style YAML + PGM/PNG occupancy (elevation, traversability images)",
+    summary = "ROS map_server-style YAML + PGM/PNG occupancy (elevation, traversability images), a GeoTIFF DEM or a PLY/PCD point cloud",
     params = MapParams,
     build = |params, ctx| Ok(Box::new(build_map_world(&params, ctx)?)),
 );

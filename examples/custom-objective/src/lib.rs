@@ -78,13 +78,9 @@ impl Steepness {
 impl Objective for Steepness {
     fn motion_cost(&self, a: &Pose2, b: &Pose2) -> f64 {
         let penalty = self.params.penalty;
-        integrate_motion(
-            self.space.as_ref(),
-            a,
-            b,
-            self.params.step,
-            |from, to, _| from.xy_distance(to) * (1.0 + penalty * self.slope(from, to)),
-        )
+        integrate_motion(self.space.as_ref(), a, b, self.params.step, |piece| {
+            piece.length * (1.0 + penalty * self.slope(&piece.from, &piece.to))
+        })
     }
 
     fn cost_bound(&self, a: &Pose2, b: &Pose2) -> f64 {

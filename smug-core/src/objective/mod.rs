@@ -61,15 +61,30 @@ pub trait Objective: Send + Sync + Debug {
 /// per motion whatever its length).
 pub const MAX_PIECES: usize = 100_000;
 
+/// One piece of a motion, as [`integrate_motion`] hands it out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// The state the piece starts at.
+    pub from: Pose2,
+    /// The state it ends at.
+    pub to: Pose2,
+    /// The state halfway along it.
+    pub middle: Pose2,
+    /// Its length in the plane, metres, along the motion: `‖Δxy‖` for straight
+    /// (holonomic) motions, the arc length for curves (the chord would be shorter, and
+    /// a cost summed over chords would fall below `length_bound`).
+    pub length: f64,
+}
+
 /// Integrates `f` along the space's motion from `a` to `b`, split into pieces of space
-/// distance at most `step` (at most [`MAX_PIECES`]): `f(from, to, middle)` gets each
-/// piece's end states and its middle state and returns the piece's cost.
+/// distance at most `step` (at most [`MAX_PIECES`]): `f` gets each [`Piece`] (its end
+/// states, middle state and length) and returns the piece's cost.
 pub fn integrate_motion(
     space: &dyn StateSpace,
     a: &Pose2,
     b: &Pose2,
     step: f64,
-    mut f: impl FnMut(&Pose2, &Pose2, &Pose2) -> f64,
+    mut f: impl FnMut(&Piece) -> f64,
 ) -> f64 {
     let pieces = (space.distance(a, b) / step).ceil();
     let n = if pieces.is_finite() && pieces >= 1.0 {
@@ -77,13 +92,20 @@ pub fn integrate_motion(
     } else {
         1
     };
+    // Curves are interpolated uniformly in arc length: every piece is 1/n of it.
+    let arc = (!space.is_holonomic()).then(|| space.motion_extent(a, b).length / n as f64);
     let at = |k: f64| space.interpolate(a, b, k / n as f64);
     let mut from = *a;
     let mut total = 0.0;
     for k in 1..=n {
         let to = if k == n { *b } else { at(k as f64) };
-        let middle = at(k as f64 - 0.5);
-        total += f(&from, &to, &middle);
+        let piece = Piece {
+            from,
+            to,
+            middle: at(k as f64 - 0.5),
+            length: arc.unwrap_or_else(|| from.xy_distance(&to)),
+        };
+        total += f(&piece);
         from = to;
     }
     total

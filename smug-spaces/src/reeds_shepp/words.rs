@@ -7,7 +7,7 @@
 //! Formulas as in the paper's §8 (and OMPL's `ReedsSheppStateSpace`), with a small
 //! slack on every domain and sign test so that tangent cases survive rounding.
 
-use crate::curve::{Curve, Steer};
+use crate::curve::{Curve, Steer, MAX_SEGMENTS};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use Steer::{Left as L, Right as R, Straight as S};
@@ -30,9 +30,73 @@ fn mod2pi(x: f64) -> f64 {
     }
 }
 
-/// `(r, θ)` of the vector `(x, y)`.
-fn polar(x: f64, y: f64) -> (f64, f64) {
-    (x.hypot(y), y.atan2(x))
+/// The goal in unit-radius form, with the sine and cosine of its heading (computed once
+/// for all 48 words: the variants only flip signs).
+#[derive(Clone, Copy, Debug)]
+struct Goal {
+    x: f64,
+    y: f64,
+    phi: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl Goal {
+    fn new(x: f64, y: f64, phi: f64) -> Self {
+        let (sin, cos) = phi.sin_cos();
+        Self {
+            x,
+            y,
+            phi,
+            sin,
+            cos,
+        }
+    }
+
+    /// Time flip: `(-x, y, -φ)`.
+    fn flipped(self) -> Self {
+        Self {
+            x: -self.x,
+            phi: -self.phi,
+            sin: -self.sin,
+            ..self
+        }
+    }
+
+    /// Reflection: `(x, -y, -φ)`.
+    fn reflected(self) -> Self {
+        Self {
+            y: -self.y,
+            phi: -self.phi,
+            sin: -self.sin,
+            ..self
+        }
+    }
+
+    /// The start seen from the goal driving the word backwards (§8: "backwards").
+    fn backwards(self) -> Self {
+        Self {
+            x: self.x * self.cos + self.y * self.sin,
+            y: self.x * self.sin - self.y * self.cos,
+            ..self
+        }
+    }
+
+    /// `(x - sin φ, y - 1 + cos φ)`: the centre of the goal's left circle, seen from the
+    /// start's left circle (the CSC, CCC and CCSC words with equal end turns).
+    fn left_centres(&self) -> (f64, f64) {
+        (self.x - self.sin, self.y - 1.0 + self.cos)
+    }
+
+    /// `(x + sin φ, y - 1 - cos φ)`: the goal's right circle from the start's left one.
+    fn opposite_centres(&self) -> (f64, f64) {
+        (self.x + self.sin, self.y - 1.0 - self.cos)
+    }
+}
+
+/// `‖(x, y)‖` (the coordinates are bounded: no overflow to guard against).
+fn norm(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
 }
 
 /// The first and last arcs `(τ, ω)` of the CCCC words (paper §8.7–8.8).
@@ -55,116 +119,172 @@ fn sqrt_slack(s: f64) -> f64 {
     s.max(0.0).sqrt()
 }
 
-/// L⁺S⁺L⁺ (§8.1).
-fn lp_sp_lp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (u, t) = polar(x - phi.sin(), y - 1.0 + phi.cos());
-    let v = mod2pi(phi - t);
+/// L⁺S⁺L⁺ (§8.1). Length ≥ `u`.
+fn lp_sp_lp(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.left_centres();
+    let u = norm(xi, eta);
+    // t = atan2(η, ξ) < 0 when η < 0, and |t| ≥ |η|/u: skip the arctangent when the
+    // sign test would fail.
+    if !best.admits(u) || eta < -SIGN_SLACK * u {
+        return None;
+    }
+    let t = eta.atan2(xi);
+    let v = mod2pi(g.phi - t);
     (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺S⁺R⁺ (§8.2).
-fn lp_sp_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (u1, t1) = polar(x + phi.sin(), y - 1.0 - phi.cos());
-    let u1 = u1 * u1;
+/// L⁺S⁺R⁺ (§8.2). Length ≥ `u`.
+fn lp_sp_rp(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.opposite_centres();
+    let u1 = xi * xi + eta * eta;
     if u1 < 4.0 - SLACK {
         return None;
     }
     let u = sqrt_slack(u1 - 4.0);
-    let t = mod2pi(t1 + 2.0f64.atan2(u));
-    let v = mod2pi(t - phi);
+    if !best.admits(u) {
+        return None;
+    }
+    let t = mod2pi(eta.atan2(xi) + 2.0f64.atan2(u));
+    let v = mod2pi(t - g.phi);
     (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺R⁻L (§8.3).
-fn lp_rm_l(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (u1, theta) = polar(x - phi.sin(), y - 1.0 + phi.cos());
-    if u1 > 4.0 + SLACK {
+/// L⁺R⁻L (§8.3). Length ≥ `|u| = 2·asin(u1/4) ≥ u1/2`.
+fn lp_rm_l(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.left_centres();
+    let u1 = norm(xi, eta);
+    if u1 > 4.0 + SLACK || !best.admits(0.5 * u1) {
         return None;
     }
     let u = -2.0 * (u1 / 4.0).min(1.0).asin();
-    let t = mod2pi(theta + 0.5 * u + PI);
-    let v = mod2pi(phi - t + u);
+    if !best.admits(-u) {
+        return None;
+    }
+    let t = mod2pi(eta.atan2(xi) + 0.5 * u + PI);
+    let v = mod2pi(g.phi - t + u);
     (t >= -SIGN_SLACK && u <= SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺R⁺ᵤL⁻ᵤR⁻ (§8.7): lengths `(t, u, v)` of `t, u, -u, v`.
-fn lp_rup_lum_rm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (xi, eta) = (x + phi.sin(), y - 1.0 - phi.cos());
-    let rho = 0.25 * (2.0 + xi.hypot(eta));
+/// L⁺R⁺ᵤL⁻ᵤR⁻ (§8.7): lengths `(t, u, v)` of `t, u, -u, v`. Length ≥ `2u`.
+fn lp_rup_lum_rm(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.opposite_centres();
+    let rho = 0.25 * (2.0 + norm(xi, eta));
     if rho > 1.0 + SLACK {
         return None;
     }
     let u = rho.min(1.0).acos();
-    let (t, v) = tau_omega(u, -u, xi, eta, phi);
+    if !best.admits(u + u) {
+        return None;
+    }
+    let (t, v) = tau_omega(u, -u, xi, eta, g.phi);
     (t >= -SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺R⁻ᵤL⁻ᵤR⁺ (§8.8): lengths `(t, u, v)` of `t, u, u, v`.
-fn lp_rum_lum_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (xi, eta) = (x + phi.sin(), y - 1.0 - phi.cos());
+/// L⁺R⁻ᵤL⁻ᵤR⁺ (§8.8): lengths `(t, u, v)` of `t, u, u, v`. Length ≥ `2|u|`.
+fn lp_rum_lum_rp(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.opposite_centres();
     let rho = (20.0 - xi * xi - eta * eta) / 16.0;
     if !(-SLACK..=1.0 + SLACK).contains(&rho) {
         return None;
     }
     let u = -rho.clamp(0.0, 1.0).acos();
-    if u < -FRAC_PI_2 - SLACK {
+    if u < -FRAC_PI_2 - SLACK || !best.admits(-u - u) {
         return None;
     }
-    let (t, v) = tau_omega(u, u, xi, eta, phi);
+    let (t, v) = tau_omega(u, u, xi, eta, g.phi);
     (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺R⁻_{π/2}S⁻L⁻ (§8.9): lengths `(t, u, v)` of `t, -π/2, u, v`.
-fn lp_rm_sm_lm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (rho, theta) = polar(x - phi.sin(), y - 1.0 + phi.cos());
+/// L⁺R⁻_{π/2}S⁻L⁻ (§8.9): lengths `(t, u, v)` of `t, -π/2, u, v`. Length ≥ `π/2 + |u|`.
+fn lp_rm_sm_lm(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.left_centres();
+    let rho = norm(xi, eta);
     if rho < 2.0 - SLACK {
         return None;
     }
     let r = sqrt_slack(rho * rho - 4.0);
     let u = 2.0 - r;
-    let t = mod2pi(theta + r.atan2(-2.0));
-    let v = mod2pi(phi - FRAC_PI_2 - t);
-    (t >= -SIGN_SLACK && u <= SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
+    if u > SIGN_SLACK || !best.admits(FRAC_PI_2 + u.abs()) {
+        return None;
+    }
+    let t = mod2pi(eta.atan2(xi) + r.atan2(-2.0));
+    let v = mod2pi(g.phi - FRAC_PI_2 - t);
+    (t >= -SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
-/// L⁺R⁻_{π/2}S⁻R⁻ (§8.10): lengths `(t, u, v)` of `t, -π/2, u, v`.
-fn lp_rm_sm_rm(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (xi, eta) = (x + phi.sin(), y - 1.0 - phi.cos());
-    let (rho, theta) = polar(-eta, xi);
+/// L⁺R⁻_{π/2}S⁻R⁻ (§8.10): lengths `(t, u, v)` of `t, -π/2, u, v`. Length ≥ `π/2 + |u|`.
+fn lp_rm_sm_rm(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.opposite_centres();
+    let rho = norm(-eta, xi);
     if rho < 2.0 - SLACK {
         return None;
     }
-    let t = theta;
     let u = 2.0 - rho;
-    let v = mod2pi(t + FRAC_PI_2 - phi);
-    (t >= -SIGN_SLACK && u <= SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
+    if u > SIGN_SLACK || !best.admits(FRAC_PI_2 + u.abs()) {
+        return None;
+    }
+    let t = xi.atan2(-eta);
+    let v = mod2pi(t + FRAC_PI_2 - g.phi);
+    (t >= -SIGN_SLACK && v <= SIGN_SLACK).then_some([t, u, v])
 }
 
 /// L⁺R⁻_{π/2}S⁻L⁻_{π/2}R⁺ (§8.11): lengths `(t, u, v)` of `t, -π/2, u, -π/2, v`.
-fn lp_rm_slm_rp(x: f64, y: f64, phi: f64) -> Option<[f64; 3]> {
-    let (xi, eta) = (x + phi.sin(), y - 1.0 - phi.cos());
-    let (rho, _) = polar(xi, eta);
+/// Length ≥ `π/2 + |u| + π/2`.
+fn lp_rm_slm_rp(g: &Goal, best: &Best) -> Option<[f64; 3]> {
+    let (xi, eta) = g.opposite_centres();
+    let rho = norm(xi, eta);
     if rho < 2.0 - SLACK {
         return None;
     }
     let u = 4.0 - sqrt_slack(rho * rho - 4.0);
-    if u > SIGN_SLACK {
+    if u > SIGN_SLACK || !best.admits(FRAC_PI_2 + u.abs() + FRAC_PI_2) {
         return None;
     }
     let t = mod2pi(((4.0 - u) * xi - 2.0 * eta).atan2(-2.0 * xi + (u - 4.0) * eta));
-    let v = mod2pi(t - phi);
+    let v = mod2pi(t - g.phi);
     (t >= -SIGN_SLACK && v >= -SIGN_SLACK).then_some([t, u, v])
 }
 
-/// The shortest word seen so far.
-struct Best(Option<Curve>);
+/// The shortest word seen so far, and the bound the caller needs an answer within.
+/// A family is only solved while the lower bound of its length can still win
+/// ([`Best::admits`]); words are compared by `Σ |length|` in driving order, the sum
+/// [`Curve::unit_length`] computes, so the winner is the word the full search finds.
+struct Best {
+    length: f64,
+    bound: f64,
+    word: Option<([Steer; MAX_SEGMENTS], [f64; MAX_SEGMENTS], usize)>,
+}
 
 impl Best {
-    fn consider(&mut self, steers: &[Steer], lengths: &[f64]) {
-        let curve = Curve::from_word(steers, lengths);
-        if self.0.is_none_or(|b| curve.unit_length() < b.unit_length()) {
-            self.0 = Some(curve);
+    fn within(bound: f64) -> Self {
+        Self {
+            length: f64::INFINITY,
+            bound,
+            word: None,
         }
+    }
+
+    /// True when a word at least `lower` long could still be the answer: shorter than
+    /// the best so far (the first of equal words wins) and within the bound.
+    fn admits(&self, lower: f64) -> bool {
+        lower < self.length && lower <= self.bound
+    }
+
+    fn consider(&mut self, steers: &[Steer], lengths: &[f64]) {
+        let length: f64 = lengths.iter().map(|l| l.abs()).sum();
+        if length < self.length {
+            let mut word = ([S; MAX_SEGMENTS], [0.0; MAX_SEGMENTS], steers.len());
+            word.0[..steers.len()].copy_from_slice(steers);
+            word.1[..lengths.len()].copy_from_slice(lengths);
+            self.length = length;
+            self.word = Some(word);
+        }
+    }
+
+    /// The shortest word as a curve, if one was found within the bound.
+    fn into_curve(self) -> Option<Curve> {
+        let (steers, lengths, n) = self.word?;
+        (self.length <= self.bound).then(|| Curve::from_word(&steers[..n], &lengths[..n]))
     }
 }
 
@@ -177,42 +297,47 @@ fn reflect<const N: usize>(steers: [Steer; N]) -> [Steer; N] {
     })
 }
 
+/// A family's base solver: the base word's lengths `(t, u, v)` to `goal`, if they exist
+/// and can still beat `best`.
+type Family = fn(&Goal, &Best) -> Option<[f64; 3]>;
+
 /// Tries `solve` on the goal as given, time-flipped, reflected and both; `word` maps
 /// the base solution to signed segment lengths of `steers`.
 fn four_ways<const N: usize>(
     best: &mut Best,
-    (x, y, phi): (f64, f64, f64),
+    goal: Goal,
     steers: [Steer; N],
-    solve: fn(f64, f64, f64) -> Option<[f64; 3]>,
+    solve: Family,
     word: impl Fn([f64; 3]) -> [f64; N],
 ) {
     let negated = |l: [f64; N]| l.map(|v| -v);
-    if let Some(s) = solve(x, y, phi) {
+    if let Some(s) = solve(&goal, best) {
         best.consider(&steers, &word(s));
     }
-    if let Some(s) = solve(-x, y, -phi) {
+    if let Some(s) = solve(&goal.flipped(), best) {
         best.consider(&steers, &negated(word(s)));
     }
-    if let Some(s) = solve(x, -y, -phi) {
+    if let Some(s) = solve(&goal.reflected(), best) {
         best.consider(&reflect(steers), &word(s));
     }
-    if let Some(s) = solve(-x, -y, phi) {
+    if let Some(s) = solve(&goal.flipped().reflected(), best) {
         best.consider(&reflect(steers), &negated(word(s)));
     }
-}
-
-/// The goal seen from the goal driving the word backwards (§8: "backwards").
-fn backwards(x: f64, y: f64, phi: f64) -> (f64, f64, f64) {
-    let (s, c) = phi.sin_cos();
-    (x * c + y * s, x * s - y * c, phi)
 }
 
 /// The shortest Reeds–Shepp curve to `(x, y, phi)` from the origin facing +x, unit
 /// radius.
 pub(crate) fn shortest(x: f64, y: f64, phi: f64) -> Curve {
-    let goal = (x, y, phi);
-    let back = backwards(x, y, phi);
-    let mut best = Best(None);
+    shortest_within(x, y, phi, f64::INFINITY).expect("CSC always has a solution")
+}
+
+/// [`shortest`] when its length is at most `bound` (unit radii), else `None`; families
+/// that cannot come within the bound are not solved. The same curve as [`shortest`]
+/// whenever it returns one.
+pub(crate) fn shortest_within(x: f64, y: f64, phi: f64, bound: f64) -> Option<Curve> {
+    let goal = Goal::new(x, y, phi);
+    let back = goal.backwards();
+    let mut best = Best::within(bound);
     // CSC
     four_ways(&mut best, goal, [L, S, L], lp_sp_lp, |l| l);
     four_ways(&mut best, goal, [L, S, R], lp_sp_rp, |l| l);
@@ -248,5 +373,5 @@ pub(crate) fn shortest(x: f64, y: f64, phi: f64) -> Curve {
         lp_rm_slm_rp,
         |[t, u, v]| [t, h, u, h, v],
     );
-    best.0.expect("CSC always has a solution")
+    best.into_curve()
 }

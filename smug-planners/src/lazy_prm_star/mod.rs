@@ -13,17 +13,25 @@
 //! empty (the path is optimal), or at its sample or time budget — an unreachable goal
 //! ends with "no path", never a hang.
 
+mod checks;
+mod expansion;
+mod focus;
+
+use self::checks::{timed_state_check, Checks, CountedMotions};
+use self::expansion::Expansion;
+use self::focus::{Focus, MIN_FOCUS_PERIOD};
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
+use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    Bounds2, BuildContext, Error, InformedSet, MotionCheck, MotionValidator, Objective, Path,
-    PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace,
-    StateValidityChecker, Termination, TimeBreakdown,
+    Bounds2, BuildContext, Error, InformedSet, MotionValidator, Objective, Path, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace, StateValidityChecker,
+    Termination, TimeBreakdown,
 };
-use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::collections::{BTreeMap, BTreeSet};
+use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -44,78 +52,11 @@ pub enum SearchMode {
 /// LazySP rounds an `auto` attempt tries before switching to Lazy Weighted A*.
 const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 
-/// Samples a first-path focus gets at least before it widens.
-const MIN_FOCUS_PERIOD: u64 = 100;
-
 /// Samples between improvement attempts once a query has its first path:
 /// `attempt_every`, or `attempt_share` × the samples it drew to find that path if more.
 fn improvement_interval(params: &LazyPrmStarParams, samples_to_first_path: u64) -> u32 {
     let scaled = (params.attempt_share * samples_to_first_path as f64).ceil();
     (scaled.min(f64::from(u32::MAX)) as u32).max(params.attempt_every)
-}
-
-/// The focus of a query: the informed set of a provisional cost `(1 + excess) ×` the
-/// straight-line cost, its excess doubling each `period` samples — a region around
-/// the straight line that grows geometrically. While it does not cover the query's
-/// informed set (no path yet, or the best path costs more than the provisional cost),
-/// every other sample is drawn in it, the others in the informed set (the bounds
-/// before a path): a short query on a big map densifies its own neighbourhood first,
-/// and a detour found on a sparse roadmap is challenged where better paths lie.
-#[derive(Clone, Copy, Debug)]
-struct Focus {
-    /// The excess of the provisional cost over the straight-line cost (0: no focus).
-    excess: f64,
-    /// The straight-line cost of the query.
-    lower_bound: f64,
-    /// The provisional cost from which the focus holds the whole bounds.
-    whole: f64,
-    /// Samples until the focus widens.
-    left: u64,
-    /// True when the next sample is drawn in the focus.
-    focused: bool,
-}
-
-impl Focus {
-    fn new(excess: f64, lower_bound: f64, whole: f64, period: u64) -> Self {
-        Self {
-            excess,
-            lower_bound,
-            whole,
-            left: period,
-            focused: true,
-        }
-    }
-
-    /// The set of the next sample: the focus every other sample, else the bounds.
-    fn next_set(&mut self, start: &Pose2, goal: &Pose2) -> Option<InformedSet> {
-        self.focused = !self.focused;
-        let active =
-            !self.focused && self.excess > 0.0 && self.lower_bound > 0.0 && self.excess.is_finite();
-        active.then_some(InformedSet {
-            start: *start,
-            goal: *goal,
-            best_cost: (1.0 + self.excess) * self.lower_bound,
-        })
-    }
-
-    /// Counts a sample; true when the focus is due to widen.
-    fn tick(&mut self) -> bool {
-        self.left = self.left.saturating_sub(1);
-        self.left == 0
-    }
-
-    /// True when the focus covers the informed set of a path of cost `cost` (or the
-    /// whole bounds): its provisional cost is at least `cost` (always with no focus).
-    fn covers(&self, cost: f64) -> bool {
-        !(self.excess > 0.0 && self.excess.is_finite() && self.lower_bound > 0.0)
-            || (1.0 + self.excess) * self.lower_bound >= cost.min(self.whole)
-    }
-
-    /// Doubles the excess and restarts the count.
-    fn widen(&mut self, period: u64) {
-        self.excess *= 2.0;
-        self.left = period;
-    }
 }
 
 /// Parameters of LazyPRM*.
@@ -175,6 +116,24 @@ pub struct LazyPrmStarParams {
     /// models need one: their k-th nearest is a turn-around away, so unlimited
     /// connections reach across the map.
     pub range: Option<f64>,
+    /// A query without a path after this many samples starts expanding its endpoints:
+    /// samples along the motion model's curves out of the start and into the goal (see
+    /// `expand_share`). Queries that find a path sooner are unaffected.
+    pub expand_after: u64,
+    /// The share of a query's samples expanded from its endpoints once `expand_after`
+    /// passed without a path (0: never): each endpoint grows a tree of valid samples
+    /// along the model's own curves, which reaches poses that uniform samples seldom
+    /// connect (a car parked facing a rock, a narrow door). In [0, 1].
+    pub expand_share: f64,
+    /// How far an expansion sample reaches from its tree, metres (its curve's target
+    /// is drawn within this distance).
+    pub expand_reach: f64,
+    /// Retry query endpoints found cut off: when a query ends without a path, the
+    /// endpoint whose roadmap component is the smaller one (less than half the roadmap:
+    /// a pocket the robot could not leave or enter within the budget) is cut off, and
+    /// later queries from or to it answer "no path" at once. True: every query spends
+    /// its whole budget again.
+    pub retry_cut_off: bool,
 }
 
 impl Default for LazyPrmStarParams {
@@ -194,6 +153,10 @@ impl Default for LazyPrmStarParams {
             search: SearchMode::Auto,
             incremental_attempts: true,
             range: None,
+            expand_after: 500,
+            expand_share: 0.5,
+            expand_reach: 3.0,
+            retry_cut_off: false,
         }
     }
 }
@@ -208,6 +171,8 @@ struct Counts {
     searches: u64,
     /// Attempts answered by repairing the previous search.
     repairs: u64,
+    /// Queries answered "no path" at once: an endpoint was cut off.
+    cut_off_queries: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -226,6 +191,9 @@ pub struct LazyPrmStar {
     grown: bool,
     /// Vertices with ids from this one on were added after the latest search.
     fresh_from: u32,
+    expansion: Expansion,
+    /// Endpoints of failed queries found in pockets (see `retry_cut_off`).
+    cut_off: BTreeSet<u32>,
     counts: Counts,
 }
 
@@ -268,6 +236,24 @@ impl LazyPrmStar {
         if params.time_limit.is_some_and(|t| t.is_nan() || t <= 0.0) {
             return Err(Error::invalid_param("planner", "time_limit must be > 0"));
         }
+        if !(0.0..=1.0).contains(&params.expand_share) {
+            return Err(Error::invalid_param(
+                "planner",
+                format!(
+                    "expand_share must be in [0, 1], got {}",
+                    params.expand_share
+                ),
+            ));
+        }
+        if !(params.expand_reach.is_finite() && params.expand_reach > 0.0) {
+            return Err(Error::invalid_param(
+                "planner",
+                format!(
+                    "expand_reach must be finite and > 0, got {}",
+                    params.expand_reach
+                ),
+            ));
+        }
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
@@ -284,8 +270,21 @@ impl LazyPrmStar {
             w_t,
             grown: false,
             fresh_from: 0,
+            expansion: Expansion::new(
+                stage_rng(0, EXPANSION_STREAM),
+                params.expand_reach,
+                params.expand_share,
+            ),
+            cut_off: BTreeSet::new(),
             counts: Counts::default(),
         })
+    }
+
+    /// Draws the endpoint expansions (see [`LazyPrmStarParams::expand_share`]) from
+    /// `rng` (by default a fixed stream of seed 0).
+    pub fn with_expansion_rng(mut self, rng: StageRng) -> Self {
+        self.expansion = Expansion::new(rng, self.params.expand_reach, self.params.expand_share);
+        self
     }
 
     /// The roadmap (for inspection and tests).
@@ -308,6 +307,29 @@ impl LazyPrmStar {
         self.counts.samples += 1;
         self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
         sample
+    }
+
+    /// Draws an expansion sample and adds it (checked first unless vertices are lazy) to
+    /// the roadmap and to its end's tree; true if added.
+    fn insert_expansion_sample(&mut self) -> bool {
+        let started = Instant::now();
+        let drawn = self.expansion.sample(self.space.as_ref(), &self.bounds);
+        self.counts.samples += 1;
+        self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+        let Some((end, sample, (from, to))) = drawn else {
+            return false;
+        };
+        let added = self.insert_sample(sample);
+        if added {
+            let started = Instant::now();
+            let joined = self.motions.is_valid_motion(&from, &to);
+            self.counts.edge_checks += 1;
+            self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
+            if joined {
+                self.expansion.grow(end, sample);
+            }
+        }
+        added
     }
 
     fn check_state(&mut self, state: &Pose2) -> bool {
@@ -490,7 +512,28 @@ impl LazyPrmStar {
         );
         let max_stall = self.params.max_stall;
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
+        self.expansion.begin(start, goal);
         while !clock.is_done() && !stalled(&best, stall) {
+            if best.is_none()
+                && clock.iterations() >= self.params.expand_after
+                && self.expansion.is_due()
+            {
+                clock.tick();
+                if !self.insert_expansion_sample() {
+                    continue;
+                }
+                since_attempt += 1;
+                if since_attempt >= wait && self.roadmap.maybe_connected(s, g) {
+                    since_attempt = 0;
+                    if let Some(path) = self.attempt(s, g, f64::INFINITY, 0) {
+                        interval = improvement_interval(&self.params, clock.iterations());
+                        best = Some(path);
+                    } else {
+                        wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
+                    }
+                }
+                continue;
+            }
             // `best` changes only at the end of an iteration.
             let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
             let focusing = !focus.covers(best_cost);
@@ -555,6 +598,10 @@ impl LazyPrmStar {
             if found.is_none() && best.is_none() {
                 wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
             }
+            if found.is_none() && best.is_some() && focus.covers(best_cost) {
+                // No cheaper path: a stalled attempt, as a repair that finds none.
+                stall += 1;
+            }
             if let Some(path) = found {
                 if best.is_none() {
                     interval = improvement_interval(&self.params, clock.iterations());
@@ -573,7 +620,33 @@ impl LazyPrmStar {
                 }
             }
         }
+        if best.is_none() && since_attempt > 0 && self.roadmap.maybe_connected(s, g) {
+            // The samples since the last attempt may have connected the endpoints.
+            best = self.attempt(s, g, f64::INFINITY, 0);
+        }
+        if best.is_none() {
+            self.cut_off_pocket(s, g);
+        }
         best
+    }
+
+    /// After a failed query: cuts off the endpoint whose component is the smaller one
+    /// if it holds less than half the roadmap (both on a tie), unless retried.
+    fn cut_off_pocket(&mut self, s: u32, g: u32) {
+        if self.params.retry_cut_off {
+            return;
+        }
+        self.roadmap.refresh_components();
+        let half = self.roadmap.live_vertex_count() / 2;
+        let (size_s, size_g) = (
+            self.roadmap.component_size(s),
+            self.roadmap.component_size(g),
+        );
+        for (v, size, other) in [(s, size_s, size_g), (g, size_g, size_s)] {
+            if size <= other && size < half {
+                self.cut_off.insert(v);
+            }
+        }
     }
 
     /// A cost whose informed set holds the whole bounds: every corner's sum of
@@ -645,6 +718,10 @@ impl PointToPointPlanner for LazyPrmStar {
                 states: vec![*start],
                 cost: 0.0,
             }),
+            (Some(s), Some(g)) if self.cut_off.contains(&s) || self.cut_off.contains(&g) => {
+                self.counts.cut_off_queries += 1;
+                PlannerOutcome::NoPath
+            }
             (Some(s), Some(g)) => match self.solve(start, goal, s, g) {
                 Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
                 None => PlannerOutcome::NoPath,
@@ -668,119 +745,27 @@ impl PointToPointPlanner for LazyPrmStar {
                 ("edge_checks".to_string(), c.edge_checks),
                 ("astar_searches".to_string(), c.searches),
                 ("astar_repairs".to_string(), c.repairs),
+                ("cut_off_queries".to_string(), c.cut_off_queries),
                 ("astar_expansions".to_string(), self.astar.expansions),
             ]),
         }
     }
 }
 
-/// A state check, counted and timed as vertex checking.
-fn timed_state_check(
-    states: &dyn StateValidityChecker,
-    counts: &mut Counts,
-    state: &Pose2,
-) -> bool {
-    let started = Instant::now();
-    let valid = states.is_valid(state);
-    counts.vertex_checks += 1;
-    counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
-    valid
-}
-
-/// A motion validator that counts and times the checks made through it (those of
-/// path post-processing, booked as edge checks).
-struct CountedMotions<'a> {
-    inner: &'a dyn MotionValidator,
-    checks: AtomicU64,
-    nanoseconds: AtomicU64,
-}
-
-impl<'a> CountedMotions<'a> {
-    fn new(inner: &'a dyn MotionValidator) -> Self {
-        Self {
-            inner,
-            checks: AtomicU64::new(0),
-            nanoseconds: AtomicU64::new(0),
-        }
-    }
-
-    fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
-        let started = Instant::now();
-        let result = check();
-        let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
-        self.checks.fetch_add(1, Relaxed);
-        self.nanoseconds.fetch_add(elapsed, Relaxed);
-        result
-    }
-}
-
-impl MotionValidator for CountedMotions<'_> {
-    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
-        self.timed(|| self.inner.is_valid_motion(a, b))
-    }
-
-    fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
-        self.timed(|| self.inner.check_motion(a, b))
-    }
-}
-
-/// The checks the searches run, with their counters.
-struct Checks<'a> {
-    states: &'a dyn StateValidityChecker,
-    motions: &'a dyn MotionValidator,
-    counts: &'a mut Counts,
-}
-
-impl Evaluator for Checks<'_> {
-    fn vertex(&mut self, map: &mut Roadmap, v: u32) -> bool {
-        match map.vertex_validity(v) {
-            Validity::Valid => true,
-            Validity::Invalid => false,
-            Validity::Unknown => {
-                let valid = timed_state_check(self.states, self.counts, map.pose(v));
-                if valid {
-                    map.mark_vertex_valid(v);
-                } else {
-                    map.remove_vertex(v);
-                }
-                valid
-            }
-        }
-    }
-
-    fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
-        let edge = *map.edge(e);
-        match edge.validity {
-            Validity::Valid => true,
-            Validity::Invalid => false,
-            Validity::Unknown => {
-                let started = Instant::now();
-                let valid = self
-                    .motions
-                    .is_valid_motion(map.pose(edge.a), map.pose(edge.b));
-                self.counts.edge_checks += 1;
-                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
-                if valid {
-                    map.mark_edge_valid(e);
-                } else {
-                    map.remove_edge(e);
-                }
-                valid
-            }
-        }
-    }
-}
+/// The random stream of the endpoint expansions.
+const EXPANSION_STREAM: &str = "planner-expansion";
 
 fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
-    LazyPrmStar::new(
+    Ok(LazyPrmStar::new(
         params,
         ctx.new_sampler()?,
         ctx.state_validity()?,
         ctx.motion_validator()?,
         (ctx.space(), ctx.objective()),
         bounds,
-    )
+    )?
+    .with_expansion_rng(ctx.rng(EXPANSION_STREAM)))
 }
 
 smug_core::register_plugin!(
@@ -932,5 +917,98 @@ mod tests {
         let path = outcome.exact_path().expect("a path");
         assert!((path.cost - a.xy_distance(&b)).abs() < 1e-9);
         assert!(p.stats().counters["samples"] < p.params.max_samples);
+    }
+
+    /// Invalid on a ring 2 to 3 m around (8, 8): the disc inside is a closed pocket.
+    struct Ring;
+
+    impl Ring {
+        fn free(p: &Pose2) -> bool {
+            let d = (p.x - 8.0).hypot(p.y - 8.0);
+            !(2.0..=3.0).contains(&d)
+        }
+    }
+
+    impl StateValidityChecker for Ring {
+        fn is_valid(&self, p: &Pose2) -> bool {
+            Self::free(p)
+        }
+    }
+
+    impl MotionValidator for Ring {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            let steps = (a.xy_distance(b) / 0.05).ceil().max(1.0) as usize;
+            (0..=steps).all(|i| {
+                let t = i as f64 / steps as f64;
+                Self::free(&Pose2::new(
+                    a.x + t * (b.x - a.x),
+                    a.y + t * (b.y - a.y),
+                    0.0,
+                ))
+            })
+        }
+
+        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+            if self.is_valid_motion(a, b) {
+                MotionCheck::Valid
+            } else {
+                MotionCheck::Invalid { last_valid: None }
+            }
+        }
+    }
+
+    fn ring_planner(retry_cut_off: bool) -> LazyPrmStar {
+        let params = LazyPrmStarParams {
+            max_samples: 1_000,
+            retry_cut_off,
+            ..LazyPrmStarParams::default()
+        };
+        LazyPrmStar::new(
+            params,
+            Box::new(Lcg(7)),
+            Arc::new(Ring),
+            Arc::new(Ring),
+            (
+                Arc::new(Se2Space::default()),
+                Arc::new(PathLength::default()),
+            ),
+            Bounds2 {
+                min: [0.0, 0.0],
+                max: [10.0, 10.0],
+            },
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
+        let pocket = Pose2::new(8.0, 8.0, 0.0);
+        let mut p = ring_planner(false);
+        let first = p.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
+        assert!(matches!(first, PlannerOutcome::NoPath));
+        let spent = p.stats().counters["samples"];
+        assert!(spent >= 1_000, "the whole budget: {spent}");
+        let second = p.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
+        assert!(matches!(second, PlannerOutcome::NoPath));
+        assert_eq!(
+            p.stats().counters["samples"],
+            spent,
+            "no budget spent again"
+        );
+        assert_eq!(p.stats().counters["cut_off_queries"], 1);
+        let free = p.plan(&Pose2::new(1.0, 9.0, 0.0), &Pose2::new(1.0, 1.0, 0.0));
+        assert!(
+            free.unwrap().exact_path().is_some(),
+            "the other end is not cut off"
+        );
+
+        let mut retried = ring_planner(true);
+        retried.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
+        retried.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
+        assert!(
+            retried.stats().counters["samples"] >= 2_000,
+            "a second budget"
+        );
+        assert_eq!(retried.stats().counters["cut_off_queries"], 0);
     }
 }

@@ -1,0 +1,104 @@
+//! The validity checks LazyPRM*'s searches and post-processing run, counted and timed.
+
+use super::Counts;
+use crate::roadmap::{Evaluator, Roadmap, Validity};
+use smug_core::{MotionCheck, MotionValidator, Pose2, StateValidityChecker};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+use std::time::Instant;
+
+/// A state check, counted and timed as vertex checking.
+pub(super) fn timed_state_check(
+    states: &dyn StateValidityChecker,
+    counts: &mut Counts,
+    state: &Pose2,
+) -> bool {
+    let started = Instant::now();
+    let valid = states.is_valid(state);
+    counts.vertex_checks += 1;
+    counts.breakdown.vertex_checking_s += started.elapsed().as_secs_f64();
+    valid
+}
+
+/// A motion validator that counts and times the checks made through it (those of
+/// path post-processing, booked as edge checks).
+pub(super) struct CountedMotions<'a> {
+    pub(super) inner: &'a dyn MotionValidator,
+    pub(super) checks: AtomicU64,
+    pub(super) nanoseconds: AtomicU64,
+}
+
+impl<'a> CountedMotions<'a> {
+    pub(super) fn new(inner: &'a dyn MotionValidator) -> Self {
+        Self {
+            inner,
+            checks: AtomicU64::new(0),
+            nanoseconds: AtomicU64::new(0),
+        }
+    }
+
+    fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
+        let started = Instant::now();
+        let result = check();
+        let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
+        self.checks.fetch_add(1, Relaxed);
+        self.nanoseconds.fetch_add(elapsed, Relaxed);
+        result
+    }
+}
+
+impl MotionValidator for CountedMotions<'_> {
+    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.timed(|| self.inner.is_valid_motion(a, b))
+    }
+
+    fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+        self.timed(|| self.inner.check_motion(a, b))
+    }
+}
+
+/// The checks the searches run, with their counters.
+pub(super) struct Checks<'a> {
+    pub(super) states: &'a dyn StateValidityChecker,
+    pub(super) motions: &'a dyn MotionValidator,
+    pub(super) counts: &'a mut Counts,
+}
+
+impl Evaluator for Checks<'_> {
+    fn vertex(&mut self, map: &mut Roadmap, v: u32) -> bool {
+        match map.vertex_validity(v) {
+            Validity::Valid => true,
+            Validity::Invalid => false,
+            Validity::Unknown => {
+                let valid = timed_state_check(self.states, self.counts, map.pose(v));
+                if valid {
+                    map.mark_vertex_valid(v);
+                } else {
+                    map.remove_vertex(v);
+                }
+                valid
+            }
+        }
+    }
+
+    fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
+        let edge = *map.edge(e);
+        match edge.validity {
+            Validity::Valid => true,
+            Validity::Invalid => false,
+            Validity::Unknown => {
+                let started = Instant::now();
+                let valid = self
+                    .motions
+                    .is_valid_motion(map.pose(edge.a), map.pose(edge.b));
+                self.counts.edge_checks += 1;
+                self.counts.breakdown.edge_checking_s += started.elapsed().as_secs_f64();
+                if valid {
+                    map.mark_edge_valid(e);
+                } else {
+                    map.remove_edge(e);
+                }
+                valid
+            }
+        }
+    }
+}

@@ -1,0 +1,319 @@
+"""SMUG: safe multi-goal planning for mobile robots, from Python.
+
+A thin layer over the Rust library: a config is loaded, the pipeline assembled and the
+mission planned exactly as ``smug plan`` does, so the same config and seed give the same
+plan. Planning releases the GIL.
+
+>>> import smug
+>>> plan = smug.plan("configs/lunar.toml", seed=1)
+>>> plan.cost, plan.waypoints.shape          # doctest: +SKIP
+(83.4..., (143, 4))
+
+Arrays follow the grid's layout: shape ``(ny, nx)``, row ``j`` at
+``y = origin_y + (j + 0.5) * resolution``, column ``i`` at ``x = origin_x + (i + 0.5) * resolution``
+(row 0 is the *bottom* of the map; flip with ``np.flipud`` to draw an image top-down, or use
+``origin="lower"`` in matplotlib).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _smug
+from ._smug import ConfigError, InputError, NoSolution, SmugError
+
+__all__ = [
+    "ConfigError",
+    "InputError",
+    "NoSolution",
+    "Plan",
+    "SmugError",
+    "World",
+    "load_world",
+    "p2p",
+    "plan",
+    "plugins",
+]
+
+__version__: str = _smug.__version__
+
+PathLike = Union[str, "os.PathLike[str]"]
+Overrides = Union[Mapping[str, Any], Sequence[str], None]
+Traversability = Callable[[np.ndarray, float], np.ndarray]
+
+
+def _toml_value(value: Any) -> str:
+    """A Python value as a TOML literal for a ``--set KEY=VALUE`` override."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{ " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + " }"
+    raise TypeError(f"set: cannot write {type(value).__name__} {value!r} as a TOML value")
+
+
+def _overrides(set: Overrides) -> List[str]:
+    """``{"planner.params.max_stall": 5}`` or ``["planner.params.max_stall=5"]`` as CLI overrides."""
+    if set is None:
+        return []
+    if isinstance(set, Mapping):
+        return [f"{key}={_toml_value(value)}" for key, value in set.items()]
+    if isinstance(set, str):
+        return [set]
+    return [str(item) for item in set]
+
+
+class World:
+    """A world: elevation (and traversability) layers and a mission.
+
+    Build one with :meth:`World.from_arrays`, or get a config's world with
+    :func:`load_world` or :attr:`Plan.world`.
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_smug.World") -> None:
+        self._native = native
+
+    @classmethod
+    def from_arrays(
+        cls,
+        elevation: np.ndarray,
+        resolution: float,
+        origin: Tuple[float, float] = (0.0, 0.0),
+        traversability: Optional[np.ndarray] = None,
+        occupancy: Optional[np.ndarray] = None,
+        *,
+        mission: Mapping[str, Any],
+        obstacle_height: float = 2.0,
+        name: str = "arrays",
+    ) -> "World":
+        """A world from numpy arrays.
+
+        ``elevation``: float32/float64 ``(ny, nx)`` heights in metres (NaN = no data);
+        ``resolution``: cell size in metres; ``origin``: the lower-left corner ``(x, y)``;
+        ``traversability``: optional ``(ny, nx)`` values in [0, 1] (NaN = unknown);
+        ``occupancy``: optional bool ``(ny, nx)``, occupied cells rise ``obstacle_height``
+        metres above the elevation (as in the ``map`` world);
+        ``mission``: ``{"start": (x, y, yaw), "end": (x, y, yaw) or None,
+        "targets": [{"id": str, "position": (x, y[, z]), "pois": [(x, y, yaw), ...]}]}``
+        (poses may also be ``{"x":, "y":, "yaw":}`` dicts).
+
+        Raises :class:`InputError` naming the array, its shape or dtype, or the mission
+        entry at fault.
+        """
+        try:
+            mission_json = json.dumps(mission, default=_json_default)
+        except (TypeError, ValueError) as err:
+            raise InputError(f"mission: {err}") from None
+        native = _smug.World._from_arrays(
+            elevation,
+            float(resolution),
+            (float(origin[0]), float(origin[1])),
+            mission_json,
+            traversability,
+            occupancy,
+            float(obstacle_height),
+            name,
+        )
+        return cls(native)
+
+    @property
+    def name(self) -> str:
+        """Name in reports."""
+        return self._native.name
+
+    @property
+    def elevation(self) -> np.ndarray:
+        """Terrain height, float32 ``(ny, nx)`` (NaN = no data)."""
+        return self._native.elevation
+
+    @property
+    def traversability(self) -> Optional[np.ndarray]:
+        """Traversability in [0, 1], float32 ``(ny, nx)`` (NaN = unknown), or None."""
+        return self._native.traversability
+
+    @property
+    def resolution(self) -> float:
+        """Cell size, metres."""
+        return self._native.resolution
+
+    @property
+    def origin(self) -> Tuple[float, float]:
+        """Lower-left corner ``(x, y)`` of the map."""
+        return self._native.origin
+
+    @property
+    def bounds(self) -> Tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)``."""
+        return self._native.bounds
+
+    @property
+    def extent(self) -> Tuple[float, float, float, float]:
+        """``(xmin, xmax, ymin, ymax)``, for matplotlib's ``imshow(..., origin="lower")``."""
+        x0, y0, x1, y1 = self.bounds
+        return (x0, x1, y0, y1)
+
+    @property
+    def mission(self) -> Dict[str, Any]:
+        """The mission as Python data (poses as ``{"x", "y", "yaw"}`` dicts)."""
+        return json.loads(self._native._mission_json())
+
+    def __repr__(self) -> str:
+        return repr(self._native)
+
+
+def _json_default(value: Any) -> Any:
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"{type(value).__name__} {value!r} is not a number, list or dict")
+
+
+class Plan:
+    """A safe multi-goal plan: what ``smug plan`` writes to ``plan.json``."""
+
+    __slots__ = ("_json", "_data", "waypoints", "world")
+
+    def __init__(self, text: str, waypoints: np.ndarray, world: World) -> None:
+        self._json = text
+        self._data: Dict[str, Any] = json.loads(text)
+        #: ``(n, 4)`` float64 waypoints ``x, y, z, yaw`` from start to end.
+        self.waypoints: np.ndarray = waypoints
+        #: The world planned in (with the traversability layer used).
+        self.world: World = world
+
+    @property
+    def cost(self) -> float:
+        """Total cost under the planning objective."""
+        return self._data["cost"]
+
+    @property
+    def sequence(self) -> List[str]:
+        """Target ids in visiting order."""
+        return self._data["sequence"]
+
+    @property
+    def pois(self) -> List[Dict[str, Any]]:
+        """The chosen PoI per target: ``{"target", "index", "pose": {"x", "y", "yaw"}}``."""
+        return self._data["pois"]
+
+    @property
+    def segments(self) -> List[Dict[str, Any]]:
+        """The legs ``{"from", "to", "path": {"states", "cost"}}`` from start to end."""
+        return self._data["segments"]
+
+    @property
+    def metrics(self) -> Dict[str, Any]:
+        """Length, cost under every objective, traversability along the plan."""
+        return self._data.get("metrics", {})
+
+    @property
+    def skipped(self) -> List[str]:
+        """Targets left out as unreachable (with ``plan.skip_unreachable = true``)."""
+        return self._data.get("skipped", [])
+
+    @property
+    def stats(self) -> Dict[str, Any]:
+        """Counters and timings."""
+        return self._data["stats"]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The plan as Python data (a copy)."""
+        return json.loads(self._json)
+
+    def to_json(self) -> str:
+        """The plan as JSON, byte for byte what ``smug plan`` writes to ``plan.json``."""
+        return self._json
+
+    def __repr__(self) -> str:
+        return (
+            f"Plan(cost={self.cost:.3f}, {len(self.sequence)} targets, "
+            f"{len(self.waypoints)} waypoints)"
+        )
+
+
+def plan(
+    config: PathLike,
+    set: Overrides = None,
+    seed: Optional[int] = None,
+    world: Optional[World] = None,
+    traversability: Optional[Traversability] = None,
+) -> Plan:
+    """Plans the mission of ``config`` (a pipeline TOML), as ``smug plan`` does.
+
+    ``set``: overrides, ``{"planner.params.max_stall": 5}`` or ``["key=value", ...]``;
+    ``seed``: overrides the config's seed; ``world``: plan in this world instead of the
+    config's ``[world]``; ``traversability``: a callable ``(elevation, resolution) ->
+    array`` used instead of the config's ``[traversability]`` estimator. It gets the
+    elevation as float64 ``(ny, nx)`` (NaN = no data) and must return a float32/float64
+    array of the same shape with values in [0, 1] (NaN = unknown).
+
+    Raises :class:`ConfigError` (bad config, key, plugin or parameter), :class:`InputError`
+    (unusable map, mission or traversability) or :class:`NoSolution` (unreachable targets);
+    each message is the one the CLI prints.
+    """
+    native_world = world._native if world is not None else None
+    text, waypoints, planned_world = _smug.plan(
+        os.fspath(config), _overrides(set), seed, native_world, traversability
+    )
+    return Plan(text, waypoints, World(planned_world))
+
+
+def load_world(config: PathLike, set: Overrides = None, seed: Optional[int] = None) -> World:
+    """The world of ``config`` with its traversability layer, without planning."""
+    return World(_smug.load_world(os.fspath(config), _overrides(set), seed))
+
+
+def plugins() -> List[Dict[str, Any]]:
+    """Every registered plugin by stage, as ``smug plugins --json`` prints it:
+    ``[{"stage", "summary", "plugins": [{"name", "summary", "params"}]}]``."""
+    return json.loads(_smug.plugins_json())
+
+
+def p2p(
+    queries: Union[np.ndarray, Sequence[Sequence[float]]],
+    config: Optional[PathLike] = None,
+    set: Overrides = None,
+    world: Optional[World] = None,
+    map: Optional[PathLike] = None,
+    obstacle_height: float = 2.0,
+) -> Dict[str, Any]:
+    """Point-to-point queries on one shared roadmap, in order, as ``smug p2p`` does.
+
+    ``queries``: ``(n, 6)`` rows ``sx, sy, syaw, gx, gy, gyaw``; ``config``: the pipeline
+    (default: the CLI's ``configs/p2p-grid.toml``, a disc robot on an occupancy grid);
+    ``world`` or ``map`` (a map_server YAML): where to plan (default: the config's world).
+    Returns ``{"queries": [{"status", "cost", "time_s", "vertices", "waypoints"}],
+    "total_time_s", "planner"}``, the JSON ``smug p2p --out`` writes.
+    """
+    array = np.asarray(queries, dtype=np.float64)
+    if array.ndim == 1 and array.size == 6:
+        array = array.reshape(1, 6)
+    text = _smug.p2p(
+        array,
+        os.fspath(config) if config is not None else None,
+        _overrides(set),
+        world._native if world is not None else None,
+        os.fspath(map) if map is not None else None,
+        float(obstacle_height),
+    )
+    return json.loads(text)

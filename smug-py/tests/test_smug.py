@@ -1,0 +1,333 @@
+"""End-to-end tests of the `smug` Python package (run by .ci/run after `pip install ./smug-py`).
+
+The CLI comparison runs the `smug` binary the workspace built: `$SMUG_BIN`, else
+`$CARGO_TARGET_DIR/release/smug`, else `target/release/smug` (build it with
+`cargo build --release -p smug-cli`); a missing binary fails the test, it does not skip.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import smug
+
+REPO = Path(__file__).resolve().parents[2]
+LUNAR = REPO / "configs" / "lunar.toml"
+
+
+def smug_bin() -> Path:
+    if "SMUG_BIN" in os.environ:
+        path = Path(os.environ["SMUG_BIN"])
+    else:
+        target = Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
+        path = target / "release" / "smug"
+    assert path.is_file(), (
+        f"the smug CLI is not built at {path}: run `cargo build --release -p smug-cli` "
+        "or set SMUG_BIN"
+    )
+    return path
+
+
+def run_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [str(smug_bin()), *args], capture_output=True, text=True, cwd=REPO, timeout=600
+    )
+
+
+# A 20 × 10 m flat world: start on the left, one target on the right.
+RES = 0.1
+NX, NY = 200, 100
+MISSION = {
+    "start": (2.0, 5.0, 0.0),
+    "targets": [
+        {"id": "far", "position": (18.0, 5.0), "pois": [(17.0, 5.0, 0.0), (18.0, 4.0, 1.57)]},
+    ],
+}
+
+
+def flat_world(**kwargs) -> smug.World:
+    return smug.World.from_arrays(
+        np.zeros((NY, NX)), RES, (0.0, 0.0), mission=kwargs.pop("mission", MISSION), **kwargs
+    )
+
+
+def band(elevation: np.ndarray, resolution: float) -> np.ndarray:
+    """Traversable everywhere but a band 8 m ≤ x ≤ 12 m, y ≤ 8 m (a gap at the top)."""
+    ny, nx = elevation.shape
+    x = (np.arange(nx) + 0.5) * resolution
+    y = (np.arange(ny) + 0.5) * resolution
+    xx, yy = np.meshgrid(x, y)
+    t = np.ones_like(elevation)
+    t[(xx >= 8.0) & (xx <= 12.0) & (yy <= 8.0)] = 0.0
+    return t
+
+
+# --- plan -----------------------------------------------------------------------------
+
+
+def test_plan_from_python_equals_the_cli(tmp_path):
+    plan = smug.plan(LUNAR, seed=2)
+    cli = run_cli("plan", str(LUNAR), "--seed", "2", "--out", str(tmp_path))
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads((tmp_path / "plan.json").read_text())
+    assert plan.cost == expected["cost"]  # bit for bit
+    assert plan.sequence == expected["sequence"]
+    assert plan.pois == expected["pois"]
+    assert np.array_equal(plan.waypoints, np.array(expected["waypoints"], dtype=np.float64))
+    assert plan.waypoints.shape == (len(expected["waypoints"]), 4)
+    assert [s["path"] for s in plan.segments] == [s["path"] for s in expected["segments"]]
+    # to_json is what the CLI writes (up to the timings in stats)
+    ours = json.loads(plan.to_json())
+    for data in (ours, expected):
+        data["stats"].pop("stage_times_s")
+        data["stats"].pop("breakdown")
+    assert ours == expected
+
+
+def test_plan_attributes_and_set_overrides():
+    plan = smug.plan(LUNAR, set={"planner.params.max_stall": 2, "selector.type": "dp"}, seed=1)
+    assert isinstance(plan.cost, float) and plan.cost > 0
+    assert len(plan.sequence) == 13 and len(plan.pois) == 13
+    assert plan.segments[0]["from"] == "start"
+    assert plan.stats["paths_planned"] > 0
+    assert plan.waypoints.dtype == np.float64
+    assert plan.world.traversability is not None
+    assert plan.world.elevation.shape == (290, 300)
+    same = smug.plan(LUNAR, set=["planner.params.max_stall=2", "selector.type=\"dp\""], seed=1)
+    assert same.cost == plan.cost
+    assert "cost=" in repr(plan)
+
+
+def test_plan_releases_the_gil():
+    done = threading.Event()
+    result = {}
+
+    def worker():
+        result["plan"] = smug.plan(LUNAR, set={"selector.type": "dp"}, seed=3)
+        done.set()
+
+    thread = threading.Thread(target=worker)
+    spins = 0
+    thread.start()
+    started = time.perf_counter()
+    while not done.is_set():
+        spins += 1
+        time.sleep(0.001)
+    elapsed = time.perf_counter() - started
+    thread.join()
+    assert result["plan"].cost > 0
+    # With the GIL held, this thread could not run while Rust plans.
+    assert spins >= max(3, int(elapsed / 0.001) // 4), (spins, elapsed)
+
+
+# --- worlds from arrays -----------------------------------------------------------------
+
+
+def test_from_arrays_world_plans():
+    world = flat_world(name="flat-20x10")
+    assert world.elevation.shape == (NY, NX)
+    assert world.bounds == (0.0, 0.0, 20.0, 10.0)
+    assert world.mission["targets"][0]["pois"][1] == {"x": 18.0, "y": 4.0, "yaw": 1.57}
+    plan = smug.plan(LUNAR, world=world)
+    assert plan.sequence == ["far"]
+    assert plan.world.name == "flat-20x10"
+    start, end = plan.waypoints[0], plan.waypoints[-1]
+    assert tuple(start[:2]) == (2.0, 5.0) and tuple(end[:2]) == (2.0, 5.0)
+    # on flat ground straight there and back: about 2 × 15 m
+    assert 29.9 < plan.metrics["length_m"] < 31.0
+
+
+def test_from_arrays_occupancy_blocks_cells():
+    occupancy = np.zeros((NY, NX), dtype=bool)
+    occupancy[:, 95:105] = True  # a wall across the map at x ≈ 10 m
+    world = flat_world(occupancy=occupancy)
+    assert world.elevation[50, 100] == pytest.approx(2.0)
+    with pytest.raises(smug.NoSolution, match="no safe path reaches target.*`far`"):
+        smug.plan(LUNAR, world=world)
+
+
+def test_from_arrays_traversability_layer_is_kept():
+    world = flat_world(traversability=np.full((NY, NX), 0.5, dtype=np.float32))
+    assert np.all(world.traversability == 0.5)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"elevation": np.zeros((4, 4, 2))}, r"elevation: expected a 2-D array .* got shape \(4, 4, 2\)"),
+        ({"elevation": np.zeros((4, 4), dtype=np.int64)}, r"elevation: dtype int64 is not supported; use float32 or float64"),
+        ({"elevation": [[0.0]]}, r"elevation: expected a numpy array, got list"),
+        ({"resolution": -1.0}, r"elevation: grid resolution must be > 0, got -1"),
+        ({"traversability": np.zeros((3, 3))}, r"traversability: shape \(3, 3\) differs from the elevation's \(100, 200\)"),
+        ({"traversability": np.full((NY, NX), 2.0)}, r"traversability: value 2 at \[0, 0\] .* outside \[0, 1\]"),
+        ({"occupancy": np.zeros((NY, NX))}, r"occupancy: dtype float64 is not supported; use bool"),
+        ({"mission": {"start": (1.0, 1.0), "targets": []}}, r"mission.start: expected \(x, y, yaw\), got 2 numbers"),
+        ({"mission": {"start": (1.0, 1.0, 0.0), "targets": [{"id": "t", "position": (1, 1), "pois": [(50.0, 1.0, 0.0)]}]}},
+         r"mission: PoI 0 of target `t` lies outside the map \(bounds \[0, 0\] to \[20, 10\]\)"),
+        ({"mission": {"start": (1.0, 1.0, 0.0), "targets": [{"id": "t", "pois": []}]}}, r"mission: missing field `position`"),
+        ({"mission": {"start": (1.0, 1.0, 0.0), "targets": [{"id": "t", "position": (1, 1), "pois": []}]}},
+         r"mission: target `t` has no pose of interest"),
+    ],
+)
+def test_from_arrays_errors_name_the_culprit(kwargs, message):
+    args = {"elevation": np.zeros((NY, NX)), "resolution": RES, "mission": MISSION}
+    args.update(kwargs)
+    with pytest.raises(smug.InputError, match=message):
+        smug.World.from_arrays(args.pop("elevation"), args.pop("resolution"), **args)
+
+
+# --- traversability written in Python ----------------------------------------------------
+
+
+def test_python_traversability_changes_the_plan():
+    world = flat_world()
+    straight = smug.plan(LUNAR, world=world)
+    calls = []
+
+    def estimator(elevation, resolution):
+        calls.append((elevation.shape, elevation.dtype, resolution))
+        return band(elevation, resolution)
+
+    around = smug.plan(LUNAR, world=world, traversability=estimator)
+    assert calls == [((NY, NX), np.float64, RES)]
+    assert np.array_equal(around.world.traversability, band(np.zeros((NY, NX)), RES))
+    assert around.cost > straight.cost + 1.0
+    # no waypoint lies in the band (the checkers test the traversability under the
+    # robot's centre, every 0.5 m along a leg: a leg may clip the band's corner)
+    w = around.waypoints
+    for x, y in w[:, :2]:
+        assert not (8.0 <= x <= 12.0 and y <= 8.0), (x, y)
+    for a, b in zip(w[:-1], w[1:]):
+        n = int(np.ceil(np.hypot(*(b[:2] - a[:2])) / 0.5))
+        inside = [
+            (x, y)
+            for x, y in (a[:2] + s * (b[:2] - a[:2]) for s in np.linspace(0.0, 1.0, 4 * n + 1))
+            if 8.0 + 0.5 <= x <= 12.0 - 0.5 and y <= 8.0 - 0.5
+        ]
+        assert not inside, inside[:3]
+    # and it goes through the gap
+    assert any(p[1] > 8.0 and 8.0 <= p[0] <= 12.0 for p in w) or any(
+        a[1] > 8.0 and b[1] > 8.0 and a[0] < 8.0 < 12.0 < b[0] for a, b in zip(w[:-1], w[1:])
+    )
+    # the plan's metrics are computed on the Python layer
+    assert straight.metrics.get("traversability_mean") is None or straight.metrics["risky_length_m"] == 0.0
+    assert around.metrics["traversability_mean"] > 0.95
+
+
+def test_python_traversability_float32_and_nan_are_accepted():
+    def estimator(elevation, resolution):
+        t = np.ones(elevation.shape, dtype=np.float32)
+        t[0, :] = np.nan
+        return t
+
+    plan = smug.plan(LUNAR, world=flat_world(), traversability=estimator)
+    assert np.isnan(plan.world.traversability[0]).all()
+
+
+@pytest.mark.parametrize(
+    "returned, message",
+    [
+        (lambda e: np.ones((5, 5)), r"the traversability function's result: shape \(5, 5\) differs from the elevation's \(100, 200\)"),
+        (lambda e: np.ones(e.shape, dtype=np.int64), r"the traversability function's result: dtype int64 is not supported; use float32 or float64"),
+        (lambda e: np.full(e.shape, 1.5), r"the traversability function's result: value 1.5 at \[0, 0\] \(row, column\) is outside \[0, 1\]"),
+        (lambda e: np.ones(e.shape[0]), r"the traversability function's result: expected a 2-D array .* got shape \(100,\)"),
+        (lambda e: "no", r"the traversability function's result: expected a numpy array, got str"),
+    ],
+)
+def test_python_traversability_errors_name_shape_dtype_range(returned, message):
+    with pytest.raises(smug.InputError, match=message):
+        smug.plan(LUNAR, world=flat_world(), traversability=lambda e, r: returned(e))
+
+
+def test_python_traversability_exception_is_the_cause():
+    def broken(elevation, resolution):
+        raise RuntimeError("model weights missing")
+
+    with pytest.raises(smug.InputError, match="the traversability function raised RuntimeError: model weights missing") as info:
+        smug.plan(LUNAR, world=flat_world(), traversability=broken)
+    assert isinstance(info.value.__cause__, RuntimeError)
+
+
+# --- errors carry the CLI's messages ----------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "config, set, error, culprit",
+    [
+        (LUNAR, ["planner.params.no_such_key=1"], smug.ConfigError, "planner.params.no_such_key"),
+        (LUNAR, ["selector.type=\"nope\""], smug.ConfigError, "unknown selector plugin `nope`"),
+        (LUNAR, ["robot.length=100.0"], smug.ConfigError, "robot.length"),
+        (REPO / "configs" / "no-such.toml", [], smug.ConfigError, "no-such.toml: cannot read"),
+    ],
+)
+def test_errors_are_typed_and_carry_the_cli_message(config, set, error, culprit):
+    with pytest.raises(error) as info:
+        smug.plan(config, set=set)
+    message = str(info.value)
+    assert culprit in message
+    assert isinstance(info.value, smug.SmugError)
+    args = ["plan", str(config), "--out", "/dev/null/never"]
+    for s in set:
+        args += ["--set", s]
+    cli = run_cli(*args)
+    assert cli.returncode == 2
+    assert cli.stderr.strip() == f"smug: error: {message}"
+
+
+def test_no_solution_names_the_target_like_the_cli(tmp_path):
+    occupancy = np.zeros((NY, NX), dtype=bool)
+    occupancy[:, 95:105] = True
+    with pytest.raises(smug.NoSolution) as info:
+        smug.plan(LUNAR, world=flat_world(occupancy=occupancy))
+    assert str(info.value) == "no solution: no safe path reaches target(s) `far`"
+
+
+def test_input_error_for_a_start_in_collision():
+    t = np.ones((NY, NX))
+    with pytest.raises(smug.InputError, match=r"the start pose \(2.000, 5.000, yaw 0.000\) is not valid"):
+        smug.plan(LUNAR, world=flat_world(), traversability=lambda e, r: t * 0.0)
+
+
+# --- plugins, load_world, p2p -----------------------------------------------------------
+
+
+def test_plugins_is_the_registry():
+    stages = smug.plugins()
+    names = {s["stage"]: [p["name"] for p in s["plugins"]] for s in stages}
+    assert list(names)[:2] == ["world", "traversability"]
+    assert {"lunar", "indoor", "flat", "map"} <= set(names["world"])
+    assert "lazy-prm-star" in names["planner"]
+    cli = run_cli("plugins", "--json")
+    assert json.loads(cli.stdout) == stages
+
+
+def test_load_world_matches_the_plans_world():
+    world = smug.load_world(LUNAR, seed=1)
+    plan = smug.plan(LUNAR, seed=1)
+    assert np.array_equal(world.elevation, plan.world.elevation)
+    assert np.array_equal(world.traversability, plan.world.traversability, equal_nan=True)
+    assert len(world.mission["targets"]) == 13
+
+
+def test_p2p_on_a_shared_roadmap():
+    occupancy = np.zeros((NY, NX), dtype=bool)
+    occupancy[:80, 95:105] = True  # a wall with a gap at the top
+    world = flat_world(occupancy=occupancy)
+    queries = np.array([[2.0, 5.0, 0.0, 18.0, 5.0, 0.0], [18.0, 5.0, 0.0, 2.0, 2.0, 0.0]])
+    results = smug.p2p(queries, world=world)
+    assert [q["status"] for q in results["queries"]] == ["exact", "exact"]
+    first = results["queries"][0]
+    assert first["cost"] > 16.0 + 2.0  # around the wall, not through it
+    assert all(not (9.5 <= x <= 10.5 and y < 8.0) for x, y, _ in first["waypoints"])
+    # the second query reuses the roadmap the first grew
+    assert results["queries"][1]["vertices"] >= first["vertices"]
+    with pytest.raises(smug.InputError, match=r"queries: expected shape \(n, 6\)"):
+        smug.p2p(np.zeros((2, 5)), world=world)
