@@ -1,11 +1,14 @@
-//! `smug bench p2p`: LazyPRM* on grid maps — MovingAI's (`--data DIR` or
-//! `$SMUG_DATA/movingai`) or generated ones (`--generated`, see `bench_p2p_maps`) —
-//! scenarios solved, path length against the optimal octile length, time — with a disc
-//! robot and yaw weight 0; and PoI-to-PoI queries on the lunar world (`bench_p2p_lunar`).
+//! `smug bench p2p`: LazyPRM* and the exact `visibility` planner side by side on grid
+//! maps — MovingAI's (`--data DIR` or `$SMUG_DATA/movingai`) or generated ones
+//! (`--generated`, see `bench_p2p_maps`) — scenarios solved, path length against the
+//! exact optimum of the disc (from `visibility`, arcs exact) and against the optimal
+//! octile length, time per query — with a disc robot and yaw weight 0; and PoI-to-PoI
+//! queries on the lunar world (`bench_p2p_lunar`).
 
 use crate::{bench_p2p_maps, Outcome};
 use serde::Serialize;
-use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
+use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, PointToPointPlanner, Pose2};
+use smug_planners::{Visibility, VisibilityParams};
 use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{
     convert_movingai, read_map, read_scenarios, scenario_to_world, MovingAiMap,
@@ -43,6 +46,12 @@ pub struct BenchP2pArgs {
     /// Override a key of `configs/p2p-grid.toml`, e.g. `planner.params.focus=0`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+    /// The planners to bench on grid maps: `lazy-prm-star` (the config's planner, with
+    /// `--set`) and `visibility` (exact; its graph is built before the first query and
+    /// timed apart). The exact optimum of every scenario comes from `visibility`
+    /// whichever planners are benched.
+    #[arg(long, value_delimiter = ',', default_values_t = ["lazy-prm-star".to_string(), "visibility".to_string()])]
+    planners: Vec<String>,
     /// Write the Markdown report here.
     #[arg(long)]
     out: Option<PathBuf>,
@@ -51,16 +60,26 @@ pub struct BenchP2pArgs {
     json: Option<PathBuf>,
 }
 
-/// One map's numbers.
+/// One map's numbers for one planner.
 #[derive(Debug, Serialize)]
 struct MapResult {
     map: String,
+    /// `lazy-prm-star` or `visibility`.
+    planner_type: String,
     scenarios: usize,
     solved: usize,
     /// Solved paths that touch a blocked cell (must be 0).
     unsafe_paths: usize,
+    /// Σ planned length / Σ optimal octile length over the solved scenarios.
     length_ratio: f64,
+    /// Mean over the solved scenarios of planned length / exact optimum.
+    exact_ratio_mean: f64,
+    /// Largest planned length / exact optimum.
+    exact_ratio_worst: f64,
+    /// Seconds for all queries (after preprocessing).
     time_s: f64,
+    /// Seconds of preprocessing before the first query (`visibility`: the whole graph).
+    preprocessing_s: f64,
     roadmap_vertices: u64,
     /// The planner's counters and time breakdown after the last query.
     planner: smug_core::PlannerStats,
@@ -76,6 +95,8 @@ struct QueryResult {
     cost: Option<f64>,
     /// The scenario's optimal octile length.
     optimal: f64,
+    /// The exact optimum of the disc (arcs exact), when a path exists.
+    exact_optimum: Option<f64>,
     time_s: f64,
     /// Samples this query drew.
     samples: u64,
@@ -105,12 +126,20 @@ fn touches_blocked(grid: &MovingAiMap, states: &[Pose2]) -> bool {
     })
 }
 
-fn run_map(
+/// A map with its scenarios, loaded once for every planner.
+struct LoadedMap {
+    stem: String,
+    grid: MovingAiMap,
+    queries: Vec<(Pose2, Pose2, f64)>,
+    world: smug_core::World,
+}
+
+fn load_bench_map(
     args: &BenchP2pArgs,
     map: &Path,
     scen: &Path,
     scratch: &Path,
-) -> anyhow::Result<MapResult> {
+) -> anyhow::Result<LoadedMap> {
     let grid = read_map(map)?;
     let scenarios = read_scenarios(scen)?;
     let stem = smug_worlds::map_file::file_stem(map);
@@ -121,12 +150,11 @@ fn run_map(
         Pose2::new(x, y, 0.0)
     };
     let count = args.scenarios.min(scenarios.len());
-    let picked: Vec<_> = (0..count)
+    let queries: Vec<_> = (0..count)
         .map(|i| &scenarios[i * scenarios.len() / count.max(1)])
+        .map(|s| (to_pose(s.start), to_pose(s.goal), s.optimal_length))
         .collect();
-    let start = picked
-        .first()
-        .map_or(Pose2::new(0.5, 0.5, 0.0), |s| to_pose(s.start));
+    let start = queries.first().map_or(Pose2::new(0.5, 0.5, 0.0), |q| q.0);
     let world = load_map(&yaml, 2.0)?.into_world(
         stem.clone(),
         Mission {
@@ -136,6 +164,16 @@ fn run_map(
         },
         &yaml,
     )?;
+    Ok(LoadedMap {
+        stem,
+        grid,
+        queries,
+        world,
+    })
+}
+
+/// The bench pipeline: `configs/p2p-grid.toml` with the disc robot, yaw weight 0.
+fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> anyhow::Result<Pipeline> {
     // The `smug p2p` disc robot, without the yaw term (grid paths have no heading).
     let mut set = vec![
         "space.type=se2".to_string(),
@@ -151,42 +189,77 @@ fn run_map(
         Path::new("."),
         &set,
     )?;
-    let mut pipeline = Pipeline::assemble_with_world(&loaded, world)?;
-    let planner = pipeline
-        .planner
-        .as_mut()
-        .ok_or_else(|| anyhow::anyhow!("no planner"))?;
+    Ok(Pipeline::assemble_with_world(&loaded, world)?)
+}
+
+/// The exact planner of the bench pipeline, its whole graph built (timed).
+fn exact_planner(pipeline: &Pipeline) -> anyhow::Result<(Visibility, f64)> {
+    let states = pipeline
+        .state_validity
+        .clone()
+        .ok_or_else(|| anyhow::anyhow!("no validity checker"))?;
+    let disc = states
+        .disc_on_grid()
+        .ok_or_else(|| anyhow::anyhow!("the bench's checker is not a disc on a grid"))?;
     let started = Instant::now();
+    let planner = Visibility::new(
+        VisibilityParams { build_all: true },
+        disc,
+        states,
+        pipeline.objective.clone(),
+    )?;
+    Ok((planner, started.elapsed().as_secs_f64()))
+}
+
+/// Runs every scenario of `map` with `planner`, against the exact optima `optima`.
+fn run_planner(
+    name: &str,
+    map: &LoadedMap,
+    planner: &mut dyn PointToPointPlanner,
+    optima: &[Option<f64>],
+    preprocessing_s: f64,
+) -> anyhow::Result<MapResult> {
     let (mut solved, mut planned, mut optimal) = (0, 0.0, 0.0);
-    let mut queries = Vec::with_capacity(picked.len());
-    let samples = |p: &dyn smug_core::PointToPointPlanner| {
-        p.stats().counters.get("samples").copied().unwrap_or(0)
-    };
-    for s in &picked {
-        let (query_started, samples_before) = (Instant::now(), samples(planner.as_ref()));
-        let outcome = planner.plan(&to_pose(s.start), &to_pose(s.goal))?;
+    let (mut ratio_sum, mut ratio_worst, mut ratio_count) = (0.0, f64::NAN, 0usize);
+    let mut queries = Vec::with_capacity(map.queries.len());
+    let samples =
+        |p: &dyn PointToPointPlanner| p.stats().counters.get("samples").copied().unwrap_or(0);
+    let mut query_time = 0.0;
+    for (k, (start, goal, octile)) in map.queries.iter().enumerate() {
+        let (query_started, samples_before) = (Instant::now(), samples(planner));
+        let outcome = planner.plan(start, goal)?;
+        let time_s = query_started.elapsed().as_secs_f64();
+        query_time += time_s;
         let mut query = QueryResult {
             status: outcome.status(),
             cost: None,
-            optimal: s.optimal_length,
-            time_s: query_started.elapsed().as_secs_f64(),
-            samples: samples(planner.as_ref()) - samples_before,
+            optimal: *octile,
+            exact_optimum: optima[k],
+            time_s,
+            samples: samples(planner) - samples_before,
             touches_blocked: false,
         };
         if let PlannerOutcome::Exact(path) = &outcome {
             solved += 1;
             planned += path.cost;
-            optimal += s.optimal_length;
+            optimal += octile;
             query.cost = Some(path.cost);
-            query.touches_blocked = touches_blocked(&grid, &path.states);
+            query.touches_blocked = touches_blocked(&map.grid, &path.states);
+            if let Some(best) = optima[k].filter(|&b| b > 0.0) {
+                let ratio = path.cost / best;
+                ratio_sum += ratio;
+                ratio_count += 1;
+                ratio_worst = ratio_worst.max(ratio);
+            }
         }
         queries.push(query);
-        eprint!("\r{stem}: {solved}/{} solved", picked.len());
+        eprint!("\r{} ({name}): {solved}/{} solved", map.stem, k + 1);
     }
     eprintln!();
     Ok(MapResult {
-        map: stem,
-        scenarios: picked.len(),
+        map: map.stem.clone(),
+        planner_type: name.to_string(),
+        scenarios: map.queries.len(),
         solved,
         unsafe_paths: queries.iter().filter(|q| q.touches_blocked).count(),
         length_ratio: if optimal > 0.0 {
@@ -194,11 +267,53 @@ fn run_map(
         } else {
             f64::NAN
         },
-        time_s: started.elapsed().as_secs_f64(),
+        exact_ratio_mean: ratio_sum / ratio_count.max(1) as f64,
+        exact_ratio_worst: ratio_worst,
+        time_s: query_time,
+        preprocessing_s,
         roadmap_vertices: planner.stats().vertices,
         planner: planner.stats(),
         queries,
     })
+}
+
+fn run_map(
+    args: &BenchP2pArgs,
+    map: &Path,
+    scen: &Path,
+    scratch: &Path,
+) -> anyhow::Result<Vec<MapResult>> {
+    let map = load_bench_map(args, map, scen, scratch)?;
+    let pipeline = bench_pipeline(args, map.world.clone())?;
+    let (mut exact, preprocessing_s) = exact_planner(&pipeline)?;
+    // The exact optima, one query at a time (the graph is complete: the exact
+    // planner's own run below is timed the same way).
+    let optima: Vec<Option<f64>> = map
+        .queries
+        .iter()
+        .map(|(s, g, _)| {
+            exact.plan(s, g)?;
+            Ok(exact.last_optimum()[0])
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let mut results = Vec::new();
+    for name in &args.planners {
+        results.push(match name.as_str() {
+            "visibility" => run_planner(name, &map, &mut exact, &optima, preprocessing_s)?,
+            "lazy-prm-star" => {
+                let mut pipeline = bench_pipeline(args, map.world.clone())?;
+                let planner = pipeline
+                    .planner
+                    .as_mut()
+                    .ok_or_else(|| anyhow::anyhow!("no planner"))?;
+                run_planner(name, &map, planner.as_mut(), &optima, 0.0)?
+            }
+            other => anyhow::bail!(
+                "--planners: unknown planner `{other}`; known: lazy-prm-star, visibility"
+            ),
+        });
+    }
+    Ok(results)
 }
 
 /// Runs `smug bench p2p`.
@@ -230,7 +345,17 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     }
     let mut results = Vec::new();
     for map in &maps {
-        results.push(run_map(&args, &map.map, &map.scen, &scratch)?);
+        let named = args.maps.contains(&map.name);
+        if !named && (!map.map.exists() || !map.scen.exists()) {
+            eprintln!(
+                "{}: skipped, {} or {} is missing",
+                map.name,
+                map.map.display(),
+                map.scen.display()
+            );
+            continue;
+        }
+        results.extend(run_map(&args, &map.map, &map.scen, &scratch)?);
     }
     std::fs::remove_dir_all(&scratch).ok();
     let mut report = String::from("# Point-to-point benchmark\n\n");
@@ -259,11 +384,13 @@ fn movingai_folder(args: &BenchP2pArgs) -> anyhow::Result<Option<PathBuf>> {
 
 fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
     let mut md = format!(
-        "## Grid maps\n\nLazyPRM* with `configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
-         {} scenarios per map.\n\n\
-         | map | solved | paths touching a blocked cell | mean length / optimal octile | \
-         worst length / optimal | time (s) | ms per query | roadmap vertices |\n\
-         |---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "## Grid maps\n\n`configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
+         {} scenarios per map. Exact optimum: the `visibility` planner's length with exact \
+         arcs. `visibility` time per query is after preprocessing (its whole graph, \
+         timed apart).\n\n\
+         | map | planner | solved | paths touching a blocked cell | length / exact optimum, mean | \
+         worst | length / optimal octile | ms per query | preprocessing (s) | roadmap vertices |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
         if args.set.is_empty() {
             String::new()
         } else {
@@ -273,21 +400,18 @@ fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
         args.scenarios
     );
     for r in results {
-        let worst = r
-            .queries
-            .iter()
-            .filter_map(|q| q.cost.map(|c| c / q.optimal))
-            .fold(f64::NAN, f64::max);
         md += &format!(
-            "| {} | {}/{} | {} | {:.4} | {:.2} | {:.2} | {:.1} | {} |\n",
+            "| {} | {} | {}/{} | {} | {:.4} | {:.4} | {:.4} | {:.2} | {:.2} | {} |\n",
             r.map,
+            r.planner_type,
             r.solved,
             r.scenarios,
             r.unsafe_paths,
+            r.exact_ratio_mean,
+            r.exact_ratio_worst,
             r.length_ratio,
-            worst,
-            r.time_s,
             1e3 * r.time_s / r.scenarios.max(1) as f64,
+            r.preprocessing_s,
             r.roadmap_vertices
         );
     }

@@ -7,8 +7,9 @@ use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::movingai::{generate_scenarios, write_map, write_scenarios};
 use std::path::{Path, PathBuf};
 
-/// The MovingAI maps of the benchmark: (map, scenario file) under the data folder.
-pub const MOVINGAI_MAPS: [(&str, &str); 4] = [
+/// The MovingAI maps of the benchmark: (map, scenario file) under the data folder
+/// (maps missing from it are skipped, and said so).
+pub const MOVINGAI_MAPS: [(&str, &str); 7] = [
     (
         "mapf/random-32-32-10.map",
         "mapf/random-32-32-10-random-1.scen",
@@ -19,6 +20,12 @@ pub const MOVINGAI_MAPS: [(&str, &str); 4] = [
     ),
     ("dao/arena2.map", "dao/arena2.map.scen"),
     ("room/8room_000.map", "room/8room_000.map.scen"),
+    ("street/Berlin_0_512.map", "street/Berlin_0_512.map.scen"),
+    (
+        "random/random512-10-0.map",
+        "random/random512-10-0.map.scen",
+    ),
+    ("maze/maze512-1-0.map", "maze/maze512-1-0.map.scen"),
 ];
 
 /// The environment variable naming the folder that holds `movingai/`.

@@ -44,6 +44,10 @@ pub struct P2pArgs {
 #[derive(Debug, Serialize)]
 struct QueryResult {
     status: &'static str,
+    /// Why a query has no path: proved (the exact planner searched everything the
+    /// start reaches) or the planner's budget ran out; absent when solved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason: Option<&'static str>,
     cost: Option<f64>,
     time_s: f64,
     vertices: u64,
@@ -53,6 +57,8 @@ struct QueryResult {
 /// All results.
 #[derive(Debug, Serialize)]
 struct Results {
+    /// The planner that answered (`visibility` when the default config applies).
+    planner_type: String,
     queries: Vec<QueryResult>,
     total_time_s: f64,
     planner: smug_core::PlannerStats,
@@ -96,12 +102,11 @@ fn overrides(args: &P2pArgs) -> Vec<String> {
     set
 }
 
-fn assemble(args: &P2pArgs, first_start: Pose2) -> anyhow::Result<Pipeline> {
-    let set = overrides(args);
+fn assemble_with(args: &P2pArgs, first_start: Pose2, set: &[String]) -> anyhow::Result<Pipeline> {
     let loaded = match &args.config {
-        Some(path) => LoadedConfig::from_file(path, &set)?,
+        Some(path) => LoadedConfig::from_file(path, set)?,
         None => {
-            LoadedConfig::from_text(DEFAULT_CONFIG, "<default p2p config>", Path::new("."), &set)?
+            LoadedConfig::from_text(DEFAULT_CONFIG, "<default p2p config>", Path::new("."), set)?
         }
     };
     let Some(map) = &args.map else {
@@ -117,20 +122,66 @@ fn assemble(args: &P2pArgs, first_start: Pose2) -> anyhow::Result<Pipeline> {
     Ok(Pipeline::assemble_with_world(&loaded, world)?)
 }
 
+/// The pipeline and its planner's name. Without `--config` and without a
+/// `planner.…` override, the exact `visibility` planner answers when it applies (a
+/// disc on a grid under path length: the default config's robot), else LazyPRM* with a
+/// note on stderr saying why.
+fn assemble(args: &P2pArgs, first_start: Pose2) -> anyhow::Result<(Pipeline, String)> {
+    let set = overrides(args);
+    let planner_set = set.iter().any(|s| s.starts_with("planner."));
+    if args.config.is_none() && !planner_set {
+        let mut exact = set.clone();
+        exact.push("planner.type=visibility".into());
+        exact.push("planner.params={}".into());
+        match assemble_with(args, first_start, &exact) {
+            Ok(pipeline) => return Ok((pipeline, "visibility".into())),
+            Err(err) if err.to_string().contains("`visibility` cannot plan here") => {
+                eprintln!("smug p2p: {err}; planning with lazy-prm-star");
+            }
+            Err(err) => return Err(err),
+        }
+    }
+    let pipeline = assemble_with(args, first_start, &set)?;
+    let name = pipeline
+        .resolved
+        .iter()
+        .find(|r| r.key == "planner")
+        .map_or_else(|| "none".to_string(), |r| r.plugin.clone());
+    Ok((pipeline, name))
+}
+
 /// Runs `smug p2p`.
 pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
     let queries = read_queries(&args.queries)?;
     let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
-    let mut pipeline = assemble(&args, first_start)?;
+    let (mut pipeline, planner_type) = assemble(&args, first_start)?;
     let planner = pipeline
         .planner
         .as_mut()
         .ok_or_else(|| anyhow::anyhow!("the config has no [planner] section"))?;
     let started = Instant::now();
     let mut results = Vec::with_capacity(queries.len());
-    for (start, goal) in &queries {
+    for (k, (start, goal)) in queries.iter().enumerate() {
         let t = Instant::now();
         let outcome = planner.plan(start, goal)?;
+        let reason = match (&outcome, planner_type.as_str()) {
+            (PlannerOutcome::NoPath, "visibility") => Some(
+                "no path exists: the exact search covered everything the start reaches",
+            ),
+            (PlannerOutcome::NoPath, _) => Some(
+                "no path found within the planner's budget (max_samples or time_limit); one may exist",
+            ),
+            (PlannerOutcome::InvalidStart, _) => {
+                Some("the start is inside an (inflated) obstacle or off the map")
+            }
+            (PlannerOutcome::InvalidGoal, _) => {
+                Some("the goal is inside an (inflated) obstacle or off the map")
+            }
+            _ => None,
+        };
+        if let Some(reason) = reason {
+            eprintln!("query {}: {}: {reason}", k + 1, outcome.status());
+        }
         let time_s = t.elapsed().as_secs_f64();
         let path = match &outcome {
             PlannerOutcome::Exact(p) | PlannerOutcome::Approximate { path: p, .. } => Some(p),
@@ -138,6 +189,7 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         };
         results.push(QueryResult {
             status: outcome.status(),
+            reason,
             cost: outcome.exact_path().map(|p| p.cost),
             time_s,
             vertices: planner.stats().vertices,
@@ -147,6 +199,7 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         });
     }
     let results = Results {
+        planner_type: planner_type.clone(),
         queries: results,
         total_time_s: started.elapsed().as_secs_f64(),
         planner: planner.stats(),
@@ -164,7 +217,7 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         ),
     };
     println!(
-        "{} queries: {exact} exact, {} without a path; mean cost {mean_cost}; {:.3} s; roadmap {} vertices",
+        "{} queries ({planner_type}): {exact} exact, {} without a path; mean cost {mean_cost}; {:.3} s; roadmap {} vertices",
         results.queries.len(),
         results.queries.len() - exact,
         results.total_time_s,

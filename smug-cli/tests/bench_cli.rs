@@ -102,8 +102,10 @@ fn p2p_bench_runs_on_generated_maps_without_data() {
     assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
     let text = std::fs::read_to_string(&report).unwrap();
     for row in [
-        "| random-32x32-d10-s1 | 10/10 | 0 |",
-        "| maze-33x33-s1 | 10/10 | 0 |",
+        "| random-32x32-d10-s1 | lazy-prm-star | 10/10 | 0 |",
+        "| random-32x32-d10-s1 | visibility | 10/10 | 0 | 1.0000 | 1.0000 |",
+        "| maze-33x33-s1 | lazy-prm-star | 10/10 | 0 |",
+        "| maze-33x33-s1 | visibility | 10/10 | 0 | 1.0000 | 1.0000 |",
     ] {
         assert!(text.contains(row), "`{row}` missing from:\n{text}");
     }

@@ -151,6 +151,13 @@ fn sequence(
 fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
     let n = nodes.len();
     let mut costs = vec![0.0; n * n];
+    if oracle.answers_many() {
+        // One call per row (the rest of the row for a symmetric oracle).
+        for i in 0..n {
+            let from = if oracle.is_symmetric() { i + 1 } else { 0 };
+            oracle.plan_from(nodes[i], &nodes[from..])?;
+        }
+    }
     for i in 0..n {
         for j in i + 1..n {
             let c = oracle.cost(nodes[i], nodes[j])?;

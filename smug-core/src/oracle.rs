@@ -163,6 +163,43 @@ impl PathOracle {
         Ok(planned)
     }
 
+    /// True when the planner answers one start and many goals in one call (see
+    /// [`PointToPointPlanner::answers_many`]): callers that need many pairs from one
+    /// pose then ask [`plan_from`](Self::plan_from) first.
+    pub fn answers_many(&self) -> bool {
+        self.planner.answers_many()
+    }
+
+    /// Plans the pairs `i → j` for every `j` of `js` not planned yet, with one call to
+    /// the planner's `plan_many`, and caches them (served by [`path`](Self::path) and
+    /// [`cost`](Self::cost) afterwards, as cache hits).
+    pub fn plan_from(&mut self, i: usize, js: &[usize]) -> Result<()> {
+        let mut wanted: Vec<usize> = Vec::new();
+        for &j in js {
+            if j != i && !self.cache.contains_key(&(i, j)) && !wanted.contains(&j) {
+                wanted.push(j);
+            }
+        }
+        if wanted.is_empty() {
+            return Ok(());
+        }
+        let goals: Vec<Pose2> = wanted.iter().map(|&j| self.poses[j]).collect();
+        let outcomes = self.planner.plan_many(&self.poses[i], &goals)?;
+        self.stats.paths_planned += wanted.len() as u64;
+        for (j, outcome) in wanted.into_iter().zip(outcomes) {
+            if self.cache.contains_key(&(i, j)) {
+                continue;
+            }
+            let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
+            let planned = Arc::new(PlannedPath { outcome, cost });
+            if self.symmetric {
+                self.cache.insert((j, i), Arc::new(planned.reversed()));
+            }
+            self.cache.insert((i, j), planned);
+        }
+        Ok(())
+    }
+
     /// The planned cost from `i` to `j` (`INFINITY` when unreachable).
     pub fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
         Ok(self.path(i, j)?.cost)
@@ -266,6 +303,17 @@ mod tests {
         assert_eq!(o.cost(1, 1).unwrap(), 0.0);
         assert_eq!(o.stats().paths_planned, 1);
         assert_eq!(o.cost_or_bound(0, 1), o.lower_bound(0, 1));
+    }
+
+    #[test]
+    fn plan_from_plans_each_missing_pair_once_and_serves_it_after() {
+        let mut o = oracle();
+        o.cost(0, 1).unwrap();
+        o.plan_from(0, &[1, 2, 2, 0]).unwrap();
+        assert_eq!(o.stats().paths_planned, 2);
+        assert_eq!(o.cost(2, 0).unwrap(), f64::INFINITY);
+        assert_eq!(o.cost(0, 1).unwrap(), o.lower_bound(0, 1));
+        assert_eq!(o.stats().paths_planned, 2);
     }
 
     #[test]

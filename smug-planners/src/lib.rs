@@ -1,6 +1,7 @@
 //! SMUG point-to-point planners.
 //!
-//! Plugins: `lazy-prm-star` (LazyPRM* with informed sampling on a shared roadmap).
+//! Plugins: `lazy-prm-star` (LazyPRM* with informed sampling on a shared roadmap) and
+//! `visibility` (exact shortest paths of a disc on a 2D occupancy grid).
 
 #![warn(missing_docs)]
 
@@ -8,5 +9,7 @@ pub mod lazy_prm_star;
 pub mod nn;
 pub mod roadmap;
 pub mod shortcut;
+pub mod visibility;
 
 pub use lazy_prm_star::{LazyPrmStar, LazyPrmStarParams, SearchMode};
+pub use visibility::{Visibility, VisibilityParams};

@@ -27,6 +27,17 @@ impl DpSelector {
 impl PoiSelector for DpSelector {
     fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
         check_groups(problem)?;
+        if oracle.answers_many() {
+            // Every leg DP needs, one call per pose of a layer.
+            let mut layers = vec![vec![problem.start]];
+            layers.extend(problem.groups.iter().cloned());
+            layers.push(vec![problem.end]);
+            for pair in layers.windows(2) {
+                for &p in &pair[0] {
+                    oracle.plan_from(p, &pair[1])?;
+                }
+            }
+        }
         let (chosen, cost) = solve_layers(problem, |i, j| oracle.cost(i, j))?;
         if !cost.is_finite() {
             return Err(unreachable_error(oracle, problem));

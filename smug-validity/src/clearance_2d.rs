@@ -5,7 +5,9 @@
 
 use crate::edt::squared_edt_2d;
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Counters, Error, GridGeometry, Pose2, StateValidityChecker, World};
+use smug_core::{
+    BuildContext, Counters, DiscOnGrid, Error, GridGeometry, Pose2, StateValidityChecker, World,
+};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// Parameters of the disc checker.
@@ -110,16 +112,29 @@ impl Clearance2dChecker {
     /// The distance from `(x, y)` to the nearest obstacle square, exactly when it is
     /// below `reach`, else `reach` (only the cells within `reach` are looked at).
     fn obstacle_distance_within(&self, x: f64, y: f64, reach: f64) -> f64 {
-        self.obstacle_gaps(x, y, reach)
-            .map(|(dx, dy)| dx.hypot(dy))
-            .fold(reach, f64::min)
+        // `hypot` only for gaps that are, within rounding, the nearest so far by squared
+        // distance (cheap): the minimum is the same as over every gap's `hypot`, bit
+        // for bit (a gap near the final minimum is near the running one when seen).
+        let (mut nearest2, mut nearest) = (f64::INFINITY, reach);
+        for (dx, dy) in self.obstacle_gaps(x, y, reach) {
+            let d2 = dx * dx + dy * dy;
+            if d2 <= nearest2 * (1.0 + 1e-9) {
+                nearest2 = nearest2.min(d2);
+                nearest = nearest.min(dx.hypot(dy));
+            }
+        }
+        nearest
     }
 
     /// True when the disc at `(x, y)` touches an obstacle cell (checks the cells around it).
     fn touches_obstacle(&self, x: f64, y: f64) -> bool {
         let r = self.radius;
-        self.obstacle_gaps(x, y, r)
-            .any(|(dx, dy)| dx.hypot(dy) < r || r == 0.0 && dx == 0.0 && dy == 0.0)
+        // Squared distances decide all but near-ties, which `hypot` decides as before.
+        let (low, high) = (r * r * (1.0 - 1e-9), r * r * (1.0 + 1e-9));
+        self.obstacle_gaps(x, y, r).any(|(dx, dy)| {
+            let d2 = dx * dx + dy * dy;
+            (d2 < low || (d2 <= high && dx.hypot(dy) < r)) || r == 0.0 && dx == 0.0 && dy == 0.0
+        })
     }
 }
 
@@ -158,6 +173,14 @@ impl StateValidityChecker for Clearance2dChecker {
             self.obstacle_distance_within(x, y, reach).max(bound)
         };
         Some(border.min(obstacle) - r)
+    }
+
+    fn disc_on_grid(&self) -> Option<DiscOnGrid> {
+        Some(DiscOnGrid {
+            radius: self.radius,
+            geometry: self.geometry,
+            blocked: self.obstacles.clone(),
+        })
     }
 
     fn counters(&self) -> Counters {

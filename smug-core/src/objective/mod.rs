@@ -40,6 +40,14 @@ pub trait Objective: Send + Sync + Debug {
         true
     }
 
+    /// `Some((w_t, w_r))` when every motion costs exactly the SE(2) length
+    /// `w_t·‖Δxy‖ + w_r·d(yaw_a, yaw_b)` of a straight motion (`path-length` on a
+    /// holonomic space); `None` (the default) for any other cost. Exact geometric
+    /// planners serve only this objective.
+    fn se2_length_weights(&self) -> Option<(f64, f64)> {
+        None
+    }
+
     /// The cost of the path through `states`: the sum of its motions' costs.
     fn path_cost(&self, states: &[Pose2]) -> f64 {
         states

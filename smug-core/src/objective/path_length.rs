@@ -100,6 +100,10 @@ impl Objective for PathLength {
     fn bound_weights(&self) -> (f64, f64) {
         (self.w_t, self.w_r)
     }
+
+    fn se2_length_weights(&self) -> Option<(f64, f64)> {
+        self.curved.is_none().then_some((self.w_t, self.w_r))
+    }
 }
 
 crate::register_plugin!(

@@ -14,4 +14,4 @@ pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
 pub use traversability::TraversabilityEstimator;
-pub use validity::{Counters, StateValidityChecker};
+pub use validity::{Counters, DiscOnGrid, StateValidityChecker};

@@ -69,6 +69,20 @@ pub trait PointToPointPlanner: Send + Sync {
     /// Plans from `start` to `goal` within the planner's configured budget.
     fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome>;
 
+    /// Plans from `start` to each of `goals` (one-to-many), in order. The default
+    /// plans each pair with [`plan`](Self::plan), in order; a planner that answers a
+    /// whole set of goals with one search (an exact graph search) overrides it.
+    fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
+        goals.iter().map(|goal| self.plan(start, goal)).collect()
+    }
+
+    /// True when [`plan_many`](Self::plan_many) is cheaper than one query per goal:
+    /// the path oracle then plans a cost-matrix row or a DP layer in one call
+    /// (default false: pairs are planned one by one, in the order they are asked).
+    fn answers_many(&self) -> bool {
+        false
+    }
+
     /// Statistics accumulated over all queries so far.
     fn stats(&self) -> PlannerStats;
 }

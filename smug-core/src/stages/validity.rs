@@ -1,5 +1,6 @@
 //! State validity stage: is the robot safe at this pose?
 
+use crate::grid::GridGeometry;
 use crate::pose::Pose2;
 use std::collections::BTreeMap;
 
@@ -24,4 +25,24 @@ pub trait StateValidityChecker: Send + Sync {
     fn counters(&self) -> Counters {
         Counters::new()
     }
+
+    /// The robot as a disc on a 2D occupancy grid, when that is exactly what the
+    /// checker checks (a state is valid iff the disc lies inside the grid and keeps
+    /// its distance to every blocked cell); `None` (the default) for any other robot
+    /// or world. Exact planners read the obstacles from it.
+    fn disc_on_grid(&self) -> Option<DiscOnGrid> {
+        None
+    }
+}
+
+/// A disc robot on a 2D occupancy grid: valid states are the centres whose disc of
+/// `radius` lies inside the grid and touches no blocked cell (a closed square).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiscOnGrid {
+    /// Disc radius, metres (≥ 0).
+    pub radius: f64,
+    /// The grid.
+    pub geometry: GridGeometry,
+    /// One flag per cell, row-major (`GridGeometry::index`): true = blocked.
+    pub blocked: Vec<bool>,
 }
