@@ -199,6 +199,28 @@ impl TangentGraph {
         }
     }
 
+    /// The tangent points `p` on the circles of the corners `q` may see whose segment
+    /// to `q` is clear by `need` (`segment_clear` is symmetric, so this serves segments
+    /// into and out of `q`): `(corner, unit normal at p, angle relative to the corner,
+    /// p)`, in corner and tangent order.
+    fn clear_tangents(&mut self, q: Pt, need: f64) -> Vec<(u32, Pt, f64, Pt)> {
+        let mut tangents = Vec::new();
+        for c in self.visible_corners(q, None) {
+            let corner = self.grid.corners[c as usize];
+            for n in point_tangents(q, corner.at, self.r) {
+                let Some(rel) = corner.relative_angle(n) else {
+                    continue;
+                };
+                let p = [corner.at[0] + self.r * n[0], corner.at[1] + self.r * n[1]];
+                self.counts.segment_checks += 1;
+                if self.grid.segment_clear(q, p, need) {
+                    tangents.push((c, n, rel, p));
+                }
+            }
+        }
+        tangents
+    }
+
     /// The corners a point may see (a superset of those it sees), without `skip`.
     fn visible_corners(&mut self, s: Pt, skip: Option<u32>) -> Vec<u32> {
         self.stamp = self.stamp.wrapping_add(1);
@@ -334,26 +356,14 @@ impl TangentGraph {
         // Exits: segments from corners straight to each goal.
         let mut exits: HashMap<u32, Vec<Exit>> = HashMap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
-            let need = self.r_check.min(clear_g);
-            for c in self.visible_corners(g, None) {
-                let corner = self.grid.corners[c as usize];
-                for n in point_tangents(g, corner.at, self.r) {
-                    let Some(rel) = corner.relative_angle(n) else {
-                        continue;
-                    };
-                    let p = [corner.at[0] + self.r * n[0], corner.at[1] + self.r * n[1]];
-                    self.counts.segment_checks += 1;
-                    if !self.grid.segment_clear(p, g, need) {
-                        continue;
-                    }
-                    let t = [g[0] - p[0], g[1] - p[1]];
-                    exits.entry(c).or_default().push(Exit {
-                        goal: k,
-                        lane: Lane::of(n, t),
-                        rel,
-                        len: dist(p, g),
-                    });
-                }
+            for (c, n, rel, p) in self.clear_tangents(g, self.r_check.min(clear_g)) {
+                let t = [g[0] - p[0], g[1] - p[1]];
+                exits.entry(c).or_default().push(Exit {
+                    goal: k,
+                    lane: Lane::of(n, t),
+                    rel,
+                    len: dist(p, g),
+                });
             }
         }
         let goal_base = u32::MAX - goals.len() as u32;
@@ -380,40 +390,28 @@ impl TangentGraph {
             }
         }
         // Segments from the start to the corners it sees.
-        let need = self.r_check.min(clear_s);
-        for c in self.visible_corners(s, None) {
-            let corner = self.grid.corners[c as usize];
-            for n in point_tangents(s, corner.at, self.r) {
-                let Some(rel) = corner.relative_angle(n) else {
-                    continue;
-                };
-                let p = [corner.at[0] + self.r * n[0], corner.at[1] + self.r * n[1]];
-                self.counts.segment_checks += 1;
-                if !self.grid.segment_clear(s, p, need) {
-                    continue;
-                }
-                let t = [p[0] - s[0], p[1] - s[1]];
-                let arrival = (c, Lane::of(n, t), rel);
-                let g0 = dist(s, p);
-                self.arrive(
-                    arrival,
-                    g0,
-                    Src::Start,
-                    &exits,
-                    &h,
-                    &mut heap,
-                    |k, cost, via| {
-                        if cost < goal_cost[k] {
-                            goal_cost[k] = cost;
-                            goal_via[k] = Some(via);
-                            true
-                        } else {
-                            false
-                        }
-                    },
-                    goal_base,
-                );
-            }
+        for (c, n, rel, p) in self.clear_tangents(s, self.r_check.min(clear_s)) {
+            let t = [p[0] - s[0], p[1] - s[1]];
+            let arrival = (c, Lane::of(n, t), rel);
+            let g0 = dist(s, p);
+            self.arrive(
+                arrival,
+                g0,
+                Src::Start,
+                &exits,
+                &h,
+                &mut heap,
+                |k, cost, via| {
+                    if cost < goal_cost[k] {
+                        goal_cost[k] = cost;
+                        goal_via[k] = Some(via);
+                        true
+                    } else {
+                        false
+                    }
+                },
+                goal_base,
+            );
         }
         let mut left = goals.len();
         while let Some(Entry { g, id, .. }) = heap.pop() {
