@@ -514,55 +514,44 @@ impl LazyPrmStar {
         let stalled = |best: &Option<GraphPath>, stall: u32| best.is_some() && stall >= max_stall;
         self.expansion.begin(start, goal);
         while !clock.is_done() && !stalled(&best, stall) {
-            if best.is_none()
-                && clock.iterations() >= self.params.expand_after
-                && self.expansion.is_due()
-            {
-                clock.tick();
-                if !self.insert_expansion_sample() {
-                    continue;
-                }
-                since_attempt += 1;
-                if since_attempt >= wait && self.roadmap.maybe_connected(s, g) {
-                    since_attempt = 0;
-                    if let Some(path) = self.attempt(s, g, f64::INFINITY, 0) {
-                        interval = improvement_interval(&self.params, clock.iterations());
-                        best = Some(path);
-                    } else {
-                        wait = ((self.roadmap.live_vertex_count() / 20) as u32).max(1);
-                    }
-                }
-                continue;
-            }
             // `best` changes only at the end of an iteration.
             let best_cost = best.as_ref().map_or(f64::INFINITY, |b| b.cost);
             let focusing = !focus.covers(best_cost);
-            let focused = if focusing {
-                focus.next_set(start, goal)
+            let expanding = best.is_none()
+                && clock.iterations() >= self.params.expand_after
+                && self.expansion.is_due();
+            let (inserted, widened) = if expanding {
+                clock.tick();
+                (self.insert_expansion_sample(), false)
             } else {
-                None
-            };
-            let from_focus = focused.is_some();
-            let informed = focused.or_else(|| {
-                best.as_ref().map(|b| InformedSet {
-                    start: *start,
-                    goal: *goal,
-                    best_cost: b.cost,
-                })
-            });
-            clock.tick();
-            let Some(sample) = self.draw_sample(informed.as_ref()) else {
-                if from_focus {
+                let focused = if focusing {
+                    focus.next_set(start, goal)
+                } else {
+                    None
+                };
+                let from_focus = focused.is_some();
+                let informed = focused.or_else(|| {
+                    best.as_ref().map(|b| InformedSet {
+                        start: *start,
+                        goal: *goal,
+                        best_cost: b.cost,
+                    })
+                });
+                clock.tick();
+                let Some(sample) = self.draw_sample(informed.as_ref()) else {
+                    if from_focus {
+                        focus.widen(self.focus_period());
+                        continue; // the focus fell outside the bounds: widen it
+                    }
+                    break; // the informed set is empty: nothing can improve the path
+                };
+                let widened = focusing && focus.tick();
+                if widened {
                     focus.widen(self.focus_period());
-                    continue; // the focus fell outside the bounds: widen it
                 }
-                break; // the informed set is empty: nothing can improve the path
+                (self.insert_sample(sample), widened)
             };
-            let widened = focusing && focus.tick();
-            if widened {
-                focus.widen(self.focus_period());
-            }
-            if !self.insert_sample(sample) && !widened {
+            if !inserted && !widened {
                 continue;
             }
             since_attempt += 1;
