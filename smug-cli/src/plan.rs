@@ -1,7 +1,7 @@
 //! `smug plan`: the whole mission, from a config to plan.json, plan.csv and plan.svg.
 
 use crate::Outcome;
-use smug_core::mission_run::Unreachable;
+use smug_core::mission::Unreachable;
 use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
 use std::path::{Path, PathBuf};

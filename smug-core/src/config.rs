@@ -143,7 +143,7 @@ pub struct PipelineConfig {
     pub selector: Option<PluginSection>,
     /// How the mission is run.
     #[serde(default)]
-    pub plan: crate::mission_run::PlanOptions,
+    pub plan: crate::mission::PlanOptions,
     /// Output files.
     #[serde(default)]
     pub output: OutputConfig,

@@ -11,7 +11,7 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArra
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use smug_core::mission_run::Unreachable;
+use smug_core::mission::Unreachable;
 use smug_core::{
     plan_mission, Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome,
     Pose2, TraversabilityEstimator, World,

@@ -1,4 +1,11 @@
-//! Missions: start, optional end, targets of interest with their poses of interest.
+//! Missions: start, optional end, targets of interest with their poses of interest, and
+//! how a mission is planned through a pipeline ([`plan_mission`]).
+
+mod assembly;
+mod run;
+mod sequential;
+
+pub use run::{plan_mission, PlanOptions, Representative, SequencingCosts, Unreachable};
 
 use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};

@@ -1,0 +1,212 @@
+//! Running a whole mission through an assembled pipeline (the sequential mode): the ToI
+//! order from path costs between representative poses (sequencer), one PoI per ToI
+//! (selector), then post-processing into SE(3) waypoints. Everything goes through one
+//! path oracle, so every query shares the planner's roadmap.
+
+use super::assembly::{assemble_plan, stats};
+use super::sequential::sequence;
+use super::Mission;
+use crate::error::{Error, Result};
+use crate::evaluation::plan_metrics;
+use crate::oracle::PathOracle;
+use crate::pipeline::Pipeline;
+use crate::plan::Plan;
+use crate::post_process::{concatenate, waypoints};
+use crate::stages::SelectionProblem;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// Which pose stands in for a target when the visiting order is computed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Representative {
+    /// The PoI nearest the target's centre.
+    #[default]
+    NearestPoi,
+    /// The target's first PoI.
+    FirstPoi,
+}
+
+/// How the sequencer's ToI cost matrix is filled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SequencingCosts {
+    /// Plan only the legs the tour uses: solve on lower bounds (straight-line metric
+    /// costs) where no path is planned yet, plan the tour's unplanned legs, repeat until
+    /// the tour uses planned legs only. With an exact solver the order is optimal for
+    /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
+    /// applied to sequencing).
+    Lazy,
+    /// Plan a path between every pair of representatives (the paper's way).
+    #[default]
+    Full,
+}
+
+/// How the mission is run (the config's `[plan]` section).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlanOptions {
+    /// The pose that stands in for each target when sequencing.
+    pub representative: Representative,
+    /// Leave out targets none of whose PoIs can be reached (and say so) instead of failing.
+    pub skip_unreachable: bool,
+    /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
+    pub keep_headings: bool,
+    /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
+    pub sequencing_costs: SequencingCosts,
+}
+
+/// Targets that cannot be reached: the plan fails and names them.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("no safe path reaches target(s) {}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "))]
+pub struct Unreachable {
+    /// Ids of the unreachable targets.
+    pub targets: Vec<String>,
+}
+
+/// Where the mission's poses sit in the oracle.
+pub(super) struct Layout {
+    pub(super) start: usize,
+    pub(super) end: usize,
+    /// For each target of the mission, the oracle indices of its PoIs.
+    pub(super) pois: Vec<Vec<usize>>,
+}
+
+fn register_poses(oracle: &mut PathOracle, mission: &Mission) -> Layout {
+    let start = oracle.add_pose(mission.start);
+    let end = match mission.end {
+        Some(end) => oracle.add_pose(end),
+        None => start,
+    };
+    let pois = mission
+        .targets
+        .iter()
+        .map(|t| t.pois.iter().map(|p| oracle.add_pose(*p)).collect())
+        .collect();
+    Layout { start, end, pois }
+}
+
+/// Targets none of whose PoIs the start reaches.
+fn unreachable_targets(
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    targets: &[usize],
+) -> Result<Vec<usize>> {
+    let mut unreachable = Vec::new();
+    for &t in targets {
+        let mut reached = false;
+        for &p in &layout.pois[t] {
+            if oracle.cost(layout.start, p)?.is_finite() {
+                reached = true;
+                break;
+            }
+        }
+        if !reached {
+            unreachable.push(t);
+        }
+    }
+    Ok(unreachable)
+}
+
+/// Plans the pipeline's mission: sequencing, PoI selection, post-processing.
+pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+    let started = Instant::now();
+    let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "world",
+    })?;
+    let world = pipeline.world.clone().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "world",
+    })?;
+    let planner = pipeline.planner.take().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "planner",
+    })?;
+    let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
+        .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric());
+    let layout = register_poses(&mut oracle, &mission);
+    let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
+    let mut skipped = Vec::new();
+    let mut times = std::collections::BTreeMap::new();
+    let (order, problem, selection) = loop {
+        let t = Instant::now();
+        let order = sequence(
+            pipeline,
+            &mut oracle,
+            &mission,
+            &layout,
+            &targets,
+            options.representative,
+            options.sequencing_costs,
+        )?;
+        *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
+            stage: "smug plan".into(),
+            needed: "selector",
+        })?;
+        let problem = SelectionProblem {
+            start: layout.start,
+            groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
+            end: layout.end,
+        };
+        let selected = selector.select(&mut oracle, &problem);
+        *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+        let selection = match selected {
+            Ok(s) if s.cost.is_finite() => s,
+            other => {
+                let unreachable = unreachable_targets(&mut oracle, &layout, &targets)?;
+                if unreachable.is_empty() {
+                    other?;
+                    return Err(Error::stage(
+                        "smug plan",
+                        Unreachable {
+                            targets: vec!["(the end pose)".into()],
+                        },
+                    ));
+                }
+                let ids: Vec<String> = unreachable
+                    .iter()
+                    .map(|&t| mission.targets[t].id.clone())
+                    .collect();
+                if !options.skip_unreachable {
+                    return Err(Error::stage("smug plan", Unreachable { targets: ids }));
+                }
+                skipped.extend(ids);
+                targets.retain(|t| !unreachable.contains(t));
+                continue;
+            }
+        };
+        break (order, problem, selection);
+    };
+    let t = Instant::now();
+    let route = problem.route(&selection.chosen);
+    let mut plan = assemble_plan(
+        &mut oracle,
+        &mission,
+        &world,
+        &order,
+        &selection.chosen,
+        &route,
+    )?;
+    let objective = pipeline
+        .config
+        .objective
+        .as_ref()
+        .map_or("path-length", |section| section.kind.as_str());
+    plan.metrics = plan_metrics(pipeline.context(), &world, objective, &concatenate(&plan).0);
+    (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, &world, options.keep_headings);
+    plan.cost = selection.cost;
+    plan.skipped = skipped;
+    times.insert("post-processing".into(), t.elapsed().as_secs_f64());
+    times.insert(
+        "total".into(),
+        started.elapsed().as_secs_f64() + pipeline.build_times_s.values().sum::<f64>(),
+    );
+    for (stage, s) in &pipeline.build_times_s {
+        times.insert(format!("build:{stage}"), *s);
+    }
+    plan.stats = stats(&oracle, pipeline, times);
+    Ok(plan)
+}

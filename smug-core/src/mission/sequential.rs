@@ -1,0 +1,249 @@
+//! The sequential mode's first step: the visiting order of the targets from path
+//! costs between one representative pose per target (full or lazy cost matrix).
+
+use super::run::{Layout, Representative, SequencingCosts};
+use super::Mission;
+use crate::error::{Error, Result};
+use crate::oracle::PathOracle;
+use crate::pipeline::Pipeline;
+use crate::pose::Pose2;
+use crate::stages::{CostMatrix, Sequencer, Tour, TourKind};
+
+/// The target's stand-in for sequencing.
+fn representative(
+    mission: &Mission,
+    layout: &Layout,
+    target: usize,
+    rule: Representative,
+) -> usize {
+    let t = &mission.targets[target];
+    if rule == Representative::FirstPoi {
+        return layout.pois[target][0];
+    }
+    let d = |p: &Pose2| (p.x - t.position.x).hypot(p.y - t.position.y);
+    let best = (0..t.pois.len())
+        .min_by(|&a, &b| d(&t.pois[a]).total_cmp(&d(&t.pois[b])).then(a.cmp(&b)))
+        .unwrap_or(0);
+    layout.pois[target][best]
+}
+
+/// The visiting order of `targets` (indices into the mission).
+pub(super) fn sequence(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    rule: Representative,
+    costs: SequencingCosts,
+) -> Result<Vec<usize>> {
+    let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "sequencer",
+    })?;
+    let open = mission.end.is_some();
+    let mut nodes = vec![layout.start];
+    nodes.extend(
+        targets
+            .iter()
+            .map(|&t| representative(mission, layout, t, rule)),
+    );
+    if open {
+        nodes.push(layout.end);
+    }
+    let n = nodes.len();
+    let kind = if open {
+        TourKind::OpenTo(n - 1)
+    } else {
+        TourKind::Closed
+    };
+    let tour = match costs {
+        SequencingCosts::Full => sequencer.solve(&full_matrix(oracle, &nodes)?, kind)?,
+        SequencingCosts::Lazy => lazy_tour(sequencer.as_ref(), oracle, &nodes, kind)?,
+    };
+    Ok(tour
+        .order
+        .iter()
+        .filter(|&&v| v != 0 && !(open && v == n - 1))
+        .map(|&v| targets[v - 1])
+        .collect())
+}
+
+/// Path costs between every pair of `nodes` (each pair planned once when the oracle is
+/// symmetric, both ways otherwise).
+fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
+    let n = nodes.len();
+    let mut costs = vec![0.0; n * n];
+    if oracle.answers_many() {
+        // One call per row (the rest of the row for a symmetric oracle).
+        for i in 0..n {
+            let from = if oracle.is_symmetric() { i + 1 } else { 0 };
+            oracle.plan_from(nodes[i], &nodes[from..])?;
+        }
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            let c = oracle.cost(nodes[i], nodes[j])?;
+            costs[i * n + j] = c;
+            costs[j * n + i] = if oracle.is_symmetric() {
+                c
+            } else {
+                oracle.cost(nodes[j], nodes[i])?
+            };
+        }
+    }
+    CostMatrix::from_rows(n, costs)
+}
+
+/// The tour over `nodes` on planned costs where known and lower bounds elsewhere,
+/// re-solved after planning its unplanned legs until it uses planned legs only (or a
+/// planned leg has no path: then the selection finds out which target is unreachable).
+fn lazy_tour(
+    sequencer: &dyn Sequencer,
+    oracle: &mut PathOracle,
+    nodes: &[usize],
+    kind: TourKind,
+) -> Result<Tour> {
+    let n = nodes.len();
+    loop {
+        let matrix = CostMatrix::from_fn(n, |i, j| {
+            if i == j {
+                0.0
+            } else {
+                oracle.cost_or_bound(nodes[i], nodes[j])
+            }
+        })?;
+        let tour = sequencer.solve(&matrix, kind)?;
+        let unplanned: Vec<(usize, usize)> = tour_legs(&tour, kind)
+            .map(|(a, b)| (nodes[a], nodes[b]))
+            .filter(|&(a, b)| !oracle.is_planned(a, b))
+            .collect();
+        if unplanned.is_empty() {
+            return Ok(tour);
+        }
+        let mut dead_end = false;
+        for (a, b) in unplanned {
+            dead_end |= !oracle.cost(a, b)?.is_finite();
+        }
+        if dead_end {
+            return Ok(tour);
+        }
+    }
+}
+
+/// The legs `(from, to)` of a tour, the return leg of a closed tour included.
+fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let closing = match kind {
+        TourKind::Closed => tour.order.last().map(|&last| (last, tour.order[0])),
+        TourKind::OpenTo(_) => None,
+    };
+    tour.order.windows(2).map(|w| (w[0], w[1])).chain(closing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::objective::PathLength;
+    use crate::path::Path;
+    use crate::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
+    use proptest::prelude::*;
+    use std::sync::Arc;
+
+    /// Answers every query with a straight path whose cost is the objective's cost
+    /// times a fixed detour factor of the pair (≥ 1, symmetric).
+    struct DetourPlanner {
+        poses: Vec<Pose2>,
+        detours: Vec<f64>,
+        objective: PathLength,
+    }
+
+    impl DetourPlanner {
+        fn index(&self, pose: &Pose2) -> usize {
+            self.poses.iter().position(|p| p == pose).unwrap()
+        }
+    }
+
+    impl PointToPointPlanner for DetourPlanner {
+        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+            let (i, j) = (self.index(start), self.index(goal));
+            let n = self.poses.len();
+            let factor = self.detours[i.min(j) * n + i.max(j)];
+            let mut path = Path::new(vec![*start, *goal], &self.objective);
+            path.cost *= factor;
+            Ok(PlannerOutcome::Exact(path))
+        }
+
+        fn stats(&self) -> PlannerStats {
+            PlannerStats::default()
+        }
+    }
+
+    /// The best tour by trying every order (small n only).
+    struct Exhaustive;
+
+    impl Sequencer for Exhaustive {
+        fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour> {
+            let n = costs.len();
+            let mut rest: Vec<usize> = (1..n).collect();
+            let mut best = Tour {
+                order: vec![],
+                cost: f64::INFINITY,
+            };
+            permute(&mut rest, 0, &mut |p| {
+                let order: Vec<usize> = std::iter::once(0).chain(p.iter().copied()).collect();
+                let cost = costs.tour_cost(&order, kind);
+                if cost < best.cost {
+                    best = Tour { order, cost };
+                }
+            });
+            Ok(best)
+        }
+    }
+
+    fn permute(items: &mut [usize], k: usize, visit: &mut impl FnMut(&[usize])) {
+        if k == items.len() {
+            return visit(items);
+        }
+        for i in k..items.len() {
+            items.swap(k, i);
+            permute(items, k + 1, visit);
+            items.swap(k, i);
+        }
+    }
+
+    fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
+        let objective = PathLength::default();
+        let planner = DetourPlanner {
+            poses: poses.to_vec(),
+            detours,
+            objective: objective.clone(),
+        };
+        let mut oracle = PathOracle::new(Arc::new(objective), Box::new(planner));
+        let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
+        (oracle, nodes)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        /// With an exact solver and admissible lower bounds, the lazy tour costs what
+        /// the full matrix's tour costs, from no more planned paths.
+        #[test]
+        fn lazy_sequencing_is_exact_with_an_exact_solver(
+            points in prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), 3..7),
+            detours in prop::collection::vec(1.0..2.0f64, 49),
+            open in any::<bool>(),
+        ) {
+            let poses: Vec<Pose2> = points.iter().map(|&(x, y, yaw)| Pose2::new(x, y, yaw)).collect();
+            let n = poses.len();
+            let kind = if open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
+            let (mut full_oracle, nodes) = oracle(&poses, detours.clone());
+            let full = Exhaustive.solve(&full_matrix(&mut full_oracle, &nodes).unwrap(), kind).unwrap();
+            let (mut lazy_oracle, nodes) = oracle(&poses, detours);
+            let lazy = lazy_tour(&Exhaustive, &mut lazy_oracle, &nodes, kind).unwrap();
+            let true_cost = full_matrix(&mut full_oracle, &nodes).unwrap().tour_cost(&lazy.order, kind);
+            prop_assert!((true_cost - full.cost).abs() < 1e-9, "lazy {true_cost} vs full {}", full.cost);
+            prop_assert!((lazy.cost - true_cost).abs() < 1e-9, "the lazy tour's legs are all planned");
+            prop_assert!(lazy_oracle.stats().paths_planned <= full_oracle.stats().paths_planned);
+        }
+    }
+}
