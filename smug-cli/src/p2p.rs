@@ -64,33 +64,6 @@ struct Results {
     planner: smug_core::PlannerStats,
 }
 
-/// Reads `sx,sy,syaw,gx,gy,gyaw` rows; the first row may be a header.
-fn read_queries(path: &Path) -> anyhow::Result<Vec<(Pose2, Pose2)>> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", path.display()))?;
-    let mut queries = Vec::new();
-    for (n, line) in text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
-    {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let numbers: Result<Vec<f64>, _> = fields.iter().map(|f| f.parse::<f64>()).collect();
-        match numbers {
-            Ok(v) if v.len() == 6 && v.iter().all(|x| x.is_finite()) => {
-                queries.push((Pose2::new(v[0], v[1], v[2]), Pose2::new(v[3], v[4], v[5])))
-            }
-            Err(_) if n == 0 => continue,
-            _ => anyhow::bail!(
-                "{}:{}: expected six finite numbers sx,sy,syaw,gx,gy,gyaw, got `{line}`",
-                path.display(),
-                n + 1
-            ),
-        }
-    }
-    Ok(queries)
-}
-
 fn overrides(args: &P2pArgs) -> Vec<String> {
     let mut set = args.set.clone();
     if let Some(kind) = &args.validity {
@@ -152,7 +125,7 @@ fn assemble(args: &P2pArgs, first_start: Pose2) -> anyhow::Result<(Pipeline, Str
 
 /// Runs `smug p2p`.
 pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
-    let queries = read_queries(&args.queries)?;
+    let queries = smug_core::queries::read_queries(&args.queries)?;
     let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
     let (mut pipeline, planner_type) = assemble(&args, first_start)?;
     let planner = pipeline

@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod config;
+pub mod deadline;
 pub mod error;
 pub mod evaluation;
 pub mod grid;
@@ -22,6 +23,7 @@ pub mod pipeline;
 pub mod plan;
 pub mod pose;
 pub mod post_process;
+pub mod queries;
 pub mod registry;
 pub mod rng;
 pub mod space;
