@@ -17,6 +17,11 @@ pub struct PlanArgs {
     /// Override the config's seed.
     #[arg(long)]
     seed: Option<u64>,
+    /// Seconds after which searches stop with their best result and no new path is
+    /// planned (sets `plan.deadline`): a complete plan found by then is written and
+    /// marked `deadline_reached`, else smug exits 1 saying so.
+    #[arg(long, value_name = "SECONDS")]
+    deadline: Option<String>,
     /// Output directory for plan.json, plan.csv and plan.svg (default: the config's
     /// `output.dir`, else `out`).
     #[arg(long)]
@@ -31,6 +36,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     let mut set = args.set.clone();
     if let Some(seed) = args.seed {
         set.push(format!("seed={seed}"));
+    }
+    if let Some(seconds) = &args.deadline {
+        set.push(format!("plan.deadline={seconds}"));
     }
     let loaded = LoadedConfig::from_file(&args.config, &set)?;
     let out = args
@@ -51,8 +59,18 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
             eprintln!("smug: no solution: {source}");
             return Ok(Outcome::NoSolution);
         }
+        Err(err @ smug_core::Error::DeadlinePassed { .. }) => {
+            eprintln!("smug: no plan: {err}");
+            return Ok(Outcome::NoSolution);
+        }
         Err(err) => return Err(err.into()),
     };
+    if plan.deadline_reached {
+        eprintln!(
+            "smug: the deadline cut a search short: the plan is complete and valid, the best \
+             found by then (marked `deadline_reached` in plan.json)"
+        );
+    }
     let world = pipeline.world.clone().expect("plan_mission needs a world");
     write_outputs(&plan, &world, &pipeline, &out)?;
     if args.json {

@@ -492,6 +492,9 @@ impl LoadedConfig {
         if let Some((field, message)) = config.robot.invalid_field() {
             return Err(sources.key_error(&KeyPath::dotted("robot").join(field), message));
         }
+        if let Some((field, message)) = config.plan.invalid_field() {
+            return Err(sources.key_error(&KeyPath::dotted("plan").join(field), message));
+        }
         Ok(Self {
             config,
             table,

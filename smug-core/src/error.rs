@@ -159,6 +159,14 @@ pub enum Error {
         /// Why it failed.
         source: std::io::Error,
     },
+    /// The run's deadline ([`crate::deadline`]) passed before a complete plan was found.
+    #[error("the deadline of {seconds} s passed during {during} before a complete plan was found")]
+    DeadlinePassed {
+        /// The deadline, in seconds from the start of the run.
+        seconds: f64,
+        /// What was running when it passed.
+        during: String,
+    },
     /// A plugin's own typed error.
     #[error("{stage}: {source}")]
     Stage {

@@ -3,7 +3,7 @@
 //! Sequencing and PoI selection only talk to the oracle. It owns the point-to-point
 //! planner, so every query of a mission shares one roadmap.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
@@ -183,6 +183,7 @@ impl PathOracle {
         if wanted.is_empty() {
             return Ok(());
         }
+        refuse_after_deadline()?;
         let goals: Vec<Pose2> = wanted.iter().map(|&j| self.poses[j]).collect();
         let outcomes = self.planner.plan_many(&self.poses[i], &goals)?;
         self.stats.paths_planned += wanted.len() as u64;
@@ -216,11 +217,24 @@ impl PathOracle {
     }
 
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
+        refuse_after_deadline()?;
         self.stats.paths_planned += 1;
         let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
         let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
         Ok(PlannedPath { outcome, cost })
     }
+}
+
+/// No new path is planned once the run's hard stop has passed (the deadline's seconds
+/// are filled in by whoever set it).
+fn refuse_after_deadline() -> Result<()> {
+    if crate::deadline::hard_stop_passed() {
+        return Err(Error::DeadlinePassed {
+            seconds: f64::NAN,
+            during: "path planning".into(),
+        });
+    }
+    Ok(())
 }
 
 impl std::fmt::Debug for PathOracle {

@@ -96,6 +96,10 @@ pub struct Plan {
     /// Targets left out (unreachable, with `skip_unreachable = true`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub skipped: Vec<String>,
+    /// True when the run's deadline cut an anytime search short (a planner query, the
+    /// sequencer's local search): the plan is complete and valid, the best found by then.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub deadline_reached: bool,
     /// Counters and timings.
     pub stats: PlanStats,
 }

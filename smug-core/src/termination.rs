@@ -120,8 +120,12 @@ impl TerminationClock<'_> {
         self.started.elapsed()
     }
 
-    /// True once the rule says stop.
+    /// True once the rule says stop, or the thread's run deadline has passed
+    /// ([`crate::deadline`]).
     pub fn is_done(&self) -> bool {
+        if crate::deadline::passed() {
+            return true;
+        }
         // Avoid reading the clock for pure iteration budgets.
         let elapsed = if self.rule.uses_time() {
             self.started.elapsed()

@@ -75,13 +75,14 @@ fn one_line(err: &(dyn std::error::Error + 'static)) -> String {
     message.replace('\n', " ")
 }
 
-/// The Python exception for a library error: `NoSolution` for unreachable targets,
-/// `ConfigError` for config and plugin errors, `InputError` for the rest.
+/// The Python exception for a library error: `NoSolution` for unreachable targets and
+/// a passed deadline, `ConfigError` for config and plugin errors, `InputError` for the rest.
 fn to_py(err: Error) -> PyErr {
     match &err {
         Error::Stage { source, .. } if source.is::<Unreachable>() => {
             NoSolution::new_err(format!("no solution: {source}"))
         }
+        Error::DeadlinePassed { .. } => NoSolution::new_err(format!("no solution: {err}")),
         Error::Config(_)
         | Error::Registry(_)
         | Error::InvalidParam { .. }

@@ -6,6 +6,7 @@
 use super::assembly::{assemble_plan, stats};
 use super::sequential::sequence;
 use super::Mission;
+use crate::deadline;
 use crate::error::{Error, Result};
 use crate::evaluation::plan_metrics;
 use crate::oracle::PathOracle;
@@ -43,7 +44,7 @@ pub enum SequencingCosts {
 }
 
 /// How the mission is run (the config's `[plan]` section).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlanOptions {
     /// The pose that stands in for each target when sequencing.
@@ -54,6 +55,24 @@ pub struct PlanOptions {
     pub keep_headings: bool,
     /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
     pub sequencing_costs: SequencingCosts,
+    /// Seconds from the start of the run (world building included) after which anytime
+    /// searches stop with their best result and path queries search only the roadmap
+    /// built so far; nothing is planned after a grace of a quarter of it (≥ 1 s). `None`:
+    /// no deadline. Results then depend on the machine's speed.
+    pub deadline: Option<f64>,
+}
+
+impl PlanOptions {
+    /// The first option with a value outside its domain: `(key, message)`.
+    pub fn invalid_field(&self) -> Option<(&'static str, String)> {
+        let deadline = self.deadline?;
+        (!(deadline.is_finite() && deadline > 0.0)).then(|| {
+            (
+                "deadline",
+                format!("must be a finite number of seconds > 0, got {deadline}"),
+            )
+        })
+    }
 }
 
 /// Targets that cannot be reached: the plan fails and names them.
@@ -108,8 +127,31 @@ fn unreachable_targets(
     Ok(unreachable)
 }
 
-/// Plans the pipeline's mission: sequencing, PoI selection, post-processing.
+/// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
+/// the options' deadline when they set one ([`crate::deadline`]).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+    let Some(seconds) = options.deadline else {
+        return plan_sequential(pipeline, options);
+    };
+    let built_s: f64 = pipeline.build_times_s.values().sum();
+    let _deadline = deadline::set(Some(seconds - built_s));
+    match plan_sequential(pipeline, options) {
+        Ok(mut plan) => {
+            plan.deadline_reached = deadline::reached();
+            Ok(plan)
+        }
+        Err(Error::DeadlinePassed { during, .. }) => Err(Error::DeadlinePassed { seconds, during }),
+        // An anytime search cut short can look like a missing path: say what happened.
+        Err(_) if deadline::reached() => Err(Error::DeadlinePassed {
+            seconds,
+            during: "path planning".into(),
+        }),
+        Err(other) => Err(other),
+    }
+}
+
+/// The sequential mode: the order from representative poses, then the poses along it.
+fn plan_sequential(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
     let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
         stage: "smug plan".into(),

@@ -1,0 +1,70 @@
+//! `smug plan --deadline`: a run ends by its deadline, with a complete plan marked as
+//! cut short or with exit 1 saying that the deadline passed.
+
+mod common;
+
+use common::*;
+use std::time::{Duration, Instant};
+
+#[test]
+fn a_plan_found_after_the_deadline_cut_a_search_is_written_and_marked() {
+    let out = "target/cli-test-deadline-marked";
+    // The exact planner needs no growing roadmap; the sequencer's search is cut at once.
+    let run = smug(&[
+        "plan",
+        "configs/indoor-disc.toml",
+        "--deadline",
+        "0.000001",
+        "--out",
+        out,
+    ]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(0), "{err}");
+    assert!(err.contains("the deadline cut a search short"), "{err}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(workspace().join(out).join("plan.json")).unwrap())
+            .unwrap();
+    assert_eq!(plan["deadline_reached"], true);
+    assert!(plan["cost"].as_f64().unwrap().is_finite());
+}
+
+#[test]
+fn a_deadline_without_a_complete_plan_exits_1_within_its_grace() {
+    let out = workspace().join("target/cli-test-deadline-none");
+    std::fs::remove_dir_all(&out).ok();
+    let started = Instant::now();
+    let run = smug(&[
+        "plan",
+        "configs/lunar.toml",
+        "--deadline",
+        "0.000001",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("the deadline of 0.000001 s passed during path planning"),
+        "{err}"
+    );
+    assert!(!out.join("plan.json").exists(), "no plan is written");
+    // A second of grace after the deadline, plus the world's build and the process.
+    assert!(
+        started.elapsed() < Duration::from_secs(20),
+        "{:?}",
+        started.elapsed()
+    );
+}
+
+#[test]
+fn a_deadline_that_is_not_a_positive_number_names_the_key() {
+    for bad in ["0", "nan", "inf", "-2"] {
+        let run = smug(&["plan", "configs/lunar.toml", &format!("--deadline={bad}")]);
+        let err = stderr(&run);
+        assert_eq!(run.status.code(), Some(2), "{bad}: {err}");
+        assert!(err.contains("`plan.deadline`"), "{bad}: {err}");
+    }
+    let run = smug(&["plan", "configs/lunar.toml", "--deadline=soon"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("plan.deadline"), "{}", stderr(&run));
+}
