@@ -147,6 +147,9 @@ pub struct PipelineConfig {
     /// Output files.
     #[serde(default)]
     pub output: OutputConfig,
+    /// Resource limits (`[limits] memory_gb`).
+    #[serde(default)]
+    pub limits: crate::limits::LimitsConfig,
 }
 
 impl PipelineConfig {
@@ -494,6 +497,9 @@ impl LoadedConfig {
         }
         if let Some((field, message)) = config.plan.invalid_field() {
             return Err(sources.key_error(&KeyPath::dotted("plan").join(field), message));
+        }
+        if let Some((field, message)) = config.limits.invalid_field() {
+            return Err(sources.key_error(&KeyPath::dotted("limits").join(field), message));
         }
         Ok(Self {
             config,

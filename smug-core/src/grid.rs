@@ -27,6 +27,8 @@ impl GridGeometry {
         if !(origin[0].is_finite() && origin[1].is_finite()) {
             return Err(format!("grid origin must be finite, got {origin:?}"));
         }
+        let cells = size.iter().map(|&n| n as u128).product::<u128>();
+        crate::limits::check_allocation(&format!("a {}×{} grid", size[0], size[1]), cells, 4)?;
         Ok(Self {
             origin,
             resolution,
@@ -194,6 +196,12 @@ impl VoxelGeometry {
         if !(resolution.is_finite() && resolution > 0.0) {
             return Err(format!("voxel resolution must be > 0, got {resolution}"));
         }
+        if !origin.iter().all(|c| c.is_finite()) {
+            return Err(format!("voxel grid origin must be finite, got {origin:?}"));
+        }
+        let voxels = size.iter().map(|&n| n as u128).product::<u128>();
+        let shown = format!("a {}×{}×{} voxel grid", size[0], size[1], size[2]);
+        crate::limits::check_allocation(&shown, voxels, 4)?;
         Ok(Self {
             origin,
             resolution,

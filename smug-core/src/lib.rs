@@ -14,6 +14,7 @@ pub mod deadline;
 pub mod error;
 pub mod evaluation;
 pub mod grid;
+pub mod limits;
 pub mod mission;
 pub mod objective;
 pub mod oracle;

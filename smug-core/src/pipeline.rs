@@ -280,6 +280,7 @@ impl Pipeline {
         given_estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
     ) -> Result<Self> {
         let config = loaded.config.clone();
+        config.limits.apply();
         let mut ctx = BuildContext::new(config.seed, config.robot);
         ctx.sources = loaded.sources.clone();
         let mut pipeline = Pipeline {

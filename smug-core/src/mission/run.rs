@@ -127,6 +127,30 @@ fn unreachable_targets(
     Ok(unreachable)
 }
 
+/// Most pose pairs one sweep of the PoI selection may weigh (a count bound: beyond it a
+/// sweep takes minutes and the paths between the poses far longer).
+pub const MAX_POSE_PAIRS: u128 = 100_000_000;
+
+/// Refuses missions whose PoI selection would weigh more than [`MAX_POSE_PAIRS`] pairs per
+/// sweep (bounded by the largest target's PoIs times all PoIs).
+fn check_selection_size(mission: &Mission) -> Result<()> {
+    let Some(largest) = mission.targets.iter().max_by_key(|t| t.pois.len()) else {
+        return Ok(());
+    };
+    let total: u128 = mission.targets.iter().map(|t| t.pois.len() as u128).sum();
+    let pairs = total * largest.pois.len() as u128;
+    if pairs <= MAX_POSE_PAIRS {
+        return Ok(());
+    }
+    Err(Error::InvalidInput(format!(
+        "the mission has {total} PoIs, {} of them at target `{}`: selecting among them \
+         weighs up to {pairs} pose pairs per sweep, above the {MAX_POSE_PAIRS} a plan is \
+         bounded by; give the targets fewer PoIs",
+        largest.pois.len(),
+        largest.id
+    )))
+}
+
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
 /// the options' deadline when they set one ([`crate::deadline`]).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
@@ -167,6 +191,7 @@ fn plan_sequential(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan
     })?;
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
         .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric());
+    check_selection_size(&mission)?;
     let layout = register_poses(&mut oracle, &mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();

@@ -203,6 +203,23 @@ fn connection_k(n: usize) -> usize {
     (k as usize).max(1)
 }
 
+/// Bytes a roadmap vertex takes with its share of edges (measured order of magnitude:
+/// the pose, ~30 neighbours with costs and check states, the search's arrays).
+const BYTES_PER_VERTEX: u128 = 512;
+
+/// Refuses sample counts whose roadmap would not fit the memory limit.
+fn check_roadmap_size(params: &LazyPrmStarParams) -> Result<()> {
+    for (key, count) in [
+        ("initial_samples", params.initial_samples),
+        ("max_samples", params.max_samples),
+    ] {
+        let what = format!("a roadmap of {key} = {count} vertices");
+        smug_core::limits::check_allocation(&what, count.into(), BYTES_PER_VERTEX)
+            .map_err(|message| Error::invalid_param("planner", message))?;
+    }
+    Ok(())
+}
+
 impl LazyPrmStar {
     /// A planner over the given stages in `bounds`.
     pub fn new(
@@ -254,6 +271,7 @@ impl LazyPrmStar {
                 ),
             ));
         }
+        check_roadmap_size(&params)?;
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,

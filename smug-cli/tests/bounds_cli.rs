@@ -1,5 +1,6 @@
-//! `smug plan --deadline`: a run ends by its deadline, with a complete plan marked as
-//! cut short or with exit 1 saying that the deadline passed.
+//! Bounded runs: `smug plan --deadline` ends by its deadline, with a complete plan marked
+//! as cut short or with exit 1 saying that the deadline passed; inputs that would need
+//! more memory or work than the limits allow are refused naming what and how much.
 
 mod common;
 
@@ -67,4 +68,40 @@ fn a_deadline_that_is_not_a_positive_number_names_the_key() {
     let run = smug(&["plan", "configs/lunar.toml", "--deadline=soon"]);
     assert_eq!(run.status.code(), Some(2));
     assert!(stderr(&run).contains("plan.deadline"), "{}", stderr(&run));
+}
+
+#[test]
+fn allocations_above_the_memory_limit_are_refused_with_their_size() {
+    let cases = [
+        (
+            "planner.params.initial_samples=1000000000",
+            "planner: a roadmap of initial_samples = 1000000000 vertices (1000000000 × 512 B) \
+             would need 512.000 GB, above the memory limit of 8.000 GB (`limits.memory_gb`)",
+        ),
+        (
+            "limits.memory_gb=0.000001",
+            "world: a 300×290 grid (87000 × 4 B) would need 348.000 kB, above the memory \
+             limit of 1.000 kB (`limits.memory_gb`)",
+        ),
+    ];
+    for (set, expected) in cases {
+        let run = smug(&["plan", "configs/lunar.toml", "--set", set]);
+        let err = stderr(&run);
+        assert_eq!(run.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains(expected), "{set}: {err}");
+    }
+}
+
+#[test]
+fn a_selection_beyond_the_pose_pair_bound_is_refused_naming_the_target() {
+    let run = smug(&[
+        "plan",
+        "configs/lunar.toml",
+        "--set",
+        "world.params.pois_per_target=4000",
+    ]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("4000 of them at target `stone-"), "{err}");
+    assert!(err.contains("give the targets fewer PoIs"), "{err}");
 }

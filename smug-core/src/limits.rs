@@ -1,0 +1,110 @@
+//! The memory limit: inputs whose dense matrices, grids or roadmaps would need more than
+//! it are refused, naming what and how much, instead of exhausting the machine.
+//!
+//! The limit is process-wide (default 8 GB); a config's `[limits] memory_gb` sets it when
+//! its pipeline is assembled.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The default limit in bytes (8 GB).
+pub const DEFAULT_MEMORY_BYTES: u64 = 8_000_000_000;
+
+static MEMORY_BYTES: AtomicU64 = AtomicU64::new(DEFAULT_MEMORY_BYTES);
+
+/// The config's `[limits]` section.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LimitsConfig {
+    /// Largest allocation of one structure, in GB (10⁹ bytes).
+    pub memory_gb: f64,
+}
+
+impl Default for LimitsConfig {
+    fn default() -> Self {
+        Self {
+            memory_gb: DEFAULT_MEMORY_BYTES as f64 / 1e9,
+        }
+    }
+}
+
+impl LimitsConfig {
+    /// The first key with a value outside its domain: `(key, message)`.
+    pub fn invalid_field(&self) -> Option<(&'static str, String)> {
+        let gb = self.memory_gb;
+        (!(gb.is_finite() && gb > 0.0 && gb <= 1e9)).then(|| {
+            (
+                "memory_gb",
+                format!("must be a number of GB in (0, 1e9], got {gb}"),
+            )
+        })
+    }
+
+    /// Makes this the process's limit.
+    pub fn apply(&self) {
+        set_memory_limit((self.memory_gb * 1e9) as u64);
+    }
+}
+
+/// Sets the process's limit in bytes.
+pub fn set_memory_limit(bytes: u64) {
+    MEMORY_BYTES.store(bytes, Ordering::Relaxed);
+}
+
+/// The process's limit in bytes.
+pub fn memory_limit() -> u64 {
+    MEMORY_BYTES.load(Ordering::Relaxed)
+}
+
+/// `Ok` when `count` items of `bytes_each` bytes fit the limit; else a message naming
+/// `what`, the count, the size it would need and the limit.
+pub fn check_allocation(what: &str, count: u128, bytes_each: u128) -> Result<(), String> {
+    let needed = count.saturating_mul(bytes_each);
+    let limit = memory_limit();
+    if needed <= u128::from(limit) {
+        return Ok(());
+    }
+    Err(format!(
+        "{what} ({count} × {bytes_each} B) would need {}, above the memory limit of {} \
+         (`limits.memory_gb`)",
+        human(needed),
+        human(u128::from(limit))
+    ))
+}
+
+/// Bytes in B, kB, MB, GB, TB … with three significant digits.
+pub fn human(bytes: u128) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB", "PB", "EB", "ZB", "YB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 1000.0 && unit + 1 < units.len() {
+        value /= 1000.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} B")
+    } else {
+        format!("{value:.3} {}", units[unit])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn allocations_above_the_limit_are_refused_with_their_size() {
+        assert!(check_allocation("a grid", 1000, 4).is_ok());
+        let err = check_allocation("the lunar world's grid", 4_000_000_000, 4).unwrap_err();
+        assert_eq!(
+            err,
+            "the lunar world's grid (4000000000 × 4 B) would need 16.000 GB, above the \
+             memory limit of 8.000 GB (`limits.memory_gb`)"
+        );
+        assert!(
+            check_allocation("x", u128::MAX, u128::MAX).is_err(),
+            "no overflow"
+        );
+        assert_eq!(human(999), "999 B");
+        assert_eq!(human(1_500_000), "1.500 MB");
+    }
+}
