@@ -1,9 +1,11 @@
-//! Running a whole mission through an assembled pipeline (the sequential mode): the ToI
+//! Running a whole mission through an assembled pipeline. The sequential mode: the ToI
 //! order from path costs between representative poses (sequencer), one PoI per ToI
 //! (selector), then post-processing into SE(3) waypoints. Everything goes through one
-//! path oracle, so every query shares the planner's roadmap.
+//! path oracle, so every query shares the planner's roadmap. The joint mode (`joint`)
+//! chooses the order and the PoIs together.
 
 use super::assembly::{assemble_plan, stats};
+use super::joint::{joint_tour, JointProblem};
 use super::sequential::sequence;
 use super::Mission;
 use crate::error::{Error, Result};
@@ -12,7 +14,7 @@ use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
 use crate::plan::Plan;
 use crate::post_process::{concatenate, waypoints};
-use crate::stages::SelectionProblem;
+use crate::stages::{Selection, SelectionProblem};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -42,6 +44,20 @@ pub enum SequencingCosts {
     Full,
 }
 
+/// Whether the order and the PoIs are chosen one after the other or together.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlanMode {
+    /// The paper's way: the target order from representative poses (sequencer), then
+    /// one PoI per target along it (selector).
+    #[default]
+    Sequential,
+    /// Order and PoIs together: a generalized TSP over every PoI with lazy path costs,
+    /// solved by the sequencer's `solve_clusters` (a GTSP solver, e.g. `gtsp-lns` or
+    /// `gtsp-exact`); the selector is not used.
+    Joint,
+}
+
 /// How the mission is run (the config's `[plan]` section).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -54,6 +70,8 @@ pub struct PlanOptions {
     pub keep_headings: bool,
     /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
     pub sequencing_costs: SequencingCosts,
+    /// `"sequential"` (default: order, then PoIs) or `"joint"` (both at once, GTSP).
+    pub mode: PlanMode,
 }
 
 /// Targets that cannot be reached: the plan fails and names them.
@@ -108,6 +126,42 @@ fn unreachable_targets(
     Ok(unreachable)
 }
 
+/// The sequential mode's order (sequencer) and PoIs along it (selector), timed.
+fn order_then_select(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    options: PlanOptions,
+    times: &mut std::collections::BTreeMap<String, f64>,
+) -> Result<(Vec<usize>, Result<Selection>)> {
+    let t = Instant::now();
+    let order = sequence(
+        pipeline,
+        oracle,
+        mission,
+        layout,
+        targets,
+        options.representative,
+        options.sequencing_costs,
+    )?;
+    *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "selector",
+    })?;
+    let problem = SelectionProblem {
+        start: layout.start,
+        groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
+        end: layout.end,
+    };
+    let selected = selector.select(oracle, &problem);
+    *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    Ok((order, selected))
+}
+
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing.
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
@@ -130,29 +184,38 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
     let (order, problem, selection) = loop {
-        let t = Instant::now();
-        let order = sequence(
-            pipeline,
-            &mut oracle,
-            &mission,
-            &layout,
-            &targets,
-            options.representative,
-            options.sequencing_costs,
-        )?;
-        *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
-            stage: "smug plan".into(),
-            needed: "selector",
-        })?;
+        let (order, selected) = match options.mode {
+            PlanMode::Sequential => order_then_select(
+                pipeline,
+                &mut oracle,
+                &mission,
+                &layout,
+                &targets,
+                options,
+                &mut times,
+            )?,
+            PlanMode::Joint => {
+                let t = Instant::now();
+                let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
+                    stage: "smug plan".into(),
+                    needed: "sequencer",
+                })?;
+                let joint = JointProblem {
+                    start: layout.start,
+                    groups: targets.iter().map(|&t| layout.pois[t].clone()).collect(),
+                    end: mission.end.is_some().then_some(layout.end),
+                };
+                let (positions, selection) = joint_tour(sequencer.as_ref(), &mut oracle, &joint)?;
+                *times.entry("joint".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+                let order: Vec<usize> = positions.iter().map(|&k| targets[k]).collect();
+                (order, Ok(selection))
+            }
+        };
         let problem = SelectionProblem {
             start: layout.start,
             groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
             end: layout.end,
         };
-        let selected = selector.select(&mut oracle, &problem);
-        *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
         let selection = match selected {
             Ok(s) if s.cost.is_finite() => s,
             other => {
