@@ -17,6 +17,9 @@ enum BenchCommand {
     /// TSP solvers on the TSPLIB suite (--data DIR or $SMUG_DATA/tsplib): gap to the
     /// optimum and time.
     Tsp(crate::bench_tsp::BenchTspArgs),
+    /// GTSP solver on the GTSP-LIB suite (--data DIR or $SMUG_DATA/gtsp): gap to the
+    /// best-known values and time.
+    Gtsp(crate::bench_gtsp::BenchGtspArgs),
     /// LazyPRM* on MovingAI maps: scenarios solved, length against the optimum, time.
     P2p(crate::bench_p2p::BenchP2pArgs),
     /// State validity checkers: checks per second and distance-field queries.
@@ -30,6 +33,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
     match args.which {
         BenchCommand::Paper(args) => crate::bench_paper::run(args),
         BenchCommand::Tsp(args) => crate::bench_tsp::run_bench(args),
+        BenchCommand::Gtsp(args) => crate::bench_gtsp::run(args),
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),
         BenchCommand::Objectives(args) => crate::bench_objectives::run(args),

@@ -16,6 +16,7 @@ use smug_validity as _;
 use smug_worlds as _;
 
 mod bench;
+mod bench_gtsp;
 mod bench_objectives;
 mod bench_output;
 mod bench_p2p;
@@ -26,6 +27,7 @@ mod bench_paper_report;
 mod bench_tsp;
 mod bench_validity;
 mod check;
+mod gtsp;
 mod p2p;
 mod plan;
 mod plugins;
@@ -62,6 +64,8 @@ enum Command {
     P2p(p2p::P2pArgs),
     /// Solve a TSPLIB instance (a file, or a name in the suite of --data / $SMUG_DATA).
     Tsp(tsp::TspArgs),
+    /// Solve a GTSP-LIB instance (generalized TSP: one node per cluster).
+    Gtsp(gtsp::GtspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
     /// Look at, convert, generate and export worlds.
@@ -75,6 +79,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Plan(args) => plan::run(args),
         Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
+        Command::Gtsp(args) => gtsp::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Worlds(args) => worlds::run(args),
     }

@@ -1,6 +1,5 @@
 //! `dp`: plans every leg between PoIs of consecutive targets, then dynamic programming.
 
-use crate::dp_core::solve_layers;
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
 use smug_core::{PathOracle, PoiSelector, Result, Selection, SelectionProblem};
@@ -38,7 +37,7 @@ impl PoiSelector for DpSelector {
                 }
             }
         }
-        let (chosen, cost) = solve_layers(problem, |i, j| oracle.cost(i, j))?;
+        let (chosen, cost) = problem.solve_layers(|i, j| oracle.cost(i, j))?;
         if !cost.is_finite() {
             return Err(unreachable_error(oracle, problem));
         }

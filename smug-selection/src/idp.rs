@@ -1,6 +1,5 @@
 //! `idp`: Iterative DP — DP over lower bounds, planning only the legs it chooses.
 
-use crate::dp_core::solve_layers;
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
 use smug_core::{PathOracle, PoiSelector, Result, Selection, SelectionProblem};
@@ -39,7 +38,7 @@ impl PoiSelector for IdpSelector {
 pub(crate) fn idp(oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
     let mut best: Option<Selection> = None;
     loop {
-        let (chosen, _) = solve_layers(problem, |i, j| Ok(oracle.cost_or_bound(i, j)))?;
+        let (chosen, _) = problem.solve_layers(|i, j| Ok(oracle.cost_or_bound(i, j)))?;
         let mut planned_new = false;
         for leg in problem.route(&chosen).windows(2) {
             if !oracle.is_planned(leg[0], leg[1]) {

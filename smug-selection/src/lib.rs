@@ -16,7 +16,6 @@
 
 pub mod brute_force;
 pub mod dp;
-mod dp_core;
 pub mod error;
 pub mod idp;
 pub mod irba;

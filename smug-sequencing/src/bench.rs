@@ -106,6 +106,27 @@ pub fn load_suite(dir: &Path) -> Result<Vec<BenchInstance>, TsplibError> {
 
 /// `(name, optimal_tour_length)` rows of an optima CSV (simple CSV: no quoted commas).
 fn parse_optima(text: &str, path: &str) -> Result<Vec<(String, f64)>, TsplibError> {
+    csv_rows(text, path, &["name", "optimal_tour_length"])?
+        .into_iter()
+        .map(|(line, fields)| match fields[1].parse::<f64>() {
+            Ok(value) if !fields[0].is_empty() => Ok((fields[0].clone(), value)),
+            _ => Err(TsplibError::Syntax {
+                path: path.to_string(),
+                line,
+                message: "expected a name and a numeric optimal_tour_length".into(),
+            }),
+        })
+        .collect()
+}
+
+/// The fields `columns` (named in the header line) of every non-blank row of a simple
+/// CSV (no quoted commas), with each row's 1-based line number; a missing field is
+/// empty.
+pub(crate) fn csv_rows(
+    text: &str,
+    path: &str,
+    columns: &[&str],
+) -> Result<Vec<(usize, Vec<String>)>, TsplibError> {
     let mut lines = text
         .lines()
         .enumerate()
@@ -114,30 +135,28 @@ fn parse_optima(text: &str, path: &str) -> Result<Vec<(String, f64)>, TsplibErro
         .next()
         .map(|(_, l)| l.split(',').map(str::trim).collect())
         .unwrap_or_default();
-    let column = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .ok_or_else(|| TsplibError::Invalid {
-                path: path.to_string(),
-                message: format!("no `{name}` column in the header"),
-            })
-    };
-    let (name_col, value_col) = (column("name")?, column("optimal_tour_length")?);
-    lines
+    let positions = columns
+        .iter()
+        .map(|name| {
+            header
+                .iter()
+                .position(|h| h == name)
+                .ok_or_else(|| TsplibError::Invalid {
+                    path: path.to_string(),
+                    message: format!("no `{name}` column in the header"),
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(lines
         .map(|(index, line)| {
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-            let value = fields.get(value_col).and_then(|v| v.parse::<f64>().ok());
-            match (fields.get(name_col), value) {
-                (Some(name), Some(value)) if !name.is_empty() => Ok((name.to_string(), value)),
-                _ => Err(TsplibError::Syntax {
-                    path: path.to_string(),
-                    line: index + 1,
-                    message: "expected a name and a numeric optimal_tour_length".into(),
-                }),
-            }
+            let picked = positions
+                .iter()
+                .map(|&k| fields.get(k).copied().unwrap_or_default().to_string())
+                .collect();
+            (index + 1, picked)
         })
-        .collect()
+        .collect())
 }
 
 /// Relative excess over the optimum, in percent.

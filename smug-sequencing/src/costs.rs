@@ -2,7 +2,7 @@
 //! and turning an order into a [`Tour`] with its true cost.
 
 use crate::error::SequencingError;
-use smug_core::{CostMatrix, Tour, TourKind};
+use smug_core::{Clusters, CostMatrix, Tour, TourKind};
 
 /// Checks that `kind` makes sense for `n` nodes: at least one node, and an open path's end
 /// is a node other than the start (`OpenTo(0)` is accepted for a single node).
@@ -13,6 +13,32 @@ pub(crate) fn validate(n: usize, kind: TourKind) -> Result<(), SequencingError> 
     match kind {
         TourKind::OpenTo(end) if end >= n || (end == 0 && n > 1) => {
             Err(SequencingError::BadEnd { end, n })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Checks a GTSP: the clusters partition the matrix's nodes, there is at least one, and
+/// an open tour's end cluster is one other than the start cluster 0 (`OpenTo(0)` is
+/// accepted for a single cluster).
+pub(crate) fn validate_clusters(
+    costs: &CostMatrix,
+    clusters: &Clusters,
+    kind: TourKind,
+) -> Result<(), SequencingError> {
+    if clusters.node_count() != costs.len() {
+        return Err(SequencingError::ClusterMismatch {
+            clustered: clusters.node_count(),
+            n: costs.len(),
+        });
+    }
+    let m = clusters.len();
+    if m == 0 {
+        return Err(SequencingError::Empty);
+    }
+    match kind {
+        TourKind::OpenTo(end) if end >= m || (end == 0 && m > 1) => {
+            Err(SequencingError::BadEndCluster { end, m })
         }
         _ => Ok(()),
     }

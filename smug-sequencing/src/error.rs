@@ -15,6 +15,22 @@ pub enum SequencingError {
         /// Number of nodes.
         n: usize,
     },
+    /// The clusters of a GTSP do not partition the matrix's nodes.
+    #[error("the clusters cover {clustered} nodes but the cost matrix has {n}")]
+    ClusterMismatch {
+        /// Nodes in the clusters.
+        clustered: usize,
+        /// Nodes of the matrix.
+        n: usize,
+    },
+    /// The end cluster of an open GTSP tour is not a cluster other than the start's.
+    #[error("open tour end cluster {end} is invalid for {m} clusters: it must be in 1..{m}")]
+    BadEndCluster {
+        /// The requested end cluster.
+        end: usize,
+        /// Number of clusters.
+        m: usize,
+    },
     /// The instance has more nodes than the solver accepts.
     #[error("{solver}: {n} nodes exceed its limit of {limit} nodes{hint}")]
     TooManyNodes {

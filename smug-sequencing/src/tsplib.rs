@@ -156,7 +156,7 @@ impl WeightFormat {
 type Located = (f64, usize);
 
 /// The lines of a file with a cursor; errors carry the file and line.
-struct Cursor<'a> {
+pub(crate) struct Cursor<'a> {
     path: &'a str,
     lines: Vec<&'a str>,
     next: usize,
@@ -171,7 +171,7 @@ impl<'a> Cursor<'a> {
         }
     }
 
-    fn syntax(&self, line: usize, message: impl Into<String>) -> TsplibError {
+    pub(crate) fn syntax(&self, line: usize, message: impl Into<String>) -> TsplibError {
         TsplibError::Syntax {
             path: self.path.to_string(),
             line,
@@ -179,7 +179,7 @@ impl<'a> Cursor<'a> {
         }
     }
 
-    fn invalid(&self, message: impl Into<String>) -> TsplibError {
+    pub(crate) fn invalid(&self, message: impl Into<String>) -> TsplibError {
         TsplibError::Invalid {
             path: self.path.to_string(),
             message: message.into(),
@@ -204,6 +204,13 @@ impl<'a> Cursor<'a> {
             return Some((self.next, key.to_ascii_uppercase(), value));
         }
         None
+    }
+
+    /// The whitespace-separated tokens of the next line and its number, `None` at the end.
+    pub(crate) fn next_tokens(&mut self) -> Option<(usize, std::str::SplitWhitespace<'a>)> {
+        let line = self.lines.get(self.next).copied()?;
+        self.next += 1;
+        Some((self.next, line.split_whitespace()))
     }
 
     /// The next `count` numbers, which may span any number of lines. `what` names the
@@ -263,11 +270,29 @@ struct Header {
 
 /// Parses the text of a `.tsp` / `.atsp` file; `path` is only used in errors.
 pub fn parse_tsplib(text: &str, path: &str) -> Result<TsplibInstance, TsplibError> {
+    parse_with(text, path, &mut |_, _, _, _| Ok(false))
+}
+
+/// A handler of the keys a format adds to TSPLIB (GTSP-LIB's sets): it gets the cursor
+/// (positioned after the key's line), the line number, the upper-case key and its value,
+/// and returns whether it consumed the key.
+pub(crate) type ExtraKeys<'h> =
+    dyn FnMut(&mut Cursor, usize, &str, &str) -> Result<bool, TsplibError> + 'h;
+
+/// [`parse_tsplib`] with `extra` offered every key first.
+pub(crate) fn parse_with(
+    text: &str,
+    path: &str,
+    extra: &mut ExtraKeys,
+) -> Result<TsplibInstance, TsplibError> {
     let mut cursor = Cursor::new(text, path);
     let mut header = Header::default();
     let mut coords: Option<Vec<(f64, f64)>> = None;
     let mut explicit: Option<Vec<Located>> = None;
     while let Some((line, key, value)) = cursor.next_entry() {
+        if extra(&mut cursor, line, &key, value)? {
+            continue;
+        }
         match key.as_str() {
             "EOF" => break,
             "NAME" => header.name = value.to_string(),
@@ -307,10 +332,14 @@ pub fn parse_tsplib(text: &str, path: &str) -> Result<TsplibInstance, TsplibErro
     build_instance(&cursor, header, coords, explicit)
 }
 
+/// The problem type: the value's first word (GTSP-LIB files append an author, as in
+/// `GTSP (M.~Hofmeister)`); GTSP and AGTSP read as their TSP twins, the sets being a
+/// separate section.
 fn parse_problem(cursor: &Cursor, line: usize, value: &str) -> Result<ProblemType, TsplibError> {
-    match value.to_ascii_uppercase().as_str() {
-        "TSP" => Ok(ProblemType::Tsp),
-        "ATSP" => Ok(ProblemType::Atsp),
+    let word = value.split_whitespace().next().unwrap_or_default();
+    match word.to_ascii_uppercase().as_str() {
+        "TSP" | "GTSP" => Ok(ProblemType::Tsp),
+        "ATSP" | "AGTSP" => Ok(ProblemType::Atsp),
         other => Err(cursor.syntax(line, format!("TYPE {other} is not supported (TSP or ATSP)"))),
     }
 }

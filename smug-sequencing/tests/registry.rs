@@ -64,3 +64,34 @@ fn bad_parameters_are_rejected_with_their_name() {
         assert!(message.contains(needle), "{kind} {params}: `{message}`");
     }
 }
+
+#[test]
+fn gtsp_plugins_build_and_solve_clustered_problems() {
+    // Clusters {0}, {1, 2}, {3, 4} on a line; the cheap nodes are 2 and 4.
+    let x = [0.0, 10.0, 1.0, 11.0, 2.0_f64];
+    let costs = CostMatrix::from_fn(5, |i, j| (x[i] - x[j]).abs()).unwrap();
+    let clusters = smug_core::Clusters::new(5, vec![vec![0], vec![1, 2], vec![3, 4]]).unwrap();
+    let plugins = [
+        ("gtsp-exact", "max_clusters = 10"),
+        ("gtsp-lns", "max_iterations = 20\nnoise = 0.2"),
+    ];
+    for (kind, params) in plugins {
+        let solver = build(kind, params).unwrap_or_else(|e| panic!("{kind}: {e}"));
+        let tour = solver
+            .solve_clusters(&costs, &clusters, TourKind::Closed)
+            .unwrap();
+        assert_eq!(tour.cost, 4.0, "{kind}");
+        assert_eq!(solver.solve(&costs, TourKind::Closed).unwrap().cost, 22.0);
+    }
+    let err = build("gtsp-lns", "time_limit_s = 0.0\nmax_iterations = 0")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(err.contains("would never stop"), "{err}");
+    let tsp_only = build("held-karp", "").unwrap();
+    let err = tsp_only
+        .solve_clusters(&costs, &clusters, TourKind::Closed)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("gtsp-lns"), "{err}");
+}

@@ -2,10 +2,11 @@
 //! how a mission is planned through a pipeline ([`plan_mission`]).
 
 mod assembly;
+mod joint;
 mod run;
 mod sequential;
 
-pub use run::{plan_mission, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
 
 use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};

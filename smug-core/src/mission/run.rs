@@ -1,9 +1,11 @@
-//! Running a whole mission through an assembled pipeline (the sequential mode): the ToI
+//! Running a whole mission through an assembled pipeline. The sequential mode: the ToI
 //! order from path costs between representative poses (sequencer), one PoI per ToI
 //! (selector), then post-processing into SE(3) waypoints. Everything goes through one
-//! path oracle, so every query shares the planner's roadmap.
+//! path oracle, so every query shares the planner's roadmap. The joint mode (`joint`)
+//! chooses the order and the PoIs together.
 
 use super::assembly::{assemble_plan, stats};
+use super::joint::{joint_tour, JointProblem};
 use super::sequential::sequence;
 use super::Mission;
 use crate::deadline;
@@ -13,7 +15,7 @@ use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
 use crate::plan::Plan;
 use crate::post_process::{concatenate, waypoints};
-use crate::stages::SelectionProblem;
+use crate::stages::{Selection, SelectionProblem};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -43,6 +45,20 @@ pub enum SequencingCosts {
     Full,
 }
 
+/// Whether the order and the PoIs are chosen one after the other or together.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlanMode {
+    /// The paper's way: the target order from representative poses (sequencer), then
+    /// one PoI per target along it (selector).
+    #[default]
+    Sequential,
+    /// Order and PoIs together: a generalized TSP over every PoI with lazy path costs,
+    /// solved by the sequencer's `solve_clusters` (a GTSP solver, e.g. `gtsp-lns` or
+    /// `gtsp-exact`); the selector is not used.
+    Joint,
+}
+
 /// How the mission is run (the config's `[plan]` section).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -55,6 +71,8 @@ pub struct PlanOptions {
     pub keep_headings: bool,
     /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
     pub sequencing_costs: SequencingCosts,
+    /// `"sequential"` (default: order, then PoIs) or `"joint"` (both at once, GTSP).
+    pub mode: PlanMode,
     /// Seconds from the start of the run (world building included) after which anytime
     /// searches stop with their best result and path queries search only the roadmap
     /// built so far; nothing is planned after a grace of a quarter of it (≥ 1 s). `None`:
@@ -151,15 +169,51 @@ fn check_selection_size(mission: &Mission) -> Result<()> {
     )))
 }
 
+/// The sequential mode's order (sequencer) and PoIs along it (selector), timed.
+fn order_then_select(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    options: PlanOptions,
+    times: &mut std::collections::BTreeMap<String, f64>,
+) -> Result<(Vec<usize>, Result<Selection>)> {
+    let t = Instant::now();
+    let order = sequence(
+        pipeline,
+        oracle,
+        mission,
+        layout,
+        targets,
+        options.representative,
+        options.sequencing_costs,
+    )?;
+    *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
+        stage: "smug plan".into(),
+        needed: "selector",
+    })?;
+    let problem = SelectionProblem {
+        start: layout.start,
+        groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
+        end: layout.end,
+    };
+    let selected = selector.select(oracle, &problem);
+    *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    Ok((order, selected))
+}
+
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
 /// the options' deadline when they set one ([`crate::deadline`]).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let Some(seconds) = options.deadline else {
-        return plan_sequential(pipeline, options);
+        return plan_unbounded(pipeline, options);
     };
     let built_s: f64 = pipeline.build_times_s.values().sum();
     let _deadline = deadline::set(Some(seconds - built_s));
-    match plan_sequential(pipeline, options) {
+    match plan_unbounded(pipeline, options) {
         Ok(mut plan) => {
             plan.deadline_reached = deadline::reached();
             Ok(plan)
@@ -174,8 +228,8 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     }
 }
 
-/// The sequential mode: the order from representative poses, then the poses along it.
-fn plan_sequential(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+/// The mission in the options' mode (sequential or joint), without a deadline.
+fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
     let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
         stage: "smug plan".into(),
@@ -197,29 +251,38 @@ fn plan_sequential(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
     let (order, problem, selection) = loop {
-        let t = Instant::now();
-        let order = sequence(
-            pipeline,
-            &mut oracle,
-            &mission,
-            &layout,
-            &targets,
-            options.representative,
-            options.sequencing_costs,
-        )?;
-        *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
-            stage: "smug plan".into(),
-            needed: "selector",
-        })?;
+        let (order, selected) = match options.mode {
+            PlanMode::Sequential => order_then_select(
+                pipeline,
+                &mut oracle,
+                &mission,
+                &layout,
+                &targets,
+                options,
+                &mut times,
+            )?,
+            PlanMode::Joint => {
+                let t = Instant::now();
+                let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
+                    stage: "smug plan".into(),
+                    needed: "sequencer",
+                })?;
+                let joint = JointProblem {
+                    start: layout.start,
+                    groups: targets.iter().map(|&t| layout.pois[t].clone()).collect(),
+                    end: mission.end.is_some().then_some(layout.end),
+                };
+                let (positions, selection) = joint_tour(sequencer.as_ref(), &mut oracle, &joint)?;
+                *times.entry("joint".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+                let order: Vec<usize> = positions.iter().map(|&k| targets[k]).collect();
+                (order, Ok(selection))
+            }
+        };
         let problem = SelectionProblem {
             start: layout.start,
             groups: order.iter().map(|&t| layout.pois[t].clone()).collect(),
             end: layout.end,
         };
-        let selected = selector.select(&mut oracle, &problem);
-        *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
         let selection = match selected {
             Ok(s) if s.cost.is_finite() => s,
             other => {

@@ -132,7 +132,7 @@ fn lazy_tour(
 }
 
 /// The legs `(from, to)` of a tour, the return leg of a closed tour included.
-fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
+pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
     let closing = match kind {
         TourKind::Closed => tour.order.last().map(|&last| (last, tour.order[0])),
         TourKind::OpenTo(_) => None,
@@ -145,6 +145,7 @@ mod tests {
     use super::*;
     use crate::objective::PathLength;
     use crate::path::Path;
+    use crate::stages::Clusters;
     use crate::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
     use proptest::prelude::*;
     use std::sync::Arc;
@@ -198,6 +199,50 @@ mod tests {
             });
             Ok(best)
         }
+
+        fn solve_clusters(
+            &self,
+            costs: &CostMatrix,
+            clusters: &Clusters,
+            kind: TourKind,
+        ) -> Result<Tour> {
+            let m = clusters.len();
+            let end = match kind {
+                TourKind::OpenTo(c) => Some(c),
+                TourKind::Closed => None,
+            };
+            let mut middle: Vec<usize> = (1..m).filter(|&c| Some(c) != end).collect();
+            let mut best = Tour {
+                order: vec![],
+                cost: f64::INFINITY,
+            };
+            permute(&mut middle, 0, &mut |p| {
+                let order: Vec<usize> = std::iter::once(0)
+                    .chain(p.iter().copied())
+                    .chain(end)
+                    .collect();
+                let mut choices = vec![Vec::new()];
+                for &c in &order {
+                    choices = choices
+                        .iter()
+                        .flat_map(|prefix: &Vec<usize>| {
+                            clusters.members(c).iter().map(move |&v| {
+                                let mut next = prefix.clone();
+                                next.push(v);
+                                next
+                            })
+                        })
+                        .collect();
+                }
+                for nodes in choices {
+                    let cost = costs.tour_cost(&nodes, kind);
+                    if cost < best.cost {
+                        best = Tour { order: nodes, cost };
+                    }
+                }
+            });
+            Ok(best)
+        }
     }
 
     fn permute(items: &mut [usize], k: usize, visit: &mut impl FnMut(&[usize])) {
@@ -244,6 +289,72 @@ mod tests {
             prop_assert!((true_cost - full.cost).abs() < 1e-9, "lazy {true_cost} vs full {}", full.cost);
             prop_assert!((lazy.cost - true_cost).abs() < 1e-9, "the lazy tour's legs are all planned");
             prop_assert!(lazy_oracle.stats().paths_planned <= full_oracle.stats().paths_planned);
+        }
+
+        /// Joint mode with an exact GTSP solver on a fixed roadmap: never more than the
+        /// sequential mode (order from representatives, then the DP selection), and
+        /// exactly the best one-PoI-per-target tour over all planned paths.
+        #[test]
+        fn joint_with_an_exact_solver_never_costs_more_than_sequential_dp(
+            points in prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), 14),
+            detours in prop::collection::vec(1.0..2.0f64, 196),
+            sizes in prop::collection::vec(1usize..=3, 2..=4),
+            open in any::<bool>(),
+        ) {
+            let total: usize = sizes.iter().sum::<usize>() + 2;
+            let poses: Vec<Pose2> = points[..total].iter().map(|&(x, y, yaw)| Pose2::new(x, y, yaw)).collect();
+            let padded: Vec<f64> = (0..total * total).map(|k| detours[(k / total) * 14 + k % total]).collect();
+            let (mut seq_oracle, nodes) = oracle(&poses, padded.clone());
+            let mut groups = Vec::new();
+            let mut next = 1;
+            for &size in &sizes {
+                groups.push(nodes[next..next + size].to_vec());
+                next += size;
+            }
+            let end = if open { nodes[total - 1] } else { nodes[0] };
+            // Sequential: representatives are the first PoIs; DP selection along the order.
+            let mut reps = vec![nodes[0]];
+            reps.extend(groups.iter().map(|g| g[0]));
+            let kind = if open { reps.push(end); TourKind::OpenTo(reps.len() - 1) } else { TourKind::Closed };
+            let tour = Exhaustive.solve(&full_matrix(&mut seq_oracle, &reps).unwrap(), kind).unwrap();
+            let order: Vec<usize> = tour.order.iter().copied().filter(|&v| v != 0 && v <= groups.len()).map(|v| v - 1).collect();
+            let selection = crate::stages::SelectionProblem {
+                start: nodes[0],
+                groups: order.iter().map(|&g| groups[g].clone()).collect(),
+                end,
+            };
+            let (_, sequential) = selection.solve_layers(|i, j| seq_oracle.cost(i, j)).unwrap();
+            let (mut joint_oracle, _) = oracle(&poses, padded);
+            let problem = super::super::joint::JointProblem {
+                start: nodes[0],
+                groups: groups.clone(),
+                end: open.then_some(end),
+            };
+            let (joint_order, joint) = super::super::joint::joint_tour(&Exhaustive, &mut joint_oracle, &problem).unwrap();
+            prop_assert!(joint.cost <= sequential + 1e-9, "joint {} vs sequential {sequential}", joint.cost);
+            let mut sorted = joint_order.clone();
+            sorted.sort_unstable();
+            prop_assert_eq!(sorted, (0..groups.len()).collect::<Vec<_>>());
+            for (&g, &p) in joint_order.iter().zip(&joint.chosen) {
+                prop_assert!(groups[g].contains(&p));
+            }
+            // The best tour over every planned path: the GTSP on the full matrix.
+            let mut all = vec![nodes[0]];
+            all.extend(groups.iter().flatten());
+            let mut members = vec![vec![0]];
+            let mut k = 1;
+            for g in &groups {
+                members.push((k..k + g.len()).collect());
+                k += g.len();
+            }
+            if open {
+                members.push(vec![all.len()]);
+                all.push(end);
+            }
+            let clusters = Clusters::new(all.len(), members).unwrap();
+            let kind = if open { TourKind::OpenTo(clusters.len() - 1) } else { TourKind::Closed };
+            let best = Exhaustive.solve_clusters(&full_matrix(&mut seq_oracle, &all).unwrap(), &clusters, kind).unwrap();
+            prop_assert!((joint.cost - best.cost).abs() < 1e-9, "joint {} vs optimum {}", joint.cost, best.cost);
         }
     }
 }

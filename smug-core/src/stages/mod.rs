@@ -1,5 +1,6 @@
 //! The stage traits: one per pipeline stage.
 
+mod clusters;
 mod motion;
 mod planner;
 mod sampler;
@@ -8,6 +9,7 @@ mod sequencer;
 mod traversability;
 mod validity;
 
+pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
 pub use planner::{PlannerOutcome, PlannerStats, PointToPointPlanner};
 pub use sampler::{InformedSet, Sampler};

@@ -1,5 +1,6 @@
 //! Sequencer stage: the visiting order of the targets (a TSP over a cost matrix).
 
+use super::clusters::Clusters;
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -118,6 +119,23 @@ impl Tour {
 pub trait Sequencer: Send + Sync {
     /// The best order it finds within its budget, starting at node 0.
     fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour>;
+
+    /// The generalized TSP (GTSP): the best tour it finds that visits one node of every
+    /// cluster, starting in cluster 0 (and ending in cluster `c` for `OpenTo(c)`); the
+    /// tour's `order` lists the visited nodes. Solvers that only order nodes refuse it.
+    fn solve_clusters(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+    ) -> Result<Tour> {
+        let _ = (costs, clusters, kind);
+        Err(Error::invalid_param(
+            "sequencer",
+            "this solver orders nodes only; a generalized (clustered) problem needs a GTSP \
+             solver (`gtsp-exact`, `gtsp-lns`)",
+        ))
+    }
 }
 
 #[cfg(test)]

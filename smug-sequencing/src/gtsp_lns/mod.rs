@@ -1,0 +1,191 @@
+//! `gtsp-lns`: a large-neighbourhood search for the generalized TSP in the spirit of
+//! GLNS (Smith & Imeson 2017).
+//!
+//! 1. First tour: every cluster inserted at its cheapest place (random order), then
+//!    polished: 2-opt on the nodes (symmetric costs) and the cluster sweep — one
+//!    layered DP that re-picks every cluster's node for the current order (the `dp`
+//!    selector's [`SelectionProblem::solve_layers`](smug_core::SelectionProblem)) —
+//!    then the TSP [`LocalSearch`](crate::LocalSearch) reorders the chosen nodes.
+//! 2. Each iteration removes 1..`max(10, max_removal_fraction · m)` clusters (random, a segment,
+//!    related to a seed node, or the costliest), reinserts them at their cheapest
+//!    places with noisy costs, polishes, and on promising tours moves every cluster to
+//!    its best place and node ("move-opt"). Simulated annealing decides acceptance.
+//! 3. After each epoch the search restarts from the best tour, reordered by the TSP
+//!    local search.
+//!
+//! The start cluster is cluster 0 and stays first; an open tour's end cluster stays
+//! last. With `time_limit_s = 0` a seed and `max_iterations` give bit-identical tours.
+
+mod improve;
+mod search;
+mod tour;
+
+use crate::costs::{tour_of, validate, validate_clusters, Dist};
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use search::Search;
+use serde::{Deserialize, Serialize};
+use smug_core::rng::{stage_rng, StageRng};
+use smug_core::{Clusters, CostMatrix, Sequencer, Termination, Tour, TourKind};
+use tour::Problem;
+
+/// Parameters of [`GtspLns`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GtspLnsParams {
+    /// Wall-time budget in seconds; 0 = none (then the result depends only on the seed).
+    pub time_limit_s: f64,
+    /// Budget of removal/insertion iterations; 0 = no limit.
+    pub max_iterations: u64,
+    /// Most clusters one iteration removes, as a fraction of all clusters (at least 10).
+    pub max_removal_fraction: f64,
+    /// Insertion costs are raised by random amounts up to a level drawn in `[0, noise)`
+    /// average legs per iteration.
+    pub noise: f64,
+    /// Initial annealing temperature as a fraction of an average leg.
+    pub temperature: f64,
+    /// Iterations per epoch (then a restart from the best tour); 0 = `max(200, 10 m)`.
+    pub epoch_iterations: u64,
+    /// Move-opt runs on tours within this fraction above the best cost.
+    pub move_opt_within: f64,
+    /// Perturbation rounds of the TSP local search that reorders the chosen nodes.
+    pub reorder_iterations: u64,
+}
+
+impl Default for GtspLnsParams {
+    /// An iteration budget and no time limit, so that a seed fixes the result.
+    fn default() -> Self {
+        Self {
+            time_limit_s: 0.0,
+            max_iterations: 2000,
+            max_removal_fraction: 0.3,
+            noise: 0.5,
+            temperature: 1.0,
+            epoch_iterations: 0,
+            move_opt_within: 0.02,
+            reorder_iterations: 50,
+        }
+    }
+}
+
+impl GtspLnsParams {
+    /// The stopping rule: the time budget, the iteration budget, or both.
+    pub fn termination(&self) -> Termination {
+        let time = (self.time_limit_s > 0.0).then_some(self.time_limit_s);
+        let iterations = (self.max_iterations > 0).then_some(self.max_iterations);
+        Termination::from_budgets(time, iterations)
+    }
+
+    /// Checks the values; the message names the offending parameter.
+    pub fn validate(&self) -> Result<(), String> {
+        if !(self.time_limit_s >= 0.0 && self.time_limit_s.is_finite()) {
+            return Err(format!(
+                "time_limit_s = {} must be a finite number ≥ 0",
+                self.time_limit_s
+            ));
+        }
+        if self.time_limit_s == 0.0 && self.max_iterations == 0 {
+            return Err(
+                "time_limit_s = 0 and max_iterations = 0: the search would never stop".into(),
+            );
+        }
+        let fractions = [
+            ("max_removal_fraction", self.max_removal_fraction, 1.0),
+            ("noise", self.noise, f64::MAX),
+            ("temperature", self.temperature, f64::MAX),
+            ("move_opt_within", self.move_opt_within, f64::MAX),
+        ];
+        for (name, value, most) in fractions {
+            if !(value >= 0.0 && value <= most) {
+                return Err(format!("{name} = {value} must be in [0, {most}]"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Large-neighbourhood GTSP search. `Send + Sync`: each solve starts from a copy of
+/// the seeded generator, so solves do not influence each other.
+#[derive(Clone, Debug)]
+pub struct GtspLns {
+    params: GtspLnsParams,
+    rng: StageRng,
+}
+
+impl GtspLns {
+    /// A solver drawing its randomness from `rng` (e.g. `ctx.rng("sequencer")`).
+    pub fn new(params: GtspLnsParams, rng: StageRng) -> smug_core::Result<Self> {
+        params
+            .validate()
+            .map_err(|m| smug_core::Error::invalid_param("sequencer", format!("gtsp-lns: {m}")))?;
+        Ok(Self { params, rng })
+    }
+
+    /// A solver seeded like a pipeline with seed `seed` would seed it.
+    pub fn with_seed(params: GtspLnsParams, seed: u64) -> smug_core::Result<Self> {
+        Self::new(params, stage_rng(seed, "sequencer"))
+    }
+
+    /// Solves and returns the iterations done too.
+    pub fn solve_with_iterations(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+    ) -> smug_core::Result<(Tour, u64)> {
+        validate_clusters(costs, clusters, kind)?;
+        let rule = self.params.termination();
+        let mut clock = rule.start();
+        let problem = Problem::new(Dist::new(costs), clusters, kind);
+        let mut rng = self.rng.clone();
+        let first = first_tour(&problem, &self.params, &mut rng);
+        let mut search = Search::new(&problem, &self.params, rng, first);
+        let iterations = search.run(&mut clock);
+        let order = problem.turned_to_start(search.best.0);
+        Ok((tour_of(costs, order, kind), iterations))
+    }
+}
+
+/// Every cluster inserted at its cheapest place in random order, polished and
+/// reordered by the TSP local search.
+fn first_tour(problem: &Problem, params: &GtspLnsParams, rng: &mut StageRng) -> Vec<usize> {
+    let clusters = problem.clusters;
+    let mut order = vec![clusters.members(0)[0]];
+    let mut rest: Vec<usize> = (1..clusters.len())
+        .filter(|&c| Some(c) != problem.end)
+        .collect();
+    rest.shuffle(rng);
+    if let Some(end) = problem.end {
+        order.push(clusters.members(end)[0]);
+    }
+    problem.insert_all(&mut order, &rest, 0.0, rng);
+    problem.polish(&mut order);
+    let reorder_rng = StageRng::from_rng(rng);
+    problem.reorder(&mut order, params.reorder_iterations, 3, &reorder_rng);
+    order
+}
+
+impl Sequencer for GtspLns {
+    fn solve(&self, costs: &CostMatrix, kind: TourKind) -> smug_core::Result<Tour> {
+        validate(costs.len(), kind)?;
+        self.solve_clusters(costs, &Clusters::singletons(costs.len()), kind)
+    }
+
+    fn solve_clusters(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+    ) -> smug_core::Result<Tour> {
+        Ok(self.solve_with_iterations(costs, clusters, kind)?.0)
+    }
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::SequencerStage,
+    name = "gtsp-lns",
+    summary =
+        "GLNS-style large-neighbourhood search for the generalized TSP (any size; also plain TSP)",
+    params = GtspLnsParams,
+    build = |params, ctx| Ok(Box::new(GtspLns::new(params, ctx.rng("sequencer"))?)),
+);
