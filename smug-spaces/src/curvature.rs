@@ -47,10 +47,14 @@ impl<S: Solver> CurvatureSpace<S> {
         self.radius
     }
 
-    /// The shortest curve from `a` to `b` (unit-radius form).
+    /// The shortest curve from `a` to `b` (unit-radius form); an endless straight one
+    /// when their offset is beyond what the solvers compute in `f64`.
     pub fn curve(&self, a: &Pose2, b: &Pose2) -> Curve {
         cached_curve(S::KIND, self.radius, a, b, || {
             let (x, y, phi) = relative(a, b, self.radius);
+            if !solvable(x, y, phi) {
+                return endless();
+            }
             S::shortest(x, y, phi)
         })
     }
@@ -65,6 +69,9 @@ impl<S: Solver> StateSpace for CurvatureSpace<S> {
         // The unit bound is widened by far more than its rounding, so that no curve
         // within `bound` metres is skipped; the answer is then checked in metres.
         let (x, y, phi) = relative(a, b, self.radius);
+        if !solvable(x, y, phi) {
+            return None; // no finite curve, so none within any bound
+        }
         let curve = S::shortest_within(x, y, phi, bound / self.radius * (1.0 + 1e-9))?;
         let distance = self.radius * curve.unit_length();
         (distance <= bound).then_some(distance)
@@ -109,6 +116,23 @@ impl<S: Solver> StateSpace for CurvatureSpace<S> {
     fn is_holonomic(&self) -> bool {
         false
     }
+}
+
+/// Offsets (in turning radii) beyond which the solvers' squares and sums would overflow.
+const MAX_UNIT_OFFSET: f64 = 1e100;
+
+/// True when the solvers can compute the curve to `(x, y, phi)` in `f64`: all finite and
+/// the offset within [`MAX_UNIT_OFFSET`] (non-finite poses, or ones ~1e308 apart, are not).
+fn solvable(x: f64, y: f64, phi: f64) -> bool {
+    x.abs() <= MAX_UNIT_OFFSET && y.abs() <= MAX_UNIT_OFFSET && phi.is_finite()
+}
+
+/// The curve standing for "no finite curve": straight ahead, infinitely long.
+fn endless() -> Curve {
+    Curve::new(&[crate::curve::Segment {
+        steer: crate::curve::Steer::Straight,
+        length: f64::INFINITY,
+    }])
 }
 
 /// What a cached curve was computed for: the solver, the radius and both poses, as bits.
