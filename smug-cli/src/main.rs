@@ -29,6 +29,7 @@ mod check;
 mod p2p;
 mod plan;
 mod plugins;
+mod replan;
 mod tsp;
 mod worlds;
 mod worlds_generate;
@@ -58,6 +59,9 @@ enum Command {
     Check(check::CheckArgs),
     /// Plan a safe multi-goal mission from a config.
     Plan(plan::PlanArgs),
+    /// Replan the rest of a mission from a mission state (pose, visited targets, failed
+    /// PoIs, new obstacles).
+    Replan(replan::ReplanArgs),
     /// Plan point-to-point queries on one shared roadmap.
     P2p(p2p::P2pArgs),
     /// Solve a TSPLIB instance (a file, or a name in the suite of --data / $SMUG_DATA).
@@ -73,6 +77,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Plugins(args) => plugins::run(args),
         Command::Check(args) => check::run_check(args),
         Command::Plan(args) => plan::run(args),
+        Command::Replan(args) => replan::run(args),
         Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Bench(args) => bench::run(args),

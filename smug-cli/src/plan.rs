@@ -38,7 +38,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .clone()
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
-    refuse_overwriting_inputs(&out, &loaded)?;
+    refuse_overwriting_inputs(&out, &loaded, &[])?;
     let progress = Progress::start("building the world and the checkers");
     let mut pipeline = Pipeline::assemble(&loaded)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
@@ -64,10 +64,10 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
 }
 
 /// A spinner on stderr naming the running stage, shown only in a terminal.
-struct Progress(Option<indicatif::ProgressBar>);
+pub(crate) struct Progress(Option<indicatif::ProgressBar>);
 
 impl Progress {
-    fn start(stage: &str) -> Self {
+    pub(crate) fn start(stage: &str) -> Self {
         use std::io::IsTerminal;
         if !std::io::stderr().is_terminal() {
             return Self(None);
@@ -78,20 +78,20 @@ impl Progress {
         Self(Some(bar))
     }
 
-    fn stage(&self, stage: &str) {
+    pub(crate) fn stage(&self, stage: &str) {
         if let Some(bar) = &self.0 {
             bar.set_message(stage.to_string());
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         if let Some(bar) = &self.0 {
             bar.finish_and_clear();
         }
     }
 }
 
-fn write_outputs(
+pub(crate) fn write_outputs(
     plan: &Plan,
     world: &World,
     pipeline: &Pipeline,
@@ -122,10 +122,16 @@ fn write_outputs(
 const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
 
 /// Refuses an output directory where a plan file would overwrite one of the run's
-/// inputs (its config files, maps, missions, layers).
-fn refuse_overwriting_inputs(dir: &Path, loaded: &LoadedConfig) -> anyhow::Result<()> {
+/// inputs (its config files, maps, missions, layers, and `extra`, e.g. a mission state).
+pub(crate) fn refuse_overwriting_inputs(
+    dir: &Path,
+    loaded: &LoadedConfig,
+    extra: &[PathBuf],
+) -> anyhow::Result<()> {
     let outputs: Vec<PathBuf> = OUTPUT_FILES.iter().map(|name| dir.join(name)).collect();
-    match smug_core::output::output_over_input(&outputs, &loaded.input_files()) {
+    let mut inputs = loaded.input_files();
+    inputs.extend(extra.iter().cloned());
+    match smug_core::output::output_over_input(&outputs, &inputs) {
         Some(path) => anyhow::bail!(
             "{}: is an input of this run; choose another --out (or [output] dir)",
             path.display()
@@ -179,7 +185,7 @@ fn render_options(plan: &Plan, world: &World) -> RenderOptions {
     }
 }
 
-fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
+pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
     let s = &plan.stats;
     let b = &s.breakdown;
     println!(

@@ -2,10 +2,16 @@
 //! how a mission is planned through a pipeline ([`plan_mission`]).
 
 mod assembly;
+mod obstacles;
+mod replan;
 mod run;
 mod sequential;
+mod state;
 
+pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
+pub use replan::{assemble_replan, replan_mission, NoTargetLeft, ReplanInfo, SkippedTarget};
 pub use run::{plan_mission, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use state::{MissionState, StateError};
 
 use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};
