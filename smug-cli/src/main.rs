@@ -23,6 +23,7 @@ mod bench_p2p_lunar;
 mod bench_p2p_maps;
 mod bench_paper;
 mod bench_paper_report;
+mod bench_replan;
 mod bench_tsp;
 mod bench_validity;
 mod check;
