@@ -51,7 +51,15 @@ fn same_route(a: &Plan, b: &Plan) {
 
 #[test]
 fn an_empty_state_reproduces_the_original_plan_bit_identically() {
-    for name in ["flat-demo.toml", "lunar.toml", "indoor.toml"] {
+    for name in [
+        "flat-demo.toml",
+        "flat-dubins.toml",
+        "lunar.toml",
+        "lunar-irba.toml",
+        "lunar-wheeled.toml",
+        "indoor.toml",
+        "indoor-disc.toml",
+    ] {
         let loaded = config(name, &[]);
         let (plan, pipeline) = original(&loaded);
         let state = MissionState::at_start(&pipeline.world.as_ref().unwrap().mission);
@@ -213,29 +221,40 @@ proptest! {
     }
 }
 
-/// Lunar: the robot halfway through the mission, the next target's chosen PoI failed,
-/// a new obstacle across the next leg.
+/// The robot halfway through the mission, the next target's chosen PoI failed, a new
+/// obstacle across the next leg: on lunar (hierarchical validity, IDP and IRBA), the
+/// wheeled robot's lunar (its own objective and motion model), a Dubins car and a disc
+/// robot indoors.
 #[test]
-fn a_lunar_replan_after_each_event_is_valid() {
-    let loaded = config("lunar.toml", &[]);
-    let (plan, _) = original(&loaded);
-    let half = plan.sequence.len() / 2;
-    let here = plan.pois[half - 1].pose;
-    let next = &plan.pois[half];
-    let leg = &plan.segments[half].path.states;
-    let mid = leg[leg.len() / 2];
-    let state = MissionState {
-        pose: [here.x, here.y, here.yaw],
-        visited: plan.sequence[..half].to_vec(),
-        failed_pois: vec![(next.target.clone(), next.index)],
-        obstacles: vec![DiscObstacle {
-            center: [mid.x, mid.y],
-            radius: 0.6,
-            height: 1.0,
-        }],
-    };
-    let (replanned, pipeline) = replan(&loaded, &state);
-    let replanned = replanned.unwrap();
-    check_replan(&replanned, &pipeline, &state);
-    assert_eq!(replanned.sequence.len(), plan.sequence.len() - half);
+fn a_replan_after_the_three_events_is_valid_for_every_kind_of_pipeline() {
+    for name in [
+        "lunar.toml",
+        "lunar-irba.toml",
+        "lunar-wheeled.toml",
+        "flat-dubins.toml",
+        "indoor-disc.toml",
+    ] {
+        let loaded = config(name, &[]);
+        let (plan, _) = original(&loaded);
+        let half = plan.sequence.len() / 2;
+        let here = plan.pois[half - 1].pose;
+        let next = &plan.pois[half];
+        let leg = &plan.segments[half].path.states;
+        let mid = leg[leg.len() / 2];
+        let state = MissionState {
+            pose: [here.x, here.y, here.yaw],
+            visited: plan.sequence[..half].to_vec(),
+            failed_pois: vec![(next.target.clone(), next.index)],
+            obstacles: vec![DiscObstacle {
+                center: [mid.x, mid.y],
+                radius: 0.4,
+                height: 1.0,
+            }],
+        };
+        let (replanned, pipeline) = replan(&loaded, &state);
+        let replanned = replanned.unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_replan(&replanned, &pipeline, &state);
+        let left = replanned.sequence.len() + replanned.skipped.len();
+        assert_eq!(left, plan.sequence.len() - half, "{name}");
+    }
 }
