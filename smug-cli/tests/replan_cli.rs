@@ -138,6 +138,10 @@ fn bad_states_exit_2_naming_the_key() {
         needles.push("state.toml");
         assert_bad_input(&out, &needles);
     }
+    // On the map, but the robot's box overlaps the demo's first box (x from 4 m).
+    let state = state_file(&dir, "pose = [3.8, 1.0, 0.0]");
+    let out = replan(&state, &dir.join("out"));
+    assert_bad_input(&out, &["state.toml", "`pose`", "not valid for the robot"]);
     let out = replan("no/such/state.toml", &dir.join("out"));
     assert_bad_input(&out, &["no/such/state.toml", "cannot read"]);
 }

@@ -126,6 +126,8 @@ pub fn assemble_replan(
             ..(*built).clone()
         }));
     }
+    let endpoints = replan_mission_of(&original, state, vec![]);
+    check_endpoints(&pipeline, &endpoints, path)?;
     pipeline.mission = Some(original);
     Ok(pipeline)
 }
@@ -200,15 +202,16 @@ fn replan_mission_of(original: &Mission, state: &MissionState, targets: Vec<Targ
     }
 }
 
-/// Checks the robot's pose and the end pose against the pipeline's validity checker.
-fn check_endpoints(pipeline: &Pipeline, mission: &Mission) -> Result<()> {
+/// Checks the robot's pose and the end pose against the pipeline's validity checker;
+/// `path` names the state in errors.
+fn check_endpoints(pipeline: &Pipeline, mission: &Mission, path: &str) -> Result<()> {
     let Some(checker) = pipeline.state_validity.as_ref() else {
         return Ok(());
     };
     let p = mission.start;
     if !checker.is_valid(&p) {
         return Err(Error::InvalidInput(format!(
-            "mission state: `pose`: [{}, {}, {}] is not valid for the robot (in collision, \
+            "{path}: `pose`: [{}, {}, {}] is not valid for the robot (in collision, \
              untraversable or off the map)",
             p.x, p.y, p.yaw
         )));
@@ -247,7 +250,7 @@ pub fn replan_mission(
         return Err(Error::stage("smug replan", NoTargetLeft { skipped }));
     }
     let mission = replan_mission_of(&original, state, targets);
-    check_endpoints(pipeline, &mission)?;
+    check_endpoints(pipeline, &mission, "mission state")?;
     pipeline.mission = Some(mission);
     pipeline.dropped_pois = dropped;
     let mut plan = plan_mission(pipeline, options)?;
