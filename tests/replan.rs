@@ -258,3 +258,50 @@ fn a_replan_after_the_three_events_is_valid_for_every_kind_of_pipeline() {
         assert_eq!(left, plan.sequence.len() - half, "{name}");
     }
 }
+
+/// The three events replanned on the roadmap the original plan saved (through its
+/// planner-independent snapshot): the replan is valid on the updated world, the
+/// obstacle's neighbourhood was checked again, and the rest of the roadmap reused.
+#[test]
+fn a_replan_on_the_warm_roadmap_after_the_three_events_is_valid() {
+    use smug_core::mission::changed_discs;
+    for name in ["lunar.toml", "lunar-wheeled.toml", "flat-dubins.toml"] {
+        let loaded = config(name, &[]);
+        let (plan, pipeline) = original(&loaded);
+        let snapshot = pipeline.planner.as_ref().unwrap().save_roadmap().unwrap();
+        let half = plan.sequence.len() / 2;
+        let here = plan.pois[half - 1].pose;
+        let next = &plan.pois[half];
+        let leg = &plan.segments[half].path.states;
+        let mid = leg[leg.len() / 2];
+        let state = MissionState {
+            pose: [here.x, here.y, here.yaw],
+            visited: plan.sequence[..half].to_vec(),
+            failed_pois: vec![(next.target.clone(), next.index)],
+            obstacles: vec![DiscObstacle {
+                center: [mid.x, mid.y],
+                radius: 0.4,
+                height: 1.0,
+            }],
+        };
+        let mut pipeline = assemble_replan(&loaded, &state, "state.toml").unwrap();
+        let changed = changed_discs(&state, &loaded.config.robot);
+        let planner = pipeline.planner.as_mut().unwrap();
+        planner.load_roadmap(snapshot.clone(), &changed).unwrap();
+        let options = pipeline.config.plan;
+        let replanned = replan_mission(&mut pipeline, options, &state)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_replan(&replanned, &pipeline, &state);
+        let counters = &replanned.stats.counters;
+        assert_eq!(counters["warm_vertices"], snapshot.vertices.len() as u64);
+        assert!(
+            counters["warm_vertices_rechecked"] > 0,
+            "{name}: {counters:?}"
+        );
+        assert!(counters["warm_answers_dropped"] > 0, "{name}: {counters:?}");
+        assert!(
+            counters["warm_vertices_rechecked"] < counters["warm_vertices"] / 2,
+            "{name}: only the obstacle's neighbourhood is checked again"
+        );
+    }
+}

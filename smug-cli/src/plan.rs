@@ -24,6 +24,10 @@ pub struct PlanArgs {
     /// Print plan.json to stdout instead of a summary.
     #[arg(long)]
     json: bool,
+    /// After the mission, save the planner's roadmap (vertices, edges, check status,
+    /// costs, answered queries) to FILE, for `smug replan --roadmap FILE`.
+    #[arg(long, value_name = "FILE")]
+    save_roadmap: Option<PathBuf>,
 }
 
 /// Runs `smug plan`.
@@ -55,12 +59,37 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     };
     let world = pipeline.world.clone().expect("plan_mission needs a world");
     write_outputs(&plan, &world, &pipeline, &out)?;
+    if let Some(file) = &args.save_roadmap {
+        save_roadmap(&pipeline, &loaded, &world, file)?;
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
     } else {
         print_summary(&plan, &pipeline, &out);
     }
     Ok(Outcome::Ok)
+}
+
+/// Writes the planner's roadmap after a mission to `file`, fingerprinted for
+/// `loaded` on `world` (the world as built from the config).
+fn save_roadmap(
+    pipeline: &Pipeline,
+    loaded: &LoadedConfig,
+    world: &World,
+    file: &Path,
+) -> anyhow::Result<()> {
+    let snapshot = pipeline
+        .planner
+        .as_ref()
+        .and_then(|p| p.save_roadmap())
+        .ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: cannot save a roadmap: the configured planner keeps none",
+                file.display()
+            )
+        })?;
+    smug_core::write_roadmap(file, &snapshot, &smug_core::Fingerprint::of(loaded, world))?;
+    Ok(())
 }
 
 /// A spinner on stderr naming the running stage, shown only in a terminal.

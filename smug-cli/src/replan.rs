@@ -4,7 +4,8 @@
 use crate::plan::{print_summary, refuse_overwriting_inputs, write_outputs, Progress};
 use crate::Outcome;
 use smug_core::mission::{
-    assemble_replan, replan_mission, MissionState, NoTargetLeft, Unreachable,
+    assemble_replan_fingerprinted, changed_discs, replan_mission, MissionState, NoTargetLeft,
+    Unreachable,
 };
 use smug_core::LoadedConfig;
 use std::path::PathBuf;
@@ -30,6 +31,10 @@ pub struct ReplanArgs {
     /// Print plan.json to stdout instead of a summary.
     #[arg(long)]
     json: bool,
+    /// Start from the roadmap `smug plan --save-roadmap FILE` saved (refused, exit 2,
+    /// when built for another world, robot or config, of another version, or damaged).
+    #[arg(long, value_name = "FILE")]
+    roadmap: Option<PathBuf>,
 }
 
 /// Runs `smug replan`.
@@ -48,7 +53,19 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
     refuse_overwriting_inputs(&out, &loaded, std::slice::from_ref(&args.state))?;
     let progress = Progress::start("building the updated world and the checkers");
     let state_name = args.state.display().to_string();
-    let mut pipeline = assemble_replan(&loaded, &state, &state_name)?;
+    let (mut pipeline, fingerprint) = assemble_replan_fingerprinted(&loaded, &state, &state_name)?;
+    if let Some(file) = &args.roadmap {
+        progress.stage("loading the roadmap");
+        let snapshot = smug_core::read_roadmap(file, &fingerprint)?;
+        let changed = changed_discs(&state, &loaded.config.robot);
+        let planner = pipeline
+            .planner
+            .as_mut()
+            .ok_or_else(|| anyhow::anyhow!("{}: the config has no planner", file.display()))?;
+        planner
+            .load_roadmap(snapshot, &changed)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+    }
     progress.stage("replanning the remaining targets");
     let options = pipeline.config.plan;
     let planned = replan_mission(&mut pipeline, options, &state);

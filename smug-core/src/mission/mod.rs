@@ -9,7 +9,10 @@ mod sequential;
 mod state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
-pub use replan::{assemble_replan, replan_mission, NoTargetLeft, ReplanInfo, SkippedTarget};
+pub use replan::{
+    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
+    ReplanInfo, SkippedTarget,
+};
 pub use run::{plan_mission, PlanOptions, Representative, SequencingCosts, Unreachable};
 pub use state::{MissionState, StateError};
 

@@ -6,11 +6,12 @@
 use super::obstacles::{add_obstacles, MaskedEstimator};
 use super::state::MissionState;
 use super::{plan_mission, Mission, PlanOptions, Target};
-use crate::config::LoadedConfig;
+use crate::config::{LoadedConfig, RobotConfig};
 use crate::error::{Error, Result};
 use crate::pipeline::{BuildContext, DroppedPoi, Pipeline};
 use crate::plan::Plan;
 use crate::registry::TraversabilityStage;
+use crate::stages::{ChangedDisc, Fingerprint};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -64,7 +65,7 @@ fn updated_world(
     loaded: &LoadedConfig,
     state: &MissionState,
     path: &str,
-) -> Result<(World, BuildContext)> {
+) -> Result<(World, BuildContext, Fingerprint)> {
     let mut world_only = loaded.clone();
     let c = &mut world_only.config;
     (c.traversability, c.validity, c.motion, c.sampler) = (None, None, None, None);
@@ -81,8 +82,9 @@ fn updated_world(
     state
         .check(&world.mission, &world.bounds(), path)
         .map_err(|e| Error::stage("smug replan", e))?;
+    let fingerprint = Fingerprint::of(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
-    Ok((world, pipeline.context().clone()))
+    Ok((world, pipeline.context().clone(), fingerprint))
 }
 
 /// Assembles the config's pipeline on its world updated with the state's obstacles
@@ -93,7 +95,32 @@ pub fn assemble_replan(
     state: &MissionState,
     path: &str,
 ) -> Result<Pipeline> {
-    let (world, ctx) = updated_world(loaded, state, path)?;
+    Ok(assemble_replan_fingerprinted(loaded, state, path)?.0)
+}
+
+/// The regions a mission state's obstacles changed, each widened by the robot's
+/// extent (half the diagonal of its base box): a warm roadmap checks again what
+/// reaches into them.
+pub fn changed_discs(state: &MissionState, robot: &RobotConfig) -> Vec<ChangedDisc> {
+    let extent = 0.5 * robot.length.hypot(robot.width);
+    state
+        .obstacles
+        .iter()
+        .map(|o| ChangedDisc {
+            center: o.center,
+            radius: o.radius + extent,
+        })
+        .collect()
+}
+
+/// [`assemble_replan`], with the [`Fingerprint`] of the config's world before the
+/// state's obstacles (what a saved roadmap must have been built for).
+pub fn assemble_replan_fingerprinted(
+    loaded: &LoadedConfig,
+    state: &MissionState,
+    path: &str,
+) -> Result<(Pipeline, Fingerprint)> {
+    let (world, ctx, fingerprint) = updated_world(loaded, state, path)?;
     let original = world.mission.clone();
     // No targets while assembling: the replan prunes the PoIs itself (a visited
     // target whose poses are now blocked is no error).
@@ -129,7 +156,7 @@ pub fn assemble_replan(
     let endpoints = replan_mission_of(&original, state, vec![]);
     check_endpoints(&pipeline, &endpoints, path)?;
     pipeline.mission = Some(original);
-    Ok(pipeline)
+    Ok((pipeline, fingerprint))
 }
 
 /// The targets still to visit (PoIs that failed or are invalid on the updated world

@@ -208,5 +208,7 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
         times.insert(format!("build:{stage}"), *s);
     }
     plan.stats = stats(&oracle, pipeline, times);
+    // The planner goes back to the pipeline with its roadmap (`--save-roadmap`).
+    pipeline.planner = Some(oracle.into_planner());
     Ok(plan)
 }

@@ -2,6 +2,7 @@
 
 mod motion;
 mod planner;
+pub mod roadmap_file;
 mod sampler;
 mod selector;
 mod sequencer;
@@ -9,7 +10,11 @@ mod traversability;
 mod validity;
 
 pub use motion::{MotionCheck, MotionValidator};
-pub use planner::{PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use planner::{NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use roadmap_file::{
+    read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
+    PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
+};
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
