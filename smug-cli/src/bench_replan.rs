@@ -2,12 +2,16 @@
 //! target, a new obstacle across the next leg, the robot halfway through) on lunar
 //! 13×10 and 48×6, N seeds: the replan's time on the updated world (world, checkers and
 //! planner built from scratch) against the full plan's, and its cost against the rest
-//! of the original plan.
+//! of the original plan; and the same replan on the warm roadmap the plan left
+//! (`--save-roadmap`/`--roadmap`, here in memory): its time and its cost against the
+//! replan from scratch.
 
 use crate::bench_output::write_report;
 use crate::Outcome;
 use serde::Serialize;
-use smug_core::mission::{assemble_replan, replan_mission, DiscObstacle, MissionState};
+use smug_core::mission::{
+    assemble_replan, changed_discs, replan_mission, DiscObstacle, MissionState,
+};
 use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -54,6 +58,9 @@ struct Run {
     /// The original plan's cost from the event's pose on (the same targets).
     rest_cost: f64,
     targets_left: usize,
+    /// The same replan on the plan's warm roadmap: time and cost.
+    warm_s: f64,
+    warm_cost: f64,
     error: Option<String>,
 }
 
@@ -117,6 +124,11 @@ fn measure(
     let options = pipeline.config.plan;
     let plan = plan_mission(&mut pipeline, options)?;
     let plan_s = started.elapsed().as_secs_f64();
+    let snapshot = pipeline
+        .planner
+        .as_ref()
+        .and_then(|p| p.save_roadmap())
+        .ok_or_else(|| anyhow::anyhow!("{}: the planner keeps no roadmap", config.display()))?;
     let s = pipeline
         .world
         .as_ref()
@@ -131,9 +143,20 @@ fn measure(
             replan_mission(&mut p, options, &state)
         });
         let replan_s = started.elapsed().as_secs_f64();
-        let (replan_cost, targets_left, error) = match replanned {
-            Ok(r) => (r.cost, r.sequence.len(), None),
-            Err(e) => (f64::NAN, 0, Some(e.to_string())),
+        let warm_snapshot = snapshot.clone();
+        let changed = changed_discs(&state, &loaded.config.robot);
+        let started = Instant::now();
+        let warm = assemble_replan(&loaded, &state, event).and_then(|mut p| {
+            if let Some(planner) = p.planner.as_mut() {
+                planner.load_roadmap(warm_snapshot, &changed)?;
+            }
+            let options = p.config.plan;
+            replan_mission(&mut p, options, &state)
+        });
+        let warm_s = started.elapsed().as_secs_f64();
+        let (replan_cost, targets_left, warm_cost, error) = match (replanned, warm) {
+            (Ok(r), Ok(w)) => (r.cost, r.sequence.len(), w.cost, None),
+            (Err(e), _) | (_, Err(e)) => (f64::NAN, 0, f64::NAN, Some(e.to_string())),
         };
         runs.push(Run {
             size: size.into(),
@@ -144,6 +167,8 @@ fn measure(
             replan_cost,
             rest_cost: rest_cost(event, &plan),
             targets_left,
+            warm_s,
+            warm_cost,
             error,
         });
     }
@@ -163,9 +188,12 @@ fn report(runs: &[Run], seeds: u64) -> String {
          the full mission from scratch (`Pipeline::assemble` + `plan_mission`). Cost ratio = \
          replan cost / the original plan's cost from the same pose on (the failed-pose \
          and obstacle events force a change, halfway does not). Means over the seeds \
-         whose replan succeeded.\n\n\
-         | mission | event | ok | plan (s) | replan (s) | replan / plan time | replan cost | original rest | cost ratio |\n\
-         |---|---|---|---|---|---|---|---|---|\n"
+         whose replan succeeded. Warm = the same replan with the roadmap the plan left \
+         loaded first (in memory; what only the new obstacle touches is checked again): \
+         its time (world and checkers still built), the speed-up of from scratch over \
+         warm, and its cost / the from-scratch replan's.\n\n\
+         | mission | event | ok | plan (s) | replan (s) | replan / plan time | replan cost | original rest | cost ratio | warm (s) | scratch / warm time | warm / scratch cost |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n"
     );
     for (size, _) in SIZES {
         for event in EVENTS {
@@ -179,12 +207,15 @@ fn report(runs: &[Run], seeds: u64) -> String {
             let cost = mean(ok.iter().map(|r| r.replan_cost));
             let rest = mean(ok.iter().map(|r| r.rest_cost));
             let ratio = mean(ok.iter().map(|r| r.replan_cost / r.rest_cost));
+            let warm = mean(ok.iter().map(|r| r.warm_s));
+            let warm_ratio = mean(ok.iter().map(|r| r.warm_cost / r.replan_cost));
             let _ = writeln!(
                 md,
-                "| {size} | {event} | {}/{} | {plan:.3} | {replan:.3} | {:.2} | {cost:.2} | {rest:.2} | {ratio:.3} |",
+                "| {size} | {event} | {}/{} | {plan:.3} | {replan:.3} | {:.2} | {cost:.2} | {rest:.2} | {ratio:.3} | {warm:.3} | {:.2} | {warm_ratio:.4} |",
                 ok.len(),
                 all.len(),
-                replan / plan
+                replan / plan,
+                replan / warm
             );
         }
     }
