@@ -26,6 +26,9 @@ enum BenchCommand {
     Validity(crate::bench_validity::BenchValidityArgs),
     /// The missions under each objective: length, risk, energy, time, planning time.
     Objectives(crate::bench_objectives::BenchObjectivesArgs),
+    /// Replanning after a failed pose, a new obstacle and halfway through: replan time
+    /// and cost on lunar 13×10 and 48×6.
+    Replan(crate::bench_replan::BenchReplanArgs),
 }
 
 /// Runs `smug bench`.
@@ -37,5 +40,6 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Validity(args) => crate::bench_validity::run(args),
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),
         BenchCommand::Objectives(args) => crate::bench_objectives::run(args),
+        BenchCommand::Replan(args) => crate::bench_replan::run(args),
     }
 }

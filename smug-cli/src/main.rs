@@ -24,6 +24,7 @@ mod bench_p2p_lunar;
 mod bench_p2p_maps;
 mod bench_paper;
 mod bench_paper_report;
+mod bench_replan;
 mod bench_tsp;
 mod bench_validity;
 mod check;
@@ -31,6 +32,7 @@ mod gtsp;
 mod p2p;
 mod plan;
 mod plugins;
+mod replan;
 mod tsp;
 mod worlds;
 mod worlds_generate;
@@ -60,6 +62,9 @@ enum Command {
     Check(check::CheckArgs),
     /// Plan a safe multi-goal mission from a config.
     Plan(plan::PlanArgs),
+    /// Replan the rest of a mission from a mission state (pose, visited targets, failed
+    /// PoIs, new obstacles).
+    Replan(replan::ReplanArgs),
     /// Plan point-to-point queries on one shared roadmap.
     P2p(p2p::P2pArgs),
     /// Solve a TSPLIB instance (a file, or a name in the suite of --data / $SMUG_DATA).
@@ -77,6 +82,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Plugins(args) => plugins::run(args),
         Command::Check(args) => check::run_check(args),
         Command::Plan(args) => plan::run(args),
+        Command::Replan(args) => replan::run(args),
         Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Gtsp(args) => gtsp::run(args),

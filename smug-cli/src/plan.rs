@@ -29,6 +29,10 @@ pub struct PlanArgs {
     /// Print plan.json to stdout instead of a summary.
     #[arg(long)]
     json: bool,
+    /// After the mission, save the planner's roadmap (vertices, edges, check status,
+    /// costs, answered queries) to FILE, for `smug replan --roadmap FILE`.
+    #[arg(long, value_name = "FILE")]
+    save_roadmap: Option<PathBuf>,
 }
 
 /// Runs `smug plan`.
@@ -46,7 +50,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .clone()
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
-    refuse_overwriting_inputs(&out, &loaded)?;
+    refuse_overwriting_inputs(&out, &loaded, &[])?;
     let progress = Progress::start("building the world and the checkers");
     let mut pipeline = Pipeline::assemble(&loaded)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
@@ -73,6 +77,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     }
     let world = pipeline.world.clone().expect("plan_mission needs a world");
     write_outputs(&plan, &world, &pipeline, &out)?;
+    if let Some(file) = &args.save_roadmap {
+        save_roadmap(&pipeline, &loaded, &world, file)?;
+    }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
     } else {
@@ -81,11 +88,33 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     Ok(Outcome::Ok)
 }
 
+/// Writes the planner's roadmap after a mission to `file`, fingerprinted for
+/// `loaded` on `world` (the world as built from the config).
+fn save_roadmap(
+    pipeline: &Pipeline,
+    loaded: &LoadedConfig,
+    world: &World,
+    file: &Path,
+) -> anyhow::Result<()> {
+    let snapshot = pipeline
+        .planner
+        .as_ref()
+        .and_then(|p| p.save_roadmap())
+        .ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: cannot save a roadmap: the configured planner keeps none",
+                file.display()
+            )
+        })?;
+    smug_core::write_roadmap(file, &snapshot, &smug_core::Fingerprint::of(loaded, world))?;
+    Ok(())
+}
+
 /// A spinner on stderr naming the running stage, shown only in a terminal.
-struct Progress(Option<indicatif::ProgressBar>);
+pub(crate) struct Progress(Option<indicatif::ProgressBar>);
 
 impl Progress {
-    fn start(stage: &str) -> Self {
+    pub(crate) fn start(stage: &str) -> Self {
         use std::io::IsTerminal;
         if !std::io::stderr().is_terminal() {
             return Self(None);
@@ -96,20 +125,20 @@ impl Progress {
         Self(Some(bar))
     }
 
-    fn stage(&self, stage: &str) {
+    pub(crate) fn stage(&self, stage: &str) {
         if let Some(bar) = &self.0 {
             bar.set_message(stage.to_string());
         }
     }
 
-    fn finish(&self) {
+    pub(crate) fn finish(&self) {
         if let Some(bar) = &self.0 {
             bar.finish_and_clear();
         }
     }
 }
 
-fn write_outputs(
+pub(crate) fn write_outputs(
     plan: &Plan,
     world: &World,
     pipeline: &Pipeline,
@@ -140,10 +169,16 @@ fn write_outputs(
 const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
 
 /// Refuses an output directory where a plan file would overwrite one of the run's
-/// inputs (its config files, maps, missions, layers).
-fn refuse_overwriting_inputs(dir: &Path, loaded: &LoadedConfig) -> anyhow::Result<()> {
+/// inputs (its config files, maps, missions, layers, and `extra`, e.g. a mission state).
+pub(crate) fn refuse_overwriting_inputs(
+    dir: &Path,
+    loaded: &LoadedConfig,
+    extra: &[PathBuf],
+) -> anyhow::Result<()> {
     let outputs: Vec<PathBuf> = OUTPUT_FILES.iter().map(|name| dir.join(name)).collect();
-    match smug_core::output::output_over_input(&outputs, &loaded.input_files()) {
+    let mut inputs = loaded.input_files();
+    inputs.extend(extra.iter().cloned());
+    match smug_core::output::output_over_input(&outputs, &inputs) {
         Some(path) => anyhow::bail!(
             "{}: is an input of this run; choose another --out (or [output] dir)",
             path.display()
@@ -197,7 +232,7 @@ fn render_options(plan: &Plan, world: &World) -> RenderOptions {
     }
 }
 
-fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
+pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
     let s = &plan.stats;
     let b = &s.breakdown;
     println!(

@@ -211,6 +211,11 @@ impl PathOracle {
         self.stats
     }
 
+    /// The planner back, with the roadmap it grew (to save it after a mission).
+    pub fn into_planner(self) -> Box<dyn PointToPointPlanner> {
+        self.planner
+    }
+
     /// The planner (for its statistics).
     pub fn planner(&self) -> &dyn PointToPointPlanner {
         self.planner.as_ref()

@@ -102,4 +102,7 @@ pub struct Plan {
     pub deadline_reached: bool,
     /// Counters and timings.
     pub stats: PlanStats,
+    /// Set on a replan: the mission state it started from and what it left out.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replan: Option<crate::mission::ReplanInfo>,
 }

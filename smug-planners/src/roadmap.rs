@@ -1,6 +1,8 @@
 //! The shared roadmap: vertices with lazily known validity, edges with cached
 //! validity, compact adjacency, connected components and a reusable A*.
 
+mod snapshot;
+
 use crate::nn::{from_total_order_key, total_order_key, XyGrid};
 use smug_core::{Bounds2, Objective, Pose2, StateSpace};
 use std::cmp::Ordering;

@@ -11,7 +11,9 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArra
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use smug_core::mission::Unreachable;
+use smug_core::mission::{NoTargetLeft, Unreachable};
+
+mod replan;
 use smug_core::{
     plan_mission, Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome,
     Pose2, TraversabilityEstimator, World,
@@ -79,7 +81,9 @@ fn one_line(err: &(dyn std::error::Error + 'static)) -> String {
 /// a passed deadline, `ConfigError` for config and plugin errors, `InputError` for the rest.
 fn to_py(err: Error) -> PyErr {
     match &err {
-        Error::Stage { source, .. } if source.is::<Unreachable>() => {
+        Error::Stage { source, .. }
+            if source.is::<Unreachable>() || source.is::<NoTargetLeft>() =>
+        {
             NoSolution::new_err(format!("no solution: {source}"))
         }
         Error::DeadlinePassed { .. } => NoSolution::new_err(format!("no solution: {err}")),
@@ -639,6 +643,7 @@ fn _smug(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NoSolution", py.get_type::<NoSolution>())?;
     m.add_class::<PyWorld>()?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(replan::replan, m)?)?;
     m.add_function(wrap_pyfunction!(load_world, m)?)?;
     m.add_function(wrap_pyfunction!(plugins_json, m)?)?;
     m.add_function(wrap_pyfunction!(p2p, m)?)?;

@@ -331,3 +331,37 @@ def test_p2p_on_a_shared_roadmap():
     assert results["queries"][1]["vertices"] >= first["vertices"]
     with pytest.raises(smug.InputError, match=r"queries: expected shape \(n, 6\)"):
         smug.p2p(np.zeros((2, 5)), world=world)
+
+
+# --- replan ---------------------------------------------------------------------------
+
+DEMO = REPO / "configs" / "flat-demo.toml"
+
+
+def test_replan_equals_the_cli_and_is_marked(tmp_path):
+    state = tmp_path / "state.toml"
+    state.write_text(
+        'pose = [6.5, 3.0, -1.5]\nvisited = ["gauge-b"]\nfailed_pois = [["gauge-a", 0]]\n'
+        "[[obstacles]]\ncenter = [2.5, 3.5]\nradius = 0.6\nheight = 1.0\n"
+    )
+    plan = smug.replan(DEMO, state)
+    cli = run_cli("replan", str(DEMO), "--state", str(state), "--out", str(tmp_path / "out"))
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads((tmp_path / "out" / "plan.json").read_text())
+    assert plan.cost == expected["cost"]
+    assert plan.sequence == expected["sequence"] and "gauge-b" not in plan.sequence
+    assert plan.pois == expected["pois"]
+    assert tuple(plan.waypoints[0, :2]) == (6.5, 3.0)
+    marked = plan.to_dict()["replan"]
+    assert marked["state"]["failed_pois"] == [["gauge-a", 0]]
+    assert marked["state_file"] == str(state)
+
+
+def test_replan_errors_name_the_key_or_say_nothing_is_left(tmp_path):
+    state = tmp_path / "state.toml"
+    state.write_text('pose = [1.0, 1.0, 0.0]\nvisited = ["nope"]\n')
+    with pytest.raises(smug.InputError, match=r"`visited\[0\]`: unknown target id `nope`"):
+        smug.replan(DEMO, state)
+    state.write_text('pose = [1.0, 1.0, 0.0]\nvisited = ["gauge-a", "gauge-b", "valve-c"]\n')
+    with pytest.raises(smug.NoSolution, match="no reachable target"):
+        smug.replan(DEMO, state)

@@ -3,10 +3,19 @@
 
 mod assembly;
 mod joint;
+mod obstacles;
+mod replan;
 mod run;
 mod sequential;
+mod state;
 
+pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
+pub use replan::{
+    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
+    ReplanInfo, SkippedTarget,
+};
 pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use state::{MissionState, StateError};
 
 use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};

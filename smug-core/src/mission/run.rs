@@ -338,5 +338,7 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
         times.insert(format!("build:{stage}"), *s);
     }
     plan.stats = stats(&oracle, pipeline, times);
+    // The planner goes back to the pipeline with its roadmap (`--save-roadmap`).
+    pipeline.planner = Some(oracle.into_planner());
     Ok(plan)
 }

@@ -3,6 +3,7 @@
 mod clusters;
 mod motion;
 mod planner;
+pub mod roadmap_file;
 mod sampler;
 mod selector;
 mod sequencer;
@@ -11,7 +12,11 @@ mod validity;
 
 pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
-pub use planner::{PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use planner::{NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use roadmap_file::{
+    read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
+    PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
+};
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};

@@ -4,6 +4,7 @@ use crate::error::Result;
 use crate::path::Path;
 use crate::plan::TimeBreakdown;
 use crate::pose::Pose2;
+use crate::stages::roadmap_file::{ChangedDisc, RoadmapSnapshot};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -85,4 +86,24 @@ pub trait PointToPointPlanner: Send + Sync {
 
     /// Statistics accumulated over all queries so far.
     fn stats(&self) -> PlannerStats;
+
+    /// The planner's roadmap and answered queries, to save after a mission (default:
+    /// `None`, the planner keeps no roadmap).
+    fn save_roadmap(&self) -> Option<RoadmapSnapshot> {
+        None
+    }
+
+    /// Loads a roadmap saved by [`save_roadmap`](Self::save_roadmap) before any query;
+    /// the world changed in `changed` since (vertices there are checked again, edges
+    /// that may pass there are unchecked again, answers through there are dropped).
+    /// The default refuses: the planner keeps no roadmap.
+    fn load_roadmap(&mut self, snapshot: RoadmapSnapshot, changed: &[ChangedDisc]) -> Result<()> {
+        let _ = (snapshot, changed);
+        Err(crate::error::Error::stage("planner", NoRoadmap))
+    }
 }
+
+/// The planner keeps no roadmap to save or load.
+#[derive(Debug, thiserror::Error)]
+#[error("this planner keeps no roadmap to save or load")]
+pub struct NoRoadmap;

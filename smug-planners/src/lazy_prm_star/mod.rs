@@ -16,6 +16,7 @@
 mod checks;
 mod expansion;
 mod focus;
+mod warm;
 
 use self::checks::{timed_state_check, Checks, CountedMotions};
 use self::expansion::Expansion;
@@ -195,6 +196,8 @@ pub struct LazyPrmStar {
     /// Endpoints of failed queries found in pockets (see `retry_cut_off`).
     cut_off: BTreeSet<u32>,
     counts: Counts,
+    /// Answers given (saved with the roadmap) and loaded (see `load_roadmap`).
+    warm: warm::Warm,
 }
 
 /// `k = ⌈e(1 + 1/d) ln n⌉` with `d = 3`, at least 1.
@@ -295,6 +298,7 @@ impl LazyPrmStar {
             ),
             cut_off: BTreeSet::new(),
             counts: Counts::default(),
+            warm: warm::Warm::default(),
         })
     }
 
@@ -714,6 +718,9 @@ impl PointToPointPlanner for LazyPrmStar {
         let started = Instant::now();
         let before = self.counts.breakdown;
         self.counts.queries += 1;
+        if let Some(outcome) = self.warm.reuse(start, goal) {
+            return Ok(outcome);
+        }
         if !self.grown {
             self.grown = true;
             self.grow(self.params.initial_samples);
@@ -736,25 +743,40 @@ impl PointToPointPlanner for LazyPrmStar {
         };
         let accounted = self.counts.breakdown.total_s() - before.total_s();
         self.counts.breakdown.misc_s += (started.elapsed().as_secs_f64() - accounted).max(0.0);
+        self.warm.record(start, goal, &outcome);
         Ok(outcome)
+    }
+
+    fn save_roadmap(&self) -> Option<smug_core::RoadmapSnapshot> {
+        Some(self.snapshot())
+    }
+
+    fn load_roadmap(
+        &mut self,
+        snapshot: smug_core::RoadmapSnapshot,
+        changed: &[smug_core::ChangedDisc],
+    ) -> Result<()> {
+        self.load(snapshot, changed)
     }
 
     fn stats(&self) -> PlannerStats {
         let c = &self.counts;
+        let mut counters = BTreeMap::from([
+            ("samples".to_string(), c.samples),
+            ("vertex_checks".to_string(), c.vertex_checks),
+            ("edge_checks".to_string(), c.edge_checks),
+            ("astar_searches".to_string(), c.searches),
+            ("astar_repairs".to_string(), c.repairs),
+            ("cut_off_queries".to_string(), c.cut_off_queries),
+            ("astar_expansions".to_string(), self.astar.expansions),
+        ]);
+        counters.extend(self.load_counters());
         PlannerStats {
             queries: c.queries,
             vertices: self.roadmap.live_vertex_count() as u64,
             edges: self.roadmap.live_edge_count() as u64,
             breakdown: c.breakdown,
-            counters: BTreeMap::from([
-                ("samples".to_string(), c.samples),
-                ("vertex_checks".to_string(), c.vertex_checks),
-                ("edge_checks".to_string(), c.edge_checks),
-                ("astar_searches".to_string(), c.searches),
-                ("astar_repairs".to_string(), c.repairs),
-                ("cut_off_queries".to_string(), c.cut_off_queries),
-                ("astar_expansions".to_string(), self.astar.expansions),
-            ]),
+            counters,
         }
     }
 }

@@ -37,6 +37,7 @@ __all__ = [
     "load_world",
     "p2p",
     "plan",
+    "replan",
     "plugins",
 ]
 
@@ -277,6 +278,26 @@ def plan(
     )
     return Plan(text, waypoints, World(planned_world))
 
+
+
+def replan(
+    config: PathLike,
+    state: PathLike,
+    set: Overrides = None,
+    seed: Optional[int] = None,
+) -> Plan:
+    """Replans the rest of the mission of ``config`` from the mission state file ``state``
+    (TOML: ``pose = [x, y, yaw]``, ``visited``, ``failed_pois``, ``[[obstacles]]``; see
+    ``docs/replanning.md``), as ``smug replan`` does. The plan's ``to_dict()["replan"]``
+    holds the state it started from and the skipped targets.
+
+    Raises :class:`ConfigError` (bad config), :class:`InputError` (bad state: the message
+    names the file and the key) or :class:`NoSolution` (no reachable target left).
+    """
+    text, waypoints, planned_world = _smug.replan(
+        os.fspath(config), os.fspath(state), _overrides(set), seed
+    )
+    return Plan(text, waypoints, World(planned_world))
 
 def load_world(config: PathLike, set: Overrides = None, seed: Optional[int] = None) -> World:
     """The world of ``config`` with its traversability layer, without planning."""

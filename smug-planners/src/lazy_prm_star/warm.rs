@@ -1,0 +1,195 @@
+//! The warm roadmap of LazyPRM*: the answers it gave (saved with its roadmap) and,
+//! after a load, those it may give again without planning.
+
+use super::LazyPrmStar;
+use crate::roadmap::Validity;
+use smug_core::{
+    ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
+    RoadmapSnapshot, SavedAnswer, StateSpace,
+};
+use std::collections::{BTreeMap, HashMap};
+
+/// The planner's name in saved snapshots.
+pub(super) const PLANNER_NAME: &str = "lazy-prm-star";
+
+/// What a load reused and invalidated (reported in the planner's counters).
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct LoadCounts {
+    pub vertices: u64,
+    pub edges: u64,
+    pub vertices_rechecked: u64,
+    pub vertices_dropped: u64,
+    pub edges_reset: u64,
+    pub answers_reused: u64,
+    pub answers_dropped: u64,
+    pub answers_served: u64,
+}
+
+/// Answers given and answers loaded.
+#[derive(Debug, Default)]
+pub(super) struct Warm {
+    /// Exact answers given, by endpoints (saved with the roadmap).
+    given: BTreeMap<(PoseBits, PoseBits), SavedAnswer>,
+    /// Loaded answers no change touches: served as they are.
+    reusable: HashMap<(PoseBits, PoseBits), Path>,
+    /// Set once a roadmap was loaded.
+    pub loaded: Option<LoadCounts>,
+}
+
+impl Warm {
+    /// A loaded answer for `start → goal`, if one is still valid.
+    pub fn reuse(&mut self, start: &Pose2, goal: &Pose2) -> Option<PlannerOutcome> {
+        let path = self
+            .reusable
+            .get(&((*start).into(), (*goal).into()))?
+            .clone();
+        if let Some(counts) = self.loaded.as_mut() {
+            counts.answers_served += 1;
+        }
+        Some(PlannerOutcome::Exact(path))
+    }
+
+    /// Remembers an exact answer (to save it).
+    pub fn record(&mut self, start: &Pose2, goal: &Pose2, outcome: &PlannerOutcome) {
+        if let PlannerOutcome::Exact(path) = outcome {
+            let key = ((*start).into(), (*goal).into());
+            self.given.entry(key).or_insert_with(|| SavedAnswer {
+                start: key.0,
+                goal: key.1,
+                states: path.states.iter().map(|&s| s.into()).collect(),
+                cost: path.cost.to_bits(),
+                goal_distance: None,
+            });
+        }
+    }
+}
+
+/// True when the motion `a → b` may pass through one of `changed`.
+fn touches(space: &dyn StateSpace, changed: &[ChangedDisc], a: &Pose2, b: &Pose2) -> bool {
+    let length = space.motion_extent(a, b).length;
+    changed.iter().any(|d| d.may_touch(a, b, length))
+}
+
+fn incompatible(reason: impl Into<String>) -> Error {
+    Error::stage(
+        "planner",
+        IncompatibleRoadmap {
+            reason: reason.into(),
+        },
+    )
+}
+
+impl LazyPrmStar {
+    /// The roadmap and the answers given, planner-independent.
+    pub(super) fn snapshot(&self) -> RoadmapSnapshot {
+        let (vertices, edges) = self.roadmap.export();
+        RoadmapSnapshot {
+            planner: PLANNER_NAME.into(),
+            directed: self.roadmap.is_directed(),
+            vertices,
+            edges,
+            answers: self.warm.given.values().cloned().collect(),
+        }
+    }
+
+    /// Loads `snapshot` into this fresh planner; the world changed in `changed`.
+    pub(super) fn load(
+        &mut self,
+        snapshot: RoadmapSnapshot,
+        changed: &[ChangedDisc],
+    ) -> Result<()> {
+        if snapshot.planner != PLANNER_NAME {
+            return Err(incompatible(format!(
+                "saved by planner `{}`, this is `{PLANNER_NAME}`",
+                snapshot.planner
+            )));
+        }
+        if snapshot.directed != self.roadmap.is_directed() {
+            return Err(incompatible(
+                "directed and undirected roadmaps differ (another motion model)",
+            ));
+        }
+        if self.counts.queries > 0 || self.roadmap.vertex_count() > 0 {
+            return Err(incompatible("the planner already has a roadmap"));
+        }
+        self.roadmap
+            .restore(&snapshot.vertices, &snapshot.edges)
+            .map_err(incompatible)?;
+        let mut counts = LoadCounts {
+            vertices: snapshot.vertices.len() as u64,
+            edges: snapshot.edges.len() as u64,
+            ..LoadCounts::default()
+        };
+        for v in 0..self.roadmap.vertex_count() as u32 {
+            let pose = *self.roadmap.pose(v);
+            if self.roadmap.vertex_validity(v) == Validity::Invalid
+                || !changed.iter().any(|d| d.contains(&pose))
+            {
+                continue;
+            }
+            counts.vertices_rechecked += 1;
+            if self.check_state(&pose) {
+                self.roadmap.mark_vertex_valid(v);
+            } else {
+                self.roadmap.remove_vertex(v);
+                counts.vertices_dropped += 1;
+            }
+        }
+        for e in 0..self.roadmap.edge_count() as u32 {
+            let edge = *self.roadmap.edge(e);
+            if edge.validity != Validity::Valid {
+                continue;
+            }
+            let (a, b) = (*self.roadmap.pose(edge.a), *self.roadmap.pose(edge.b));
+            if touches(self.space.as_ref(), changed, &a, &b) {
+                self.roadmap.mark_edge_unknown(e);
+                counts.edges_reset += 1;
+            }
+        }
+        self.roadmap.refresh_components();
+        for answer in snapshot.answers {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            let touched = states
+                .windows(2)
+                .any(|w| touches(self.space.as_ref(), changed, &w[0], &w[1]))
+                || states.iter().any(|s| changed.iter().any(|d| d.contains(s)));
+            if touched || answer.goal_distance.is_some() || states.is_empty() {
+                counts.answers_dropped += 1;
+                continue;
+            }
+            counts.answers_reused += 1;
+            let path = Path {
+                states,
+                cost: f64::from_bits(answer.cost),
+            };
+            self.warm
+                .given
+                .insert((answer.start, answer.goal), answer.clone());
+            self.warm.reusable.insert((answer.start, answer.goal), path);
+        }
+        self.grown = true;
+        self.fresh_from = self.roadmap.vertex_count() as u32;
+        self.warm.loaded = Some(counts);
+        Ok(())
+    }
+
+    /// The load's counters, if a roadmap was loaded.
+    pub(super) fn load_counters(&self) -> Vec<(String, u64)> {
+        let Some(c) = self.warm.loaded else {
+            return Vec::new();
+        };
+        [
+            ("warm_vertices", c.vertices),
+            ("warm_edges", c.edges),
+            ("warm_vertices_rechecked", c.vertices_rechecked),
+            ("warm_vertices_dropped", c.vertices_dropped),
+            ("warm_edges_reset", c.edges_reset),
+            ("warm_answers_reused", c.answers_reused),
+            ("warm_answers_dropped", c.answers_dropped),
+            ("warm_answers_served", c.answers_served),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect()
+    }
+}

@@ -1,0 +1,307 @@
+//! Replanning from a mission state: the replan never visits a visited target or a
+//! failed pose, starts at the state's pose, ends at the mission's end pose, and every
+//! motion is valid on the world with the new obstacles; an empty state reproduces the
+//! original plan bit-identically.
+
+use proptest::prelude::*;
+use smug_core::mission::{
+    assemble_replan, replan_mission, DiscObstacle, MissionState, NoTargetLeft, Unreachable,
+};
+use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan, PlanOptions};
+use std::path::Path;
+
+use smug_objectives as _;
+use smug_planners as _;
+use smug_samplers as _;
+use smug_selection as _;
+use smug_sequencing as _;
+use smug_spaces as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+fn config(name: &str, set: &[&str]) -> LoadedConfig {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../configs")
+        .join(name);
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    LoadedConfig::from_file(&path, &set).unwrap()
+}
+
+fn original(loaded: &LoadedConfig) -> (Plan, Pipeline) {
+    let mut pipeline = Pipeline::assemble(loaded).unwrap();
+    let plan = plan_mission(&mut pipeline, PlanOptions::default()).unwrap();
+    (plan, pipeline)
+}
+
+fn replan(loaded: &LoadedConfig, state: &MissionState) -> (Result<Plan, Error>, Pipeline) {
+    let mut pipeline = assemble_replan(loaded, state, "state.toml").unwrap();
+    let options = pipeline.config.plan;
+    (replan_mission(&mut pipeline, options, state), pipeline)
+}
+
+/// Everything but the timings and counters.
+fn same_route(a: &Plan, b: &Plan) {
+    assert_eq!(a.sequence, b.sequence);
+    assert_eq!(a.pois, b.pois);
+    assert_eq!(a.segments, b.segments);
+    assert_eq!(a.waypoints, b.waypoints);
+    assert_eq!(a.cost.to_bits(), b.cost.to_bits());
+    assert_eq!(a.metrics, b.metrics);
+}
+
+#[test]
+fn an_empty_state_reproduces_the_original_plan_bit_identically() {
+    for name in [
+        "flat-demo.toml",
+        "flat-dubins.toml",
+        "lunar.toml",
+        "lunar-irba.toml",
+        "lunar-wheeled.toml",
+        "indoor.toml",
+        "indoor-disc.toml",
+    ] {
+        let loaded = config(name, &[]);
+        let (plan, pipeline) = original(&loaded);
+        let state = MissionState::at_start(&pipeline.world.as_ref().unwrap().mission);
+        let (again, _) = replan(&loaded, &state);
+        let again = again.unwrap();
+        same_route(&plan, &again);
+        assert_eq!(
+            again.replan.unwrap().state,
+            state,
+            "{name}: marked as a replan"
+        );
+    }
+}
+
+/// Checks the replan's properties against the state and the updated world.
+fn check_replan(plan: &Plan, pipeline: &Pipeline, state: &MissionState) {
+    let mission = &pipeline.world.as_ref().unwrap().mission;
+    for chosen in &plan.pois {
+        assert!(
+            !state.visited.contains(&chosen.target),
+            "visited {chosen:?}"
+        );
+        assert!(
+            !state.failed(&chosen.target, chosen.index),
+            "failed {chosen:?}"
+        );
+        let target = mission
+            .targets
+            .iter()
+            .find(|t| t.id == chosen.target)
+            .unwrap();
+        assert_eq!(target.pois[chosen.index], chosen.pose);
+    }
+    let first = plan.segments.first().unwrap().path.states[0];
+    assert_eq!(first, state.pose(), "starts at the state's pose");
+    let last = *plan.segments.last().unwrap().path.states.last().unwrap();
+    let end = mission.end_pose();
+    assert_eq!((last.x, last.y), (end.x, end.y), "ends at the end pose");
+    let w = plan.waypoints.first().unwrap();
+    assert_eq!((w.x, w.y), (state.pose[0], state.pose[1]));
+    let motions = pipeline.motion_validator.clone().unwrap();
+    for segment in &plan.segments {
+        for pair in segment.path.states.windows(2) {
+            assert!(motions.check_motion(&pair[0], &pair[1]).is_valid());
+        }
+    }
+    for pair in plan.waypoints.windows(2) {
+        assert!(motions
+            .check_motion(&pair[0].pose(), &pair[1].pose())
+            .is_valid());
+    }
+    let mut states: Vec<_> = plan.waypoints.iter().map(|w| w.pose()).collect();
+    states.extend(
+        plan.segments
+            .iter()
+            .flat_map(|s| s.path.states.iter().copied()),
+    );
+    for p in &states {
+        for o in &state.obstacles {
+            assert!(!o.contains(p.x, p.y), "{p:?} inside the new obstacle {o:?}");
+        }
+    }
+    let mut covered: Vec<&String> = plan.sequence.iter().chain(&plan.skipped).collect();
+    covered.extend(&state.visited);
+    covered.sort();
+    assert_eq!(
+        covered.len(),
+        mission.targets.len(),
+        "every target accounted for once"
+    );
+}
+
+/// Free poses of the flat demo (outside both boxes, clear of the walls).
+const POSES: [[f64; 3]; 6] = [
+    [1.0, 1.0, 0.0],
+    [3.0, 2.0, 1.0],
+    [6.5, 3.0, -1.5],
+    [6.5, 6.5, 2.0],
+    [10.5, 2.0, 3.0],
+    [2.0, 7.0, -0.5],
+];
+
+fn state_strategy() -> impl Strategy<Value = MissionState> {
+    (
+        0..POSES.len(),
+        prop::collection::vec(any::<bool>(), 3),
+        prop::collection::vec(any::<bool>(), 5),
+        prop::option::of((0.5..11.5f64, 0.5..7.5f64, 0.3..0.8f64)),
+    )
+        .prop_map(|(pose, visited, failed, obstacle)| {
+            let ids = ["gauge-a", "gauge-b", "valve-c"];
+            let pois = [
+                ("gauge-a", 0),
+                ("gauge-a", 1),
+                ("gauge-b", 0),
+                ("gauge-b", 1),
+                ("valve-c", 0),
+            ];
+            let visited: Vec<String> = ids
+                .iter()
+                .zip(&visited)
+                .filter(|(_, v)| **v)
+                .map(|(id, _)| id.to_string())
+                .collect();
+            let failed_pois = pois
+                .iter()
+                .zip(&failed)
+                .filter(|((id, _), f)| **f && !visited.iter().any(|v| v == id))
+                .map(|((id, k), _)| (id.to_string(), *k))
+                .collect();
+            let pose = POSES[pose];
+            // Keep the obstacle off the robot and the end pose (1, 1).
+            let obstacles = obstacle
+                .map(|(x, y, radius)| DiscObstacle {
+                    center: [x, y],
+                    radius,
+                    height: 1.0,
+                })
+                .filter(|o| {
+                    let clear = |p: [f64; 2]| {
+                        (p[0] - o.center[0]).hypot(p[1] - o.center[1]) > o.radius + 1.0
+                    };
+                    clear([pose[0], pose[1]]) && clear([1.0, 1.0])
+                })
+                .into_iter()
+                .collect();
+            MissionState {
+                pose,
+                visited,
+                failed_pois,
+                obstacles,
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    #[test]
+    fn a_replan_respects_the_state_and_the_updated_world(state in state_strategy()) {
+        let loaded = config("flat-demo.toml", &[]);
+        let (outcome, pipeline) = replan(&loaded, &state);
+        match outcome {
+            Ok(plan) => check_replan(&plan, &pipeline, &state),
+            Err(Error::Stage { source, .. }) if source.is::<NoTargetLeft>() => {
+                // Only when every target not visited has all its PoIs failed or blocked.
+                let mission = &pipeline.world.as_ref().unwrap().mission;
+                let checker = pipeline.state_validity.clone().unwrap();
+                for t in mission.targets.iter().filter(|t| !state.visited.contains(&t.id)) {
+                    let open = t.pois.iter().enumerate()
+                        .any(|(k, p)| !state.failed(&t.id, k) && checker.is_valid(p));
+                    prop_assert!(!open, "target {} still had a PoI", t.id);
+                }
+            }
+            Err(Error::Stage { source, .. }) if source.is::<Unreachable>() => {
+                prop_assert!(!state.obstacles.is_empty(), "only a new obstacle can cut a target off");
+            }
+            Err(other) => prop_assert!(false, "unexpected error {other}"),
+        }
+    }
+}
+
+/// The robot halfway through the mission, the next target's chosen PoI failed, a new
+/// obstacle across the next leg: on lunar (hierarchical validity, IDP and IRBA), the
+/// wheeled robot's lunar (its own objective and motion model), a Dubins car and a disc
+/// robot indoors.
+#[test]
+fn a_replan_after_the_three_events_is_valid_for_every_kind_of_pipeline() {
+    for name in [
+        "lunar.toml",
+        "lunar-irba.toml",
+        "lunar-wheeled.toml",
+        "flat-dubins.toml",
+        "indoor-disc.toml",
+    ] {
+        let loaded = config(name, &[]);
+        let (plan, _) = original(&loaded);
+        let half = plan.sequence.len() / 2;
+        let here = plan.pois[half - 1].pose;
+        let next = &plan.pois[half];
+        let leg = &plan.segments[half].path.states;
+        let mid = leg[leg.len() / 2];
+        let state = MissionState {
+            pose: [here.x, here.y, here.yaw],
+            visited: plan.sequence[..half].to_vec(),
+            failed_pois: vec![(next.target.clone(), next.index)],
+            obstacles: vec![DiscObstacle {
+                center: [mid.x, mid.y],
+                radius: 0.4,
+                height: 1.0,
+            }],
+        };
+        let (replanned, pipeline) = replan(&loaded, &state);
+        let replanned = replanned.unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_replan(&replanned, &pipeline, &state);
+        let left = replanned.sequence.len() + replanned.skipped.len();
+        assert_eq!(left, plan.sequence.len() - half, "{name}");
+    }
+}
+
+/// The three events replanned on the roadmap the original plan saved (through its
+/// planner-independent snapshot): the replan is valid on the updated world, the
+/// obstacle's neighbourhood was checked again, and the rest of the roadmap reused.
+#[test]
+fn a_replan_on_the_warm_roadmap_after_the_three_events_is_valid() {
+    use smug_core::mission::changed_discs;
+    for name in ["lunar.toml", "lunar-wheeled.toml", "flat-dubins.toml"] {
+        let loaded = config(name, &[]);
+        let (plan, pipeline) = original(&loaded);
+        let snapshot = pipeline.planner.as_ref().unwrap().save_roadmap().unwrap();
+        let half = plan.sequence.len() / 2;
+        let here = plan.pois[half - 1].pose;
+        let next = &plan.pois[half];
+        let leg = &plan.segments[half].path.states;
+        let mid = leg[leg.len() / 2];
+        let state = MissionState {
+            pose: [here.x, here.y, here.yaw],
+            visited: plan.sequence[..half].to_vec(),
+            failed_pois: vec![(next.target.clone(), next.index)],
+            obstacles: vec![DiscObstacle {
+                center: [mid.x, mid.y],
+                radius: 0.4,
+                height: 1.0,
+            }],
+        };
+        let mut pipeline = assemble_replan(&loaded, &state, "state.toml").unwrap();
+        let changed = changed_discs(&state, &loaded.config.robot);
+        let planner = pipeline.planner.as_mut().unwrap();
+        planner.load_roadmap(snapshot.clone(), &changed).unwrap();
+        let options = pipeline.config.plan;
+        let replanned = replan_mission(&mut pipeline, options, &state)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_replan(&replanned, &pipeline, &state);
+        let counters = &replanned.stats.counters;
+        assert_eq!(counters["warm_vertices"], snapshot.vertices.len() as u64);
+        assert!(
+            counters["warm_vertices_rechecked"] > 0,
+            "{name}: {counters:?}"
+        );
+        assert!(counters["warm_answers_dropped"] > 0, "{name}: {counters:?}");
+        assert!(
+            counters["warm_vertices_rechecked"] < counters["warm_vertices"] / 2,
+            "{name}: only the obstacle's neighbourhood is checked again"
+        );
+    }
+}
