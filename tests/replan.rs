@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use smug_core::mission::{
     assemble_replan, replan_mission, DiscObstacle, MissionState, NoTargetLeft, Unreachable,
 };
-use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan, PlanOptions};
+use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan};
 use std::path::Path;
 
 use smug_objectives as _;
@@ -29,7 +29,7 @@ fn config(name: &str, set: &[&str]) -> LoadedConfig {
 
 fn original(loaded: &LoadedConfig) -> (Plan, Pipeline) {
     let mut pipeline = Pipeline::assemble(loaded).unwrap();
-    let plan = plan_mission(&mut pipeline, PlanOptions::default()).unwrap();
+    let plan = plan_mission(&mut pipeline, loaded.config.plan).unwrap();
     (plan, pipeline)
 }
 

@@ -39,9 +39,9 @@ pub enum SequencingCosts {
     /// the tour uses planned legs only. With an exact solver the order is optimal for
     /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
     /// applied to sequencing).
+    #[default]
     Lazy,
     /// Plan a path between every pair of representatives (the paper's way).
-    #[default]
     Full,
 }
 
@@ -69,7 +69,7 @@ pub struct PlanOptions {
     pub skip_unreachable: bool,
     /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
     pub keep_headings: bool,
-    /// How the sequencer's cost matrix is filled: `"full"` (default) or `"lazy"`.
+    /// How the sequencer's cost matrix is filled: `"lazy"` (default) or `"full"`.
     pub sequencing_costs: SequencingCosts,
     /// `"sequential"` (default: order, then PoIs) or `"joint"` (both at once, GTSP).
     pub mode: PlanMode,
