@@ -95,11 +95,14 @@ fn parse_count(cursor: &Cursor, line: usize, value: &str) -> Result<usize, Tspli
     value
         .parse::<usize>()
         .ok()
-        .filter(|&m| m >= 1)
+        .filter(|&m| (1..=crate::tsplib::MAX_DIMENSION).contains(&m))
         .ok_or_else(|| {
             cursor.syntax(
                 line,
-                format!("GTSP_SETS `{value}` is not a positive integer"),
+                format!(
+                    "GTSP_SETS `{value}` is not an integer in 1..={} (no more sets than nodes)",
+                    crate::tsplib::MAX_DIMENSION
+                ),
             )
         })
 }
@@ -233,6 +236,19 @@ mod tests {
         assert_eq!(instance.clusters.members(0), &[0, 4]);
         assert_eq!(instance.clusters.members(1), &[1, 2]);
         assert_eq!(instance.clusters.of(5), 2);
+    }
+
+    #[test]
+    fn a_set_count_beyond_any_dimension_is_refused_before_allocating() {
+        // Found by `cargo fuzz run gtsplib`: 18446744073709551615 sets aborted on allocation.
+        let text = HEADER.replace("GTSP_SETS : 3", "GTSP_SETS : 18446744073709551615");
+        let err = parse_gtsplib(&format!("{text}GTSP_SET_SECTION\n1 1 -1\nEOF\n"), "t.gtsp")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("GTSP_SETS `18446744073709551615` is not an integer in 1..=20000"),
+            "{err}"
+        );
     }
 
     #[test]
