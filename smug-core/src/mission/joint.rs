@@ -5,10 +5,10 @@
 //! planned legs only. With an exact GTSP solver the result is optimal for the planned
 //! costs (IDP's argument applied to the whole problem).
 
-use super::sequential::tour_legs as legs;
+use super::sequential::{lazy_solve, tour_legs as legs};
 use crate::error::Result;
 use crate::oracle::PathOracle;
-use crate::stages::{Clusters, CostMatrix, Selection, Sequencer, Tour, TourKind};
+use crate::stages::{Clusters, Selection, Sequencer, TourKind};
 
 /// The joint problem over oracle indices: the start, the PoIs of each target, and the
 /// end of an open tour (`None`: back to the start).
@@ -34,7 +34,9 @@ pub(super) fn joint_tour(
         Some(_) => TourKind::OpenTo(clusters.len() - 1),
         None => TourKind::Closed,
     };
-    let tour = lazy_gtsp(sequencer, oracle, &nodes, &clusters, kind)?;
+    let tour = lazy_solve(oracle, &nodes, kind, |matrix| {
+        sequencer.solve_clusters(matrix, &clusters, kind)
+    })?;
     let visits: Vec<usize> = tour
         .order
         .iter()
@@ -64,40 +66,4 @@ fn layout(problem: &JointProblem) -> Result<(Vec<usize>, Clusters)> {
     }
     let clusters = Clusters::new(nodes.len(), members)?;
     Ok((nodes, clusters))
-}
-
-/// Solves on planned costs or bounds, plans the tour's unplanned legs, repeats until
-/// the tour uses planned legs only (or one of them has no path).
-fn lazy_gtsp(
-    sequencer: &dyn Sequencer,
-    oracle: &mut PathOracle,
-    nodes: &[usize],
-    clusters: &Clusters,
-    kind: TourKind,
-) -> Result<Tour> {
-    let n = nodes.len();
-    loop {
-        let matrix = CostMatrix::from_fn(n, |i, j| {
-            if i == j {
-                0.0
-            } else {
-                oracle.cost_or_bound(nodes[i], nodes[j])
-            }
-        })?;
-        let tour = sequencer.solve_clusters(&matrix, clusters, kind)?;
-        let unplanned: Vec<(usize, usize)> = legs(&tour, kind)
-            .map(|(a, b)| (nodes[a], nodes[b]))
-            .filter(|&(a, b)| !oracle.is_planned(a, b))
-            .collect();
-        if unplanned.is_empty() {
-            return Ok(tour);
-        }
-        let mut dead_end = false;
-        for (a, b) in unplanned {
-            dead_end |= !oracle.cost(a, b)?.is_finite();
-        }
-        if dead_end {
-            return Ok(tour);
-        }
-    }
 }

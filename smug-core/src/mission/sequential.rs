@@ -104,6 +104,18 @@ fn lazy_tour(
     nodes: &[usize],
     kind: TourKind,
 ) -> Result<Tour> {
+    lazy_solve(oracle, nodes, kind, |matrix| sequencer.solve(matrix, kind))
+}
+
+/// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
+/// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
+/// legs, repeat until the tour uses planned legs only (or one of them has no path).
+pub(super) fn lazy_solve(
+    oracle: &mut PathOracle,
+    nodes: &[usize],
+    kind: TourKind,
+    mut solve: impl FnMut(&CostMatrix) -> Result<Tour>,
+) -> Result<Tour> {
     let n = nodes.len();
     loop {
         let matrix = CostMatrix::from_fn(n, |i, j| {
@@ -113,7 +125,7 @@ fn lazy_tour(
                 oracle.cost_or_bound(nodes[i], nodes[j])
             }
         })?;
-        let tour = sequencer.solve(&matrix, kind)?;
+        let tour = solve(&matrix)?;
         let unplanned: Vec<(usize, usize)> = tour_legs(&tour, kind)
             .map(|(a, b)| (nodes[a], nodes[b]))
             .filter(|&(a, b)| !oracle.is_planned(a, b))

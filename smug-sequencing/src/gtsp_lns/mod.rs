@@ -21,6 +21,7 @@ mod search;
 mod tour;
 
 use crate::costs::{tour_of, validate, validate_clusters, Dist};
+use crate::local_search::{check_search_budget, search_termination};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use search::Search;
@@ -71,24 +72,12 @@ impl Default for GtspLnsParams {
 impl GtspLnsParams {
     /// The stopping rule: the time budget, the iteration budget, or both.
     pub fn termination(&self) -> Termination {
-        let time = (self.time_limit_s > 0.0).then_some(self.time_limit_s);
-        let iterations = (self.max_iterations > 0).then_some(self.max_iterations);
-        Termination::from_budgets(time, iterations)
+        search_termination(self.time_limit_s, self.max_iterations)
     }
 
     /// Checks the values; the message names the offending parameter.
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.time_limit_s >= 0.0 && self.time_limit_s.is_finite()) {
-            return Err(format!(
-                "time_limit_s = {} must be a finite number ≥ 0",
-                self.time_limit_s
-            ));
-        }
-        if self.time_limit_s == 0.0 && self.max_iterations == 0 {
-            return Err(
-                "time_limit_s = 0 and max_iterations = 0: the search would never stop".into(),
-            );
-        }
+        check_search_budget(self.time_limit_s, self.max_iterations)?;
         let fractions = [
             ("max_removal_fraction", self.max_removal_fraction, 1.0),
             ("noise", self.noise, f64::MAX),

@@ -75,24 +75,12 @@ impl Default for LocalSearchParams {
 impl LocalSearchParams {
     /// The stopping rule: the time budget, the iteration budget, or both.
     pub fn termination(&self) -> Termination {
-        let time = (self.time_limit_s > 0.0).then_some(self.time_limit_s);
-        let iterations = (self.max_iterations > 0).then_some(self.max_iterations);
-        Termination::from_budgets(time, iterations)
+        search_termination(self.time_limit_s, self.max_iterations)
     }
 
     /// Checks the values; the message names the offending parameter.
     pub fn validate(&self) -> Result<(), String> {
-        if !(self.time_limit_s >= 0.0 && self.time_limit_s.is_finite()) {
-            return Err(format!(
-                "time_limit_s = {} must be a finite number ≥ 0",
-                self.time_limit_s
-            ));
-        }
-        if self.time_limit_s == 0.0 && self.max_iterations == 0 {
-            return Err(
-                "time_limit_s = 0 and max_iterations = 0: the search would never stop".into(),
-            );
-        }
+        check_search_budget(self.time_limit_s, self.max_iterations)?;
         if self.neighbours < 3 {
             return Err(format!(
                 "neighbours = {} must be at least 3",
@@ -101,6 +89,27 @@ impl LocalSearchParams {
         }
         Ok(())
     }
+}
+
+/// A search's stopping rule from its `time_limit_s` (0: none) and `max_iterations`
+/// (0: none) parameters.
+pub(crate) fn search_termination(time_limit_s: f64, max_iterations: u64) -> Termination {
+    let time = (time_limit_s > 0.0).then_some(time_limit_s);
+    let iterations = (max_iterations > 0).then_some(max_iterations);
+    Termination::from_budgets(time, iterations)
+}
+
+/// Checks a search's budget parameters: a finite time ≥ 0, and not both unbounded.
+pub(crate) fn check_search_budget(time_limit_s: f64, max_iterations: u64) -> Result<(), String> {
+    if !(time_limit_s >= 0.0 && time_limit_s.is_finite()) {
+        return Err(format!(
+            "time_limit_s = {time_limit_s} must be a finite number ≥ 0"
+        ));
+    }
+    if time_limit_s == 0.0 && max_iterations == 0 {
+        return Err("time_limit_s = 0 and max_iterations = 0: the search would never stop".into());
+    }
+    Ok(())
 }
 
 /// What a local search run did, besides its tour.
