@@ -7,13 +7,7 @@ use std::path::PathBuf;
 
 /// A scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = workspace()
-        .join("target")
-        .join("replan-cli-tests")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir("replan-cli-tests", name)
 }
 
 /// Writes a state file and returns its path as text.

@@ -9,13 +9,7 @@ use std::path::{Path, PathBuf};
 
 /// A scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = workspace()
-        .join("target")
-        .join("warm-roadmap-tests")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir("warm-roadmap-tests", name)
 }
 
 fn text(p: &Path) -> String {

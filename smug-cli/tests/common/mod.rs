@@ -22,6 +22,14 @@ pub fn workspace() -> PathBuf {
         .to_path_buf()
 }
 
+/// A fresh, empty scratch directory `target/<suite>/<name>` for one test.
+pub fn scratch_dir(suite: &str, name: &str) -> PathBuf {
+    let dir = workspace().join("target").join(suite).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// Standard error as text.
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
