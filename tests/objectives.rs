@@ -359,10 +359,12 @@ fn path_length_plans_are_the_recorded_ones() {
         ("lunar-full-collision.toml", 97.41288009955495),
         ("flat-demo.toml", 41.56167971049054),
     ] {
-        // Recorded with the full sequencing matrix, then the default (the paper's
-        // configs still pin it; flat-demo now defaults to "lazy").
+        // Recorded with the full sequencing matrix and one query per path, then the
+        // defaults (the paper's configs still pin both; flat-demo now defaults to
+        // "lazy" and to one search per source).
         let full = "plan.sequencing_costs=\"full\"";
-        let plan = plan(name, &["planner.params.expand_share=0", full]);
+        let per_pair = "planner.params.one_to_many=false";
+        let plan = plan(name, &["planner.params.expand_share=0", full, per_pair]);
         assert_eq!(
             plan.cost.to_bits(),
             cost.to_bits(),

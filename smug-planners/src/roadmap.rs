@@ -1,6 +1,7 @@
 //! The shared roadmap: vertices with lazily known validity, edges with cached
 //! validity, compact adjacency, connected components and a reusable A*.
 
+mod many;
 mod snapshot;
 
 use crate::nn::{from_total_order_key, total_order_key, XyGrid};
@@ -535,6 +536,7 @@ pub struct AStar {
     h_stamp: u32,
     heap: BinaryHeap<Candidate>,
     lazy_heap: BinaryHeap<Open>,
+    many_heap: BinaryHeap<many::Reached>,
     /// What the latest optimistic search (and the repairs since) left in the records.
     settled: Option<Settled>,
     /// Vertices expanded over all searches.

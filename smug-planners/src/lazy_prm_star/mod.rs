@@ -16,6 +16,9 @@
 mod checks;
 mod expansion;
 mod focus;
+mod many;
+#[cfg(test)]
+mod test_support;
 mod warm;
 
 use self::checks::{timed_state_check, Checks, CountedMotions};
@@ -23,6 +26,7 @@ use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::rng::{stage_rng, StageRng};
@@ -135,6 +139,18 @@ pub struct LazyPrmStarParams {
     /// later queries from or to it answer "no path" at once. True: every query spends
     /// its whole budget again.
     pub retry_cut_off: bool,
+    /// Answer a source's many goals (a cost-matrix row, a DP layer) with one search:
+    /// one Dijkstra search on the shared roadmap settles every goal it connects, each
+    /// path checked lazily as a query's attempt would (re-searched where a check
+    /// fails); only goals it does not connect are planned as queries of their own.
+    /// The paths are the roadmap's cheapest valid ones, as a query finds them before
+    /// its improvement rounds. False: one query per goal (improvement rounds included).
+    pub one_to_many: bool,
+    /// Before its first one-to-many search, the roadmap grows by this many samples per
+    /// square metre of the world's bounds (at most `max_samples`): one search answers
+    /// many goals without the improvement rounds that densify a query's roadmap, so
+    /// the roadmap it searches is made dense first (uniform samples).
+    pub one_to_many_density: f64,
 }
 
 impl Default for LazyPrmStarParams {
@@ -158,6 +174,8 @@ impl Default for LazyPrmStarParams {
             expand_share: 0.5,
             expand_reach: 3.0,
             retry_cut_off: false,
+            one_to_many: true,
+            one_to_many_density: 4.0,
         }
     }
 }
@@ -190,6 +208,8 @@ pub struct LazyPrmStar {
     bounds: Bounds2,
     w_t: f64,
     grown: bool,
+    /// Whether the roadmap was grown for one-to-many searches.
+    grown_for_many: bool,
     /// Vertices with ids from this one on were added after the latest search.
     fresh_from: u32,
     expansion: Expansion,
@@ -242,6 +262,7 @@ impl LazyPrmStar {
         for (name, value) in [
             ("attempt_share", params.attempt_share),
             ("focus", params.focus),
+            ("one_to_many_density", params.one_to_many_density),
         ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(Error::invalid_param(
@@ -290,6 +311,7 @@ impl LazyPrmStar {
             bounds,
             w_t,
             grown: false,
+            grown_for_many: false,
             fresh_from: 0,
             expansion: Expansion::new(
                 stage_rng(0, EXPANSION_STREAM),
@@ -641,6 +663,27 @@ impl LazyPrmStar {
         best
     }
 
+    /// Grows the initial roadmap before the first query.
+    fn ensure_grown(&mut self) {
+        if !self.grown {
+            self.grown = true;
+            self.grow(self.params.initial_samples);
+        }
+    }
+
+    /// A query between the valid endpoint vertices `s ≠ g` of `start` and `goal`:
+    /// "no path" at once when one is cut off, else solved and post-processed.
+    fn solve_query(&mut self, start: &Pose2, goal: &Pose2, s: u32, g: u32) -> PlannerOutcome {
+        if self.cut_off.contains(&s) || self.cut_off.contains(&g) {
+            self.counts.cut_off_queries += 1;
+            return PlannerOutcome::NoPath;
+        }
+        match self.solve(start, goal, s, g) {
+            Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
+            None => PlannerOutcome::NoPath,
+        }
+    }
+
     /// After a failed query: cuts off the endpoint whose component is the smaller one
     /// if it holds less than half the roadmap (both on a tie), unless retried.
     fn cut_off_pocket(&mut self, s: u32, g: u32) {
@@ -682,26 +725,59 @@ impl LazyPrmStar {
     /// The path of `graph_path`, shortcut or smoothed as configured; the motion checks
     /// of that post-processing are counted and timed as edge checks.
     fn post_processed(&mut self, graph_path: &GraphPath) -> Path {
+        let motions = CountedMotions::new(self.motions.as_ref());
+        let path = self.post_process(graph_path, &motions);
+        let (checks, nanoseconds) = (
+            motions.checks.load(Relaxed),
+            motions.nanoseconds.load(Relaxed),
+        );
+        self.count_post_processing(checks, nanoseconds);
+        path
+    }
+
+    /// [`post_processed`](Self::post_processed) for many paths, processed in parallel
+    /// (each path's processing is deterministic and independent of the others, so
+    /// the paths are the same as one by one; the checking time booked is the sum
+    /// over the threads).
+    fn post_processed_all(&mut self, graph_paths: &[GraphPath]) -> Vec<Path> {
+        let motions = CountedMotions::new(self.motions.as_ref());
+        let this = &*self;
+        let paths = graph_paths
+            .par_iter()
+            .map(|graph_path| this.post_process(graph_path, &motions))
+            .collect();
+        let (checks, nanoseconds) = (
+            motions.checks.load(Relaxed),
+            motions.nanoseconds.load(Relaxed),
+        );
+        self.count_post_processing(checks, nanoseconds);
+        paths
+    }
+
+    fn count_post_processing(&mut self, checks: u64, nanoseconds: u64) {
+        self.counts.edge_checks += checks;
+        self.counts.breakdown.edge_checking_s += nanoseconds as f64 * 1e-9;
+    }
+
+    /// The shortcut or smoothed path of `graph_path`, its checks made through `motions`.
+    fn post_process(&self, graph_path: &GraphPath, motions: &CountedMotions) -> Path {
         let states: Vec<Pose2> = graph_path
             .vertices
             .iter()
             .map(|&v| *self.roadmap.pose(v))
             .collect();
-        let motions = CountedMotions::new(self.motions.as_ref());
         let processed = if self.params.smooth {
             smooth(
                 &states,
-                &motions,
+                motions,
                 self.space.as_ref(),
                 self.objective.as_ref(),
             )
         } else if self.params.shortcut {
-            shortcut(&states, &motions)
+            shortcut(&states, motions)
         } else {
             return Path::new(states, self.objective.as_ref());
         };
-        self.counts.edge_checks += motions.checks.load(Relaxed);
-        self.counts.breakdown.edge_checking_s += motions.nanoseconds.load(Relaxed) as f64 * 1e-9;
         let processed = Path::new(processed, self.objective.as_ref());
         // A shortcut never costs more under a metric objective; under others (risk,
         // energy, time) a straighter path may cross costlier ground: keep the cheaper.
@@ -721,10 +797,7 @@ impl PointToPointPlanner for LazyPrmStar {
         if let Some(outcome) = self.warm.reuse(start, goal) {
             return Ok(outcome);
         }
-        if !self.grown {
-            self.grown = true;
-            self.grow(self.params.initial_samples);
-        }
+        self.ensure_grown();
         let outcome = match (self.terminal(start), self.terminal(goal)) {
             (None, _) => PlannerOutcome::InvalidStart,
             (_, None) => PlannerOutcome::InvalidGoal,
@@ -732,19 +805,23 @@ impl PointToPointPlanner for LazyPrmStar {
                 states: vec![*start],
                 cost: 0.0,
             }),
-            (Some(s), Some(g)) if self.cut_off.contains(&s) || self.cut_off.contains(&g) => {
-                self.counts.cut_off_queries += 1;
-                PlannerOutcome::NoPath
-            }
-            (Some(s), Some(g)) => match self.solve(start, goal, s, g) {
-                Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
-                None => PlannerOutcome::NoPath,
-            },
+            (Some(s), Some(g)) => self.solve_query(start, goal, s, g),
         };
         let accounted = self.counts.breakdown.total_s() - before.total_s();
         self.counts.breakdown.misc_s += (started.elapsed().as_secs_f64() - accounted).max(0.0);
         self.warm.record(start, goal, &outcome);
         Ok(outcome)
+    }
+
+    fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
+        if !self.params.one_to_many {
+            return goals.iter().map(|goal| self.plan(start, goal)).collect();
+        }
+        Ok(self.plan_many_on_roadmap(start, goals))
+    }
+
+    fn answers_many(&self) -> bool {
+        self.params.one_to_many
     }
 
     fn save_roadmap(&self) -> Option<smug_core::RoadmapSnapshot> {
@@ -807,48 +884,9 @@ smug_core::register_plugin!(
 
 #[cfg(test)]
 mod tests {
+    use super::test_support::{Free, Lcg, Ring};
     use super::*;
-    use smug_core::{MotionCheck, PathLength, Se2Space};
-
-    /// Everything is valid.
-    struct Free;
-
-    impl StateValidityChecker for Free {
-        fn is_valid(&self, _: &Pose2) -> bool {
-            true
-        }
-    }
-
-    impl MotionValidator for Free {
-        fn is_valid_motion(&self, _: &Pose2, _: &Pose2) -> bool {
-            true
-        }
-
-        fn check_motion(&self, _: &Pose2, _: &Pose2) -> MotionCheck {
-            MotionCheck::Valid
-        }
-    }
-
-    /// A fixed pseudo-random sequence in the bounds (64-bit LCG), informed set ignored.
-    struct Lcg(u64);
-
-    impl Lcg {
-        fn unit(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
-    impl Sampler for Lcg {
-        fn sample(&mut self, b: &Bounds2, _: Option<&InformedSet>) -> Option<Pose2> {
-            let x = b.min[0] + self.unit() * (b.max[0] - b.min[0]);
-            let y = b.min[1] + self.unit() * (b.max[1] - b.min[1]);
-            Some(Pose2::new(x, y, 0.0))
-        }
-    }
+    use smug_core::{PathLength, Se2Space};
 
     fn planner(params: LazyPrmStarParams) -> Result<LazyPrmStar> {
         LazyPrmStar::new(
@@ -946,44 +984,6 @@ mod tests {
         let path = outcome.exact_path().expect("a path");
         assert!((path.cost - a.xy_distance(&b)).abs() < 1e-9);
         assert!(p.stats().counters["samples"] < p.params.max_samples);
-    }
-
-    /// Invalid on a ring 2 to 3 m around (8, 8): the disc inside is a closed pocket.
-    struct Ring;
-
-    impl Ring {
-        fn free(p: &Pose2) -> bool {
-            let d = (p.x - 8.0).hypot(p.y - 8.0);
-            !(2.0..=3.0).contains(&d)
-        }
-    }
-
-    impl StateValidityChecker for Ring {
-        fn is_valid(&self, p: &Pose2) -> bool {
-            Self::free(p)
-        }
-    }
-
-    impl MotionValidator for Ring {
-        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
-            let steps = (a.xy_distance(b) / 0.05).ceil().max(1.0) as usize;
-            (0..=steps).all(|i| {
-                let t = i as f64 / steps as f64;
-                Self::free(&Pose2::new(
-                    a.x + t * (b.x - a.x),
-                    a.y + t * (b.y - a.y),
-                    0.0,
-                ))
-            })
-        }
-
-        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
-            if self.is_valid_motion(a, b) {
-                MotionCheck::Valid
-            } else {
-                MotionCheck::Invalid { last_valid: None }
-            }
-        }
     }
 
     fn ring_planner(retry_cut_off: bool) -> LazyPrmStar {

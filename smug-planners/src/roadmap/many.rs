@@ -1,0 +1,209 @@
+//! One-to-many shortest valid paths on the roadmap: one lazy Dijkstra search from a
+//! source that stops once every goal it was asked for is settled.
+
+use super::{AStar, Evaluator, GraphPath, Marks, Roadmap, Validity, NO_PARENT};
+use crate::nn::{from_total_order_key, total_order_key};
+use std::cmp::Ordering;
+
+/// An open-list entry of the lazy Dijkstra search (24 bytes): the cost so far as an
+/// integer ordered like `f64::total_cmp`, the vertex, and the vertex and edge it is
+/// reached through. Smallest cost first, then smaller vertex id: a strict order, so
+/// every correct priority queue pops the same sequence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Reached {
+    g_key: u64,
+    v: u32,
+    parent: (u32, u32),
+}
+
+impl Reached {
+    fn new(g: f64, v: u32, parent: (u32, u32)) -> Self {
+        Self {
+            g_key: total_order_key(g),
+            v,
+            parent,
+        }
+    }
+}
+
+impl Ord for Reached {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .g_key
+            .cmp(&self.g_key)
+            .then(other.v.cmp(&self.v))
+            .then(other.parent.cmp(&self.parent))
+    }
+}
+
+impl PartialOrd for Reached {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl AStar {
+    /// The cheapest valid path from `start` to each of `goals` (`None` where no valid
+    /// path is left), found by one lazy Dijkstra search: the edge into a vertex (and
+    /// the vertex) is checked when the vertex is about to be settled, as in Lazy
+    /// Weighted A* ([`AStar::search_lazy`]) without a heuristic; the search ends once
+    /// every goal is settled.
+    pub fn search_many_lazy(
+        &mut self,
+        map: &mut Roadmap,
+        start: u32,
+        goals: &[u32],
+        evaluator: &mut dyn Evaluator,
+    ) -> Vec<Option<GraphPath>> {
+        let marks = self.prepare_without_heuristic(map);
+        let mut wanted: Vec<u32> = goals.to_vec();
+        wanted.sort_unstable();
+        wanted.dedup();
+        let mut unsettled = wanted.len();
+        let mut open = std::mem::take(&mut self.many_heap);
+        open.clear();
+        open.push(Reached::new(0.0, start, NO_PARENT));
+        while unsettled > 0 {
+            let Some(Reached { g_key, v, parent }) = open.pop() else {
+                break;
+            };
+            if self.records[v as usize].mark == marks.closed {
+                continue;
+            }
+            let (_, e) = parent;
+            let reachable = (e == u32::MAX
+                || map.edge(e).validity != Validity::Invalid && evaluator.edge(map, e))
+                && evaluator.vertex(map, v);
+            if !reachable {
+                continue;
+            }
+            let g = from_total_order_key(g_key);
+            let record = &mut self.records[v as usize];
+            (record.mark, record.g, record.parent) = (marks.closed, g, parent);
+            if wanted.binary_search(&v).is_ok() {
+                unsettled -= 1;
+            }
+            self.expansions += 1;
+            for (w, e, cost) in map.neighbours_with_costs(v) {
+                let record = &mut self.records[w as usize];
+                if record.mark == marks.closed {
+                    continue;
+                }
+                let candidate = g + cost;
+                if record.mark == marks.open && candidate >= record.g {
+                    continue;
+                }
+                if map.edge(e).validity == Validity::Valid {
+                    (record.mark, record.g) = (marks.open, candidate);
+                }
+                open.push(Reached::new(candidate, w, (v, e)));
+            }
+        }
+        self.many_heap = open;
+        goals
+            .iter()
+            .map(|&goal| {
+                (self.records[goal as usize].mark == marks.closed).then(|| self.trace(start, goal))
+            })
+            .collect()
+    }
+
+    /// Sizes the records for `map` and starts a new search generation (the cached
+    /// heuristic values stay: Dijkstra reads none); forgets the settled search.
+    fn prepare_without_heuristic(&mut self, map: &Roadmap) -> Marks {
+        let n = map.vertex_count();
+        if self.records.len() < n {
+            self.records.resize(n, super::VertexRecord::default());
+        }
+        self.heap.clear();
+        self.settled = None;
+        self.next_generation()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{dijkstra, Validity};
+    use super::*;
+    use proptest::prelude::*;
+    use smug_core::{Bounds2, PathLength, Pose2, Se2Space};
+    use std::collections::BTreeSet;
+
+    /// Edges whose id is in `invalid` are invalid; every vertex is valid.
+    struct Marked {
+        invalid: BTreeSet<u32>,
+        checked: Vec<u32>,
+    }
+
+    impl Evaluator for Marked {
+        fn vertex(&mut self, _: &mut Roadmap, _: u32) -> bool {
+            true
+        }
+        fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
+            if map.edge(e).validity == Validity::Valid {
+                return true;
+            }
+            self.checked.push(e);
+            let valid = !self.invalid.contains(&e);
+            if valid {
+                map.mark_edge_valid(e);
+            } else {
+                map.remove_edge(e);
+            }
+            valid
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn one_lazy_search_finds_every_goal_at_its_shortest_valid_distance(
+            points in proptest::collection::vec((0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0), 2..120),
+            invalid in proptest::collection::btree_set(0u32..2000, 0..300),
+            k in 1usize..8,
+            picks in proptest::collection::vec(0usize..1000, 1..12),
+        ) {
+            let metric = Se2Space::default();
+            let objective = PathLength::default();
+            let mut map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            for &(x, y, t) in &points {
+                map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
+            }
+            // The truth: the roadmap without its invalid edges.
+            let mut valid_map = Roadmap::new(Bounds2 { min: [0.0, 0.0], max: [10.0, 10.0] });
+            for &(x, y, t) in &points {
+                valid_map.add_vertex(Pose2::new(x, y, t), Validity::Unknown, k, (&metric, 1.0), &objective);
+            }
+            for &e in &invalid {
+                if (e as usize) < valid_map.edges.len() { valid_map.remove_edge(e); }
+            }
+            let dist = dijkstra(&valid_map, 0);
+            let goals: Vec<u32> = picks.iter().map(|p| (p % map.vertex_count()) as u32).collect();
+            let mut marked = Marked { invalid: invalid.clone(), checked: Vec::new() };
+            let found = AStar::default().search_many_lazy(&mut map, 0, &goals, &mut marked);
+            prop_assert_eq!(found.len(), goals.len());
+            // No edge is checked twice (validity is cached on the roadmap).
+            let distinct: BTreeSet<u32> = marked.checked.iter().copied().collect();
+            prop_assert_eq!(distinct.len(), marked.checked.len());
+            for (&goal, path) in goals.iter().zip(&found) {
+                match path {
+                    None => prop_assert!(dist[goal as usize].is_infinite()),
+                    Some(path) => {
+                        let tolerance = 1e-9 * (1.0 + path.cost);
+                        prop_assert!((path.cost - dist[goal as usize]).abs() <= tolerance);
+                        prop_assert_eq!(path.vertices[0], 0);
+                        prop_assert_eq!(*path.vertices.last().unwrap(), goal);
+                        let mut sum = 0.0;
+                        for (pair, &e) in path.vertices.windows(2).zip(&path.edges) {
+                            prop_assert!(!invalid.contains(&e));
+                            prop_assert_eq!(map.edge(e).validity, Validity::Valid);
+                            let edge = map.edge(e);
+                            prop_assert!((edge.a, edge.b) == (pair[0], pair[1]) || (edge.b, edge.a) == (pair[0], pair[1]));
+                            sum += map.neighbours_with_costs(pair[0]).find(|&(w, id, _)| w == pair[1] && id == e).unwrap().2;
+                        }
+                        prop_assert!((sum - path.cost).abs() <= tolerance);
+                    }
+                }
+            }
+        }
+    }
+}
