@@ -243,11 +243,19 @@ pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
         s.paths_planned,
         s.validity_queries
     );
+    let stage = |name: &str| s.stage_times_s.get(name).copied().unwrap_or(0.0);
+    // The joint mode has one stage where the sequential mode has two.
+    let stages = match s.stage_times_s.get("joint") {
+        Some(joint) => format!("joint {joint:.3}"),
+        None => format!(
+            "sequencing {:.3}, selection {:.3}",
+            stage("sequencing"),
+            stage("selection")
+        ),
+    };
     println!(
-        "time {:.3} s (sequencing {:.3}, selection {:.3}); planner: A* {:.3}, sampling {:.3}, edge checking {:.3}, vertex checking {:.3}, misc {:.3}",
-        s.stage_times_s.get("total").copied().unwrap_or(0.0),
-        s.stage_times_s.get("sequencing").copied().unwrap_or(0.0),
-        s.stage_times_s.get("selection").copied().unwrap_or(0.0),
+        "time {:.3} s ({stages}); planner: A* {:.3}, sampling {:.3}, edge checking {:.3}, vertex checking {:.3}, misc {:.3}",
+        stage("total"),
         b.astar_s,
         b.sampling_s,
         b.edge_checking_s,

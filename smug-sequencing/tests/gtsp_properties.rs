@@ -177,6 +177,30 @@ proptest! {
     }
 
     #[test]
+    fn warm_started_lns_tours_are_valid_reproducible_and_no_worse_than_their_start(
+        (instance, _) in instance(14, 9),
+        open: bool,
+        pick in 0usize..100,
+        seed in 0u64..1000,
+    ) {
+        let kind = kind_for(instance.clusters.len(), open, pick);
+        // A start tour: a one-iteration solve with another seed.
+        let start = lns(1, seed + 1).solve_clusters(&instance.costs, &instance.clusters, kind).unwrap();
+        let solver = lns(20, seed);
+        let tour = solver.solve_clusters_from(&instance.costs, &instance.clusters, kind, &start).unwrap();
+        check_tour(&tour, &instance, kind)?;
+        let again = solver.solve_clusters_from(&instance.costs, &instance.clusters, kind, &start).unwrap();
+        prop_assert_eq!(&tour, &again);
+        if start.cost.is_finite() {
+            prop_assert!(tour.cost <= start.cost + 1e-9, "{} after starting from {}", tour.cost, start.cost);
+        }
+        // A start that is no tour of these clusters is ignored.
+        let foreign = Tour { order: vec![0; instance.clusters.len() + 1], cost: 0.0 };
+        let cold = solver.solve_clusters_from(&instance.costs, &instance.clusters, kind, &foreign).unwrap();
+        prop_assert_eq!(&cold, &solver.solve_clusters(&instance.costs, &instance.clusters, kind).unwrap());
+    }
+
+    #[test]
     fn singleton_clusters_are_the_tsp((instance, _) in instance(8, 8), open: bool, pick in 0usize..100) {
         let n = instance.costs.len();
         let kind = kind_for(n, open, pick);

@@ -34,9 +34,18 @@ pub(super) fn joint_tour(
         Some(_) => TourKind::OpenTo(clusters.len() - 1),
         None => TourKind::Closed,
     };
-    let tour = lazy_solve(oracle, &nodes, kind, |matrix| {
-        sequencer.solve_clusters(matrix, &clusters, kind)
-    })?;
+    // Each round warm-starts from the previous round's tour: the matrices differ only
+    // where bounds were replaced by planned costs.
+    let tour = lazy_solve(
+        oracle,
+        &nodes,
+        kind,
+        true,
+        |matrix, previous| match previous {
+            Some(previous) => sequencer.solve_clusters_from(matrix, &clusters, kind, previous),
+            None => sequencer.solve_clusters(matrix, &clusters, kind),
+        },
+    )?;
     let visits: Vec<usize> = tour
         .order
         .iter()

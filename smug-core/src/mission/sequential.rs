@@ -104,32 +104,38 @@ fn lazy_tour(
     nodes: &[usize],
     kind: TourKind,
 ) -> Result<Tour> {
-    lazy_solve(oracle, nodes, kind, |matrix| sequencer.solve(matrix, kind))
+    lazy_solve(oracle, nodes, kind, false, |matrix, _| {
+        sequencer.solve(matrix, kind)
+    })
 }
 
 /// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
 /// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
 /// legs, repeat until the tour uses planned legs only (or one of them has no path).
+///
+/// With `warm`, each round is given the previous round's tour to start from; a warm
+/// round that ends on planned legs only is checked by one solve from scratch of the
+/// same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
 pub(super) fn lazy_solve(
     oracle: &mut PathOracle,
     nodes: &[usize],
     kind: TourKind,
-    mut solve: impl FnMut(&CostMatrix) -> Result<Tour>,
+    warm: bool,
+    mut solve: impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
 ) -> Result<Tour> {
-    let n = nodes.len();
+    let mut previous: Option<Tour> = None;
     loop {
-        let matrix = CostMatrix::from_fn(n, |i, j| {
-            if i == j {
-                0.0
-            } else {
-                oracle.cost_or_bound(nodes[i], nodes[j])
+        let matrix = lazy_matrix(oracle, nodes)?;
+        let mut tour = solve(&matrix, previous.as_ref())?;
+        if previous.is_some() && unplanned_legs(oracle, nodes, &tour, kind).is_empty() {
+            let cold = solve(&matrix, None)?;
+            let cost = |t: &Tour| matrix.tour_cost(&t.order, kind);
+            if cost(&cold) >= cost(&tour) * (1.0 - 1e-9) {
+                return Ok(tour);
             }
-        })?;
-        let tour = solve(&matrix)?;
-        let unplanned: Vec<(usize, usize)> = tour_legs(&tour, kind)
-            .map(|(a, b)| (nodes[a], nodes[b]))
-            .filter(|&(a, b)| !oracle.is_planned(a, b))
-            .collect();
+            tour = cold;
+        }
+        let unplanned = unplanned_legs(oracle, nodes, &tour, kind);
         if unplanned.is_empty() {
             return Ok(tour);
         }
@@ -140,7 +146,32 @@ pub(super) fn lazy_solve(
         if dead_end {
             return Ok(tour);
         }
+        previous = warm.then_some(tour);
     }
+}
+
+/// The matrix of planned costs where known and lower bounds elsewhere.
+fn lazy_matrix(oracle: &PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
+    CostMatrix::from_fn(nodes.len(), |i, j| {
+        if i == j {
+            0.0
+        } else {
+            oracle.cost_or_bound(nodes[i], nodes[j])
+        }
+    })
+}
+
+/// The legs of `tour` (as oracle index pairs) not planned yet.
+fn unplanned_legs(
+    oracle: &PathOracle,
+    nodes: &[usize],
+    tour: &Tour,
+    kind: TourKind,
+) -> Vec<(usize, usize)> {
+    tour_legs(tour, kind)
+        .map(|(a, b)| (nodes[a], nodes[b]))
+        .filter(|&(a, b)| !oracle.is_planned(a, b))
+        .collect()
 }
 
 /// The legs `(from, to)` of a tour, the return leg of a closed tour included.

@@ -136,6 +136,22 @@ pub trait Sequencer: Send + Sync {
              solver (`gtsp-exact`, `gtsp-lns`)",
         ))
     }
+
+    /// [`solve_clusters`](Self::solve_clusters) warm-started from `initial`, a tour of
+    /// the same clusters found on a matrix that differs in some costs (the previous
+    /// round of a lazy loop, whose bounds were since replaced by planned costs). A
+    /// solver that can start from a tour does (with its warm budget); the default
+    /// solves from scratch.
+    fn solve_clusters_from(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+        initial: &Tour,
+    ) -> Result<Tour> {
+        let _ = initial;
+        self.solve_clusters(costs, clusters, kind)
+    }
 }
 
 #[cfg(test)]

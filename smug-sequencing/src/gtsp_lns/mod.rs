@@ -51,6 +51,10 @@ pub struct GtspLnsParams {
     pub move_opt_within: f64,
     /// Perturbation rounds of the TSP local search that reorders the chosen nodes.
     pub reorder_iterations: u64,
+    /// Iteration budget of a warm-started solve (from the previous round's tour in the
+    /// joint mode's lazy loop, whose matrix differs only where paths were planned
+    /// since); 0 = `max_iterations`. The time budget applies as it is.
+    pub warm_iterations: u64,
 }
 
 impl Default for GtspLnsParams {
@@ -65,6 +69,7 @@ impl Default for GtspLnsParams {
             epoch_iterations: 0,
             move_opt_within: 0.02,
             reorder_iterations: 50,
+            warm_iterations: 500,
         }
     }
 }
@@ -122,16 +127,49 @@ impl GtspLns {
         clusters: &Clusters,
         kind: TourKind,
     ) -> smug_core::Result<(Tour, u64)> {
+        self.solve_from(costs, clusters, kind, None)
+    }
+
+    /// Solves from `initial` when it is a valid tour of the clusters (with the warm
+    /// iteration budget), else from a first tour of its own; returns the iterations
+    /// done too.
+    fn solve_from(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+        initial: Option<&Tour>,
+    ) -> smug_core::Result<(Tour, u64)> {
         validate_clusters(costs, clusters, kind)?;
-        let rule = self.params.termination();
-        let mut clock = rule.start();
         let problem = Problem::new(Dist::new(costs), clusters, kind);
         let mut rng = self.rng.clone();
-        let first = first_tour(&problem, &self.params, &mut rng);
+        let warm = initial
+            .filter(|tour| clusters.is_valid_tour(tour, kind))
+            .map(|tour| tour.order.clone());
+        let (first, rule) = match warm {
+            Some(mut order) => {
+                problem.polish(&mut order);
+                (order, self.warm_termination())
+            }
+            None => (
+                first_tour(&problem, &self.params, &mut rng),
+                self.params.termination(),
+            ),
+        };
+        let mut clock = rule.start();
         let mut search = Search::new(&problem, &self.params, rng, first);
         let iterations = search.run(&mut clock);
         let order = problem.turned_to_start(search.best.0);
         Ok((tour_of(costs, order, kind), iterations))
+    }
+
+    /// The stopping rule of a warm-started solve.
+    fn warm_termination(&self) -> Termination {
+        let iterations = match self.params.warm_iterations {
+            0 => self.params.max_iterations,
+            n => n,
+        };
+        search_termination(self.params.time_limit_s, iterations)
     }
 }
 
@@ -167,6 +205,16 @@ impl Sequencer for GtspLns {
         kind: TourKind,
     ) -> smug_core::Result<Tour> {
         Ok(self.solve_with_iterations(costs, clusters, kind)?.0)
+    }
+
+    fn solve_clusters_from(
+        &self,
+        costs: &CostMatrix,
+        clusters: &Clusters,
+        kind: TourKind,
+        initial: &Tour,
+    ) -> smug_core::Result<Tour> {
+        Ok(self.solve_from(costs, clusters, kind, Some(initial))?.0)
     }
 }
 
