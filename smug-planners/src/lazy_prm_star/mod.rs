@@ -17,6 +17,7 @@ mod checks;
 mod expansion;
 mod focus;
 mod many;
+mod params;
 #[cfg(test)]
 mod test_support;
 mod warm;
@@ -24,10 +25,10 @@ mod warm;
 use self::checks::{timed_state_check, Checks, CountedMotions};
 use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
+pub use self::params::{LazyPrmStarParams, SearchMode};
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 use smug_core::pose::angle_distance;
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
@@ -40,20 +41,6 @@ use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// How a solution attempt searches the roadmap.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SearchMode {
-    /// Classic LazyPRM: A*, check the path, remove what is invalid, search again.
-    LazySp,
-    /// Lazy Weighted A*: one search checking an edge when its vertex is expanded
-    /// (far fewer searches in cluttered maps, a few more edge checks in open ones).
-    LazyWeighted,
-    /// A few LazySP rounds, then Lazy Weighted A* if the path keeps breaking.
-    #[default]
-    Auto,
-}
-
 /// LazySP rounds an `auto` attempt tries before switching to Lazy Weighted A*.
 const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 
@@ -62,122 +49,6 @@ const AUTO_LAZY_SP_ROUNDS: u32 = 4;
 fn improvement_interval(params: &LazyPrmStarParams, samples_to_first_path: u64) -> u32 {
     let scaled = (params.attempt_share * samples_to_first_path as f64).ceil();
     (scaled.min(f64::from(u32::MAX)) as u32).max(params.attempt_every)
-}
-
-/// Parameters of LazyPRM*.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct LazyPrmStarParams {
-    /// Stop after this many solution attempts in a row without enough improvement
-    /// (the reference code's `max_stall`).
-    pub max_stall: u32,
-    /// Relative improvement that resets the stall count (0.02: the reference's 0.98 factor).
-    pub improvement: f64,
-    /// Valid samples added between solution attempts once a path is known (at least).
-    pub attempt_every: u32,
-    /// Once a query has its first path, attempts are spaced by `attempt_share` × the
-    /// samples the query drew to find it, if more than `attempt_every`: a query that
-    /// had to grow the roadmap a lot to connect start and goal (a sparse roadmap on a
-    /// cluttered map) gives its improvement rounds a comparable share, instead of
-    /// accepting its first, detouring path after a handful of samples. Queries that
-    /// find their path on the roadmap as it is (a mission's dense shared roadmap) are
-    /// not affected. 0: every `attempt_every` samples (the reference code).
-    pub attempt_share: f64,
-    /// The initial excess of a query's focus: the informed set of a provisional cost
-    /// `(1 + excess) ×` its straight-line cost, the excess doubling every few samples
-    /// (a share of the roadmap, as the wait between failed first attempts). Until the
-    /// focus covers the query's informed set (no path yet, or the best path costs more
-    /// than the provisional cost), every other sample is drawn in it and attempts do
-    /// not count as stalled: a short query on a big map densifies its own
-    /// neighbourhood first, and a detour found on a sparse shared roadmap is not
-    /// accepted before samples near the straight line had their chance. Queries whose
-    /// path costs at most `(1 + focus) ×` the straight line are not affected.
-    /// 0 (default): no focus (the reference code).
-    pub focus: f64,
-    /// Samples drawn per query at most (the query's sample budget).
-    pub max_samples: u64,
-    /// Seconds per query at most (absent: no time budget; runs stay reproducible).
-    pub time_limit: Option<f64>,
-    /// Samples added before the first query (a pre-built roadmap).
-    pub initial_samples: u64,
-    /// Check vertices lazily, only when on a candidate path (default: check each
-    /// sample when drawn and keep only valid ones, as the reference code does).
-    pub lazy_vertices: bool,
-    /// Shortcut returned paths (never raises cost, never makes a path invalid).
-    pub shortcut: bool,
-    /// Smooth returned paths: rounds of shortcutting and corner cutting, which pull a
-    /// path taut around corners (never raises cost, never makes a path invalid; more
-    /// motion checks than `shortcut` alone, which it implies).
-    pub smooth: bool,
-    /// How attempts search: `lazy-sp`, `lazy-weighted` or `auto`.
-    pub search: SearchMode,
-    /// Once a path is known, an attempt repairs the previous search for the vertices
-    /// added since (incremental A*: only the distances they improve are searched)
-    /// instead of searching again; the paths are the same, found faster. Off only to
-    /// compare.
-    pub incremental_attempts: bool,
-    /// Longest roadmap connection in space distance (OMPL's LazyPRM `range`): a new
-    /// vertex connects to its k nearest within it. Absent: no limit. Curvature-limited
-    /// models need one: their k-th nearest is a turn-around away, so unlimited
-    /// connections reach across the map.
-    pub range: Option<f64>,
-    /// A query without a path after this many samples starts expanding its endpoints:
-    /// samples along the motion model's curves out of the start and into the goal (see
-    /// `expand_share`). Queries that find a path sooner are unaffected.
-    pub expand_after: u64,
-    /// The share of a query's samples expanded from its endpoints once `expand_after`
-    /// passed without a path (0: never): each endpoint grows a tree of valid samples
-    /// along the model's own curves, which reaches poses that uniform samples seldom
-    /// connect (a car parked facing a rock, a narrow door). In [0, 1].
-    pub expand_share: f64,
-    /// How far an expansion sample reaches from its tree, metres (its curve's target
-    /// is drawn within this distance).
-    pub expand_reach: f64,
-    /// Retry query endpoints found cut off: when a query ends without a path, the
-    /// endpoint whose roadmap component is the smaller one (less than half the roadmap:
-    /// a pocket the robot could not leave or enter within the budget) is cut off, and
-    /// later queries from or to it answer "no path" at once. True: every query spends
-    /// its whole budget again.
-    pub retry_cut_off: bool,
-    /// Answer a source's many goals (a cost-matrix row, a DP layer) with one search:
-    /// one Dijkstra search on the shared roadmap settles every goal it connects, each
-    /// path checked lazily as a query's attempt would (re-searched where a check
-    /// fails); only goals it does not connect are planned as queries of their own.
-    /// The paths are the roadmap's cheapest valid ones, as a query finds them before
-    /// its improvement rounds. False: one query per goal (improvement rounds included).
-    pub one_to_many: bool,
-    /// Before its first one-to-many search, the roadmap grows by this many samples per
-    /// square metre of the world's bounds (at most `max_samples`): one search answers
-    /// many goals without the improvement rounds that densify a query's roadmap, so
-    /// the roadmap it searches is made dense first (uniform samples).
-    pub one_to_many_density: f64,
-}
-
-impl Default for LazyPrmStarParams {
-    fn default() -> Self {
-        Self {
-            max_stall: 3,
-            improvement: 0.02,
-            attempt_every: 5,
-            attempt_share: 0.0,
-            focus: 0.0,
-            max_samples: 20_000,
-            time_limit: None,
-            initial_samples: 0,
-            lazy_vertices: false,
-            shortcut: false,
-            smooth: false,
-            search: SearchMode::Auto,
-            incremental_attempts: true,
-            range: None,
-            expand_after: 500,
-            expand_share: 0.5,
-            expand_reach: 3.0,
-            retry_cut_off: false,
-            one_to_many: true,
-            one_to_many_density: 4.0,
-        }
-    }
 }
 
 /// Counters kept across queries.

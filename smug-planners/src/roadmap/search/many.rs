@@ -123,7 +123,8 @@ impl AStar {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{dijkstra, Validity};
+    use super::super::super::Validity;
+    use super::super::dijkstra;
     use super::*;
     use proptest::prelude::*;
     use smug_core::{Bounds2, PathLength, Pose2, Se2Space};
