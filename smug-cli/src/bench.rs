@@ -29,6 +29,9 @@ enum BenchCommand {
     /// Replanning after a failed pose, a new obstacle and halfway through: replan time
     /// and cost on lunar 13×10 and 48×6.
     Replan(crate::bench_replan::BenchReplanArgs),
+    /// Sequential (full and lazy cost matrix) against joint planning (GTSP over every
+    /// PoI): cost, paths planned, planning time and joint minus sequential per seed.
+    Modes(crate::bench_modes::BenchModesArgs),
 }
 
 /// Runs `smug bench`.
@@ -41,5 +44,6 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::P2p(args) => crate::bench_p2p::run(args),
         BenchCommand::Objectives(args) => crate::bench_objectives::run(args),
         BenchCommand::Replan(args) => crate::bench_replan::run(args),
+        BenchCommand::Modes(args) => crate::bench_modes::run(args),
     }
 }

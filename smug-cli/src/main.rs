@@ -17,6 +17,8 @@ use smug_worlds as _;
 
 mod bench;
 mod bench_gtsp;
+mod bench_modes;
+mod bench_modes_report;
 mod bench_objectives;
 mod bench_output;
 mod bench_p2p;

@@ -1,0 +1,86 @@
+//! `smug bench modes`: sequential (full and lazy matrix) against joint planning, its
+//! report and raw JSON, and bad mode names.
+
+mod common;
+
+use common::{assert_bad_input, scratch_dir, smug, stderr};
+
+/// The number `key` of a JSON row, asserted finite and positive.
+fn positive(row: &serde_json::Value, key: &str) -> f64 {
+    let value = row[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing: {row}"));
+    assert!(value.is_finite() && value > 0.0, "{key} = {value}: {row}");
+    value
+}
+
+#[test]
+fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
+    let dir = scratch_dir("cli-test-bench-modes", "lunar");
+    let out = dir.join("r.md");
+    let run = smug(&[
+        "bench",
+        "modes",
+        "--missions",
+        "lunar",
+        "--runs",
+        "1",
+        "--modes",
+        "full,lazy,joint",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let report = std::fs::read_to_string(&out).unwrap();
+    for row in [
+        "| lunar 13×10 | sequential, full matrix | 1 | 0 |",
+        "| lunar 13×10 | sequential, lazy matrix | 1 | 0 |",
+        "| lunar 13×10 | joint, gtsp-lns | 1 | 0 |",
+        "| lunar 13×10 | full | 1 |",
+        "| lunar 13×10 | lazy | 1 |",
+    ] {
+        assert!(report.contains(row), "`{row}` missing from:\n{report}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("r.json")).unwrap()).unwrap();
+    let runs = json["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 3, "{json}");
+    for run in runs {
+        assert!(run["error"].is_null(), "{run}");
+        positive(run, "cost");
+        positive(run, "paths_planned");
+        positive(run, "planning_s");
+    }
+    let modes = json["modes"].as_array().unwrap();
+    let names: Vec<&str> = modes.iter().map(|m| m["mode"].as_str().unwrap()).collect();
+    assert_eq!(names, ["full", "lazy", "joint"]);
+    for row in modes {
+        assert_eq!(row["failures"], 0, "{row}");
+        for key in [
+            "mean_cost",
+            "worst_cost",
+            "mean_paths_planned",
+            "mean_planning_s",
+        ] {
+            positive(row, key);
+        }
+    }
+    let differences = json["joint_differences"].as_array().unwrap();
+    assert_eq!(differences.len(), 2, "{json}");
+    for d in differences {
+        assert!(d["mean"].as_f64().unwrap().is_finite(), "{d}");
+        assert_eq!(d["per_seed"].as_array().unwrap().len(), 1, "{d}");
+    }
+}
+
+#[test]
+fn modes_bench_with_an_unknown_mode_is_exit_2_naming_it() {
+    let run = smug(&["bench", "modes", "--modes", "full,bogus", "--runs", "1"]);
+    assert_bad_input(&run, &["bogus", "--modes", "full, lazy, joint"]);
+}
+
+#[test]
+fn modes_bench_with_an_unknown_mission_is_exit_2_naming_it() {
+    let run = smug(&["bench", "modes", "--missions", "mars", "--runs", "1"]);
+    assert_bad_input(&run, &["mars", "--missions", "lunar-200x10"]);
+}
