@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use smug_core::{Clusters, CostMatrix, Sequencer, Tour, TourKind};
-use smug_sequencing::{GtspExact, GtspExactParams, GtspLns, GtspLnsParams};
+use smug_sequencing::{Auto, AutoParams, GtspExact, GtspExactParams, GtspLns, GtspLnsParams};
 
 /// A random clustered instance: `n` nodes in `m` non-empty clusters, integer costs,
 /// symmetric or not, with an occasional missing leg (`INFINITY`).
@@ -198,6 +198,33 @@ proptest! {
         let foreign = Tour { order: vec![0; instance.clusters.len() + 1], cost: 0.0 };
         let cold = solver.solve_clusters_from(&instance.costs, &instance.clusters, kind, &foreign).unwrap();
         prop_assert_eq!(&cold, &solver.solve_clusters(&instance.costs, &instance.clusters, kind).unwrap());
+    }
+
+    #[test]
+    fn auto_solves_small_clustered_problems_exactly_and_large_ones_with_valid_tours(
+        (instance, _) in instance(14, 9),
+        open: bool,
+        pick in 0usize..100,
+        seed in 0u64..1000,
+    ) {
+        let kind = kind_for(instance.clusters.len(), open, pick);
+        let optimum = exact().solve_clusters(&instance.costs, &instance.clusters, kind).unwrap();
+        // Default work limit: instances this small are solved by the exact DP.
+        let auto = Auto::new(AutoParams::default(), smug_core::rng::stage_rng(seed, "sequencer")).unwrap();
+        let tour = auto.solve_clusters(&instance.costs, &instance.clusters, kind).unwrap();
+        check_tour(&tour, &instance, kind)?;
+        prop_assert!(same_cost(tour.cost, optimum.cost), "{} vs {}", tour.cost, optimum.cost);
+        let warm = auto.solve_clusters_from(&instance.costs, &instance.clusters, kind, &tour).unwrap();
+        prop_assert!(same_cost(warm.cost, optimum.cost));
+        // No exact work allowed: the LNS answers, with a valid tour no better than the optimum,
+        // the same one gtsp-lns with the same seed gives.
+        let params = AutoParams { exact_cluster_work: 0.0, ..AutoParams::default() };
+        let auto = Auto::new(params, smug_core::rng::stage_rng(seed, "sequencer")).unwrap();
+        let heuristic = auto.solve_clusters(&instance.costs, &instance.clusters, kind).unwrap();
+        check_tour(&heuristic, &instance, kind)?;
+        prop_assert!(heuristic.cost >= optimum.cost - 1e-9);
+        let lns = GtspLns::with_seed(GtspLnsParams::default(), seed).unwrap();
+        prop_assert_eq!(heuristic, lns.solve_clusters(&instance.costs, &instance.clusters, kind).unwrap());
     }
 
     #[test]
