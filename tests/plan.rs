@@ -113,3 +113,56 @@ fn incremental_attempts_change_no_lunar_plan() {
     assert!(counter(&repairing, "astar_repairs") > 0);
     assert!(counter(&repairing, "astar_expansions") < counter(&searching, "astar_expansions"));
 }
+
+/// Refining the route's legs (`plan.refine_legs`) happens after the choice: the same
+/// targets in the same order from the same PoIs, no leg dearer than before, every
+/// refined motion valid; and it does lower some plan's cost (else it would be idle).
+#[test]
+fn refining_the_legs_keeps_the_route_and_never_makes_a_leg_dearer() {
+    let mut lowered = 0;
+    for (config, mode) in [
+        ("indoor.toml", "sequential"),
+        ("indoor.toml", "joint"),
+        ("lunar.toml", "joint"),
+        ("flat-demo.toml", "sequential"),
+    ] {
+        for seed in 1..=3 {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../configs")
+                .join(config);
+            let plan = |refine: bool| {
+                let set = vec![
+                    format!("seed={seed}"),
+                    format!("plan.mode={mode}"),
+                    format!("plan.refine_legs={refine}"),
+                    "sequencer.type=auto".to_string(),
+                ];
+                let loaded = LoadedConfig::from_file(&path, &set).unwrap();
+                let mut pipeline = Pipeline::assemble(&loaded).unwrap();
+                let plan = plan_mission(&mut pipeline, loaded.config.plan).unwrap();
+                (plan, pipeline)
+            };
+            let (kept, _) = plan(false);
+            let (refined, pipeline) = plan(true);
+            let case = format!("{config} {mode} seed {seed}");
+            assert_eq!(kept.sequence, refined.sequence, "{case}");
+            assert_eq!(kept.pois, refined.pois, "{case}");
+            let motions = pipeline.motion_validator.clone().unwrap();
+            for (a, b) in kept.segments.iter().zip(&refined.segments) {
+                assert!(b.path.cost <= a.path.cost, "{case}: {} → {}", a.from, a.to);
+                for pair in b.path.states.windows(2) {
+                    assert!(
+                        motions.check_motion(&pair[0], &pair[1]).is_valid(),
+                        "{case}"
+                    );
+                }
+            }
+            let sum: f64 = refined.segments.iter().map(|s| s.path.cost).sum();
+            assert!((refined.cost - sum).abs() < 1e-6, "{case}");
+            if refined.cost < kept.cost - 1e-9 {
+                lowered += 1;
+            }
+        }
+    }
+    assert!(lowered > 0, "no plan got cheaper by refining its legs");
+}

@@ -1,5 +1,5 @@
 //! `smug bench modes`: the sequential mode with the full and with the lazy cost matrix
-//! against the joint mode (a GTSP over every PoI, `gtsp-lns`), on several missions and
+//! against the joint mode (a GTSP over every PoI, the `auto` sequencer), on several missions and
 //! N seeds (issue 17's comparison): cost, paths planned, planning time, failures, and
 //! joint minus sequential per seed.
 
@@ -22,7 +22,7 @@ pub struct BenchModesArgs {
     #[arg(long, default_value_t = 10)]
     runs: u64,
     /// Modes by name: full (sequential, full matrix), lazy (sequential, lazy matrix),
-    /// joint (GTSP over every PoI, `gtsp-lns`).
+    /// joint (GTSP over every PoI, the `auto` sequencer: exact while small, LNS above).
     #[arg(long, value_delimiter = ',', default_value = "full,lazy,joint")]
     modes: Vec<String>,
     /// Override a config key (every run, after the mission's and the mode's overrides).
@@ -97,17 +97,29 @@ pub const MODES: [Mode; 3] = [
     Mode {
         name: "full",
         label: "sequential, full matrix",
-        set: &["plan.mode=sequential", "plan.sequencing_costs=full"],
+        set: &[
+            "plan.mode=sequential",
+            "plan.sequencing_costs=full",
+            "plan.refine_legs=true",
+        ],
     },
     Mode {
         name: "lazy",
         label: "sequential, lazy matrix",
-        set: &["plan.mode=sequential", "plan.sequencing_costs=lazy"],
+        set: &[
+            "plan.mode=sequential",
+            "plan.sequencing_costs=lazy",
+            "plan.refine_legs=true",
+        ],
     },
     Mode {
         name: "joint",
-        label: "joint, gtsp-lns",
-        set: &["plan.mode=joint", "sequencer.type=gtsp-lns"],
+        label: "joint, auto",
+        set: &[
+            "plan.mode=joint",
+            "sequencer.type=auto",
+            "plan.refine_legs=true",
+        ],
     },
 ];
 

@@ -245,7 +245,7 @@ pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
     );
     let stage = |name: &str| s.stage_times_s.get(name).copied().unwrap_or(0.0);
     // The joint mode has one stage where the sequential mode has two.
-    let stages = match s.stage_times_s.get("joint") {
+    let mut stages = match s.stage_times_s.get("joint") {
         Some(joint) => format!("joint {joint:.3}"),
         None => format!(
             "sequencing {:.3}, selection {:.3}",
@@ -253,6 +253,9 @@ pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
             stage("selection")
         ),
     };
+    if let Some(refine) = s.stage_times_s.get("refine") {
+        stages.push_str(&format!(", refine {refine:.3}"));
+    }
     println!(
         "time {:.3} s ({stages}); planner: A* {:.3}, sampling {:.3}, edge checking {:.3}, vertex checking {:.3}, misc {:.3}",
         stage("total"),

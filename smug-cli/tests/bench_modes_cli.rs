@@ -35,7 +35,7 @@ fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
     for row in [
         "| lunar 13×10 | sequential, full matrix | 1 | 0 |",
         "| lunar 13×10 | sequential, lazy matrix | 1 | 0 |",
-        "| lunar 13×10 | joint, gtsp-lns | 1 | 0 |",
+        "| lunar 13×10 | joint, auto | 1 | 0 |",
         "| lunar 13×10 | full | 1 |",
         "| lunar 13×10 | lazy | 1 |",
     ] {

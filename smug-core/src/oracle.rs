@@ -201,6 +201,29 @@ impl PathOracle {
         Ok(())
     }
 
+    /// Plans the cached pair `i → j` again on the roadmap as it is now (grown by every
+    /// query since the pair was planned) and keeps the new path when it is cheaper.
+    /// True when the cost went down; an unplanned pair is planned as by
+    /// [`path`](Self::path) (and reported as not improved).
+    pub fn refine(&mut self, i: usize, j: usize) -> Result<bool> {
+        let Some(old) = self.planned_cost(i, j) else {
+            self.path(i, j)?;
+            return Ok(false);
+        };
+        if i == j || !old.is_finite() {
+            return Ok(false);
+        }
+        let planned = self.plan_pair(i, j)?;
+        if planned.cost >= old {
+            return Ok(false);
+        }
+        if self.symmetric {
+            self.cache.insert((j, i), Arc::new(planned.reversed()));
+        }
+        self.cache.insert((i, j), Arc::new(planned));
+        Ok(true)
+    }
+
     /// The planned cost from `i` to `j` (`INFINITY` when unreachable).
     pub fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
         Ok(self.path(i, j)?.cost)
@@ -298,6 +321,52 @@ mod tests {
         oracle.add_pose(Pose2::new(3.0, 4.0, 1.0));
         oracle.add_pose(Pose2::new(9.0, 0.0, 0.0));
         oracle
+    }
+
+    /// Answers each query with the straight line times a factor that shrinks by a
+    /// tenth with every query of the pair, down to 1 (a roadmap that densifies).
+    struct Densifying {
+        objective: PathLength,
+        asked: HashMap<(u64, u64), u32>,
+    }
+
+    impl PointToPointPlanner for Densifying {
+        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+            let key = (start.x.to_bits(), goal.x.to_bits());
+            let times = self.asked.entry(key).or_default();
+            *times += 1;
+            let mut path = Path::new(vec![*start, *goal], &self.objective);
+            path.cost *= (1.3 - 0.1 * f64::from(*times)).max(1.0);
+            Ok(PlannerOutcome::Exact(path))
+        }
+
+        fn stats(&self) -> PlannerStats {
+            PlannerStats::default()
+        }
+    }
+
+    #[test]
+    fn refine_keeps_the_cheaper_path_both_ways_and_plans_unplanned_pairs() {
+        let objective = PathLength::default();
+        let planner = Densifying {
+            objective: objective.clone(),
+            asked: HashMap::new(),
+        };
+        let mut o = PathOracle::new(Arc::new(objective), Box::new(planner));
+        o.add_pose(Pose2::new(0.0, 0.0, 0.0));
+        o.add_pose(Pose2::new(3.0, 4.0, 0.0));
+        // Unplanned: planned now (factor 1.2), not reported as an improvement.
+        assert!(!o.refine(0, 1).unwrap());
+        assert!((o.planned_cost(0, 1).unwrap() - 6.0).abs() < 1e-12);
+        // Planned again at 1.1 and 1.0: cheaper each time, the reverse pair follows.
+        assert!(o.refine(0, 1).unwrap());
+        assert!(o.refine(0, 1).unwrap());
+        assert!((o.planned_cost(1, 0).unwrap() - 5.0).abs() < 1e-12);
+        assert_eq!(o.path(1, 0).unwrap().path().unwrap().states[0], *o.pose(1));
+        // No cheaper path: the cached one stays.
+        assert!(!o.refine(0, 1).unwrap());
+        assert!((o.planned_cost(0, 1).unwrap() - 5.0).abs() < 1e-12);
+        assert_eq!(o.stats().paths_planned, 4);
     }
 
     #[test]

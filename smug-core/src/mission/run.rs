@@ -60,7 +60,7 @@ pub enum PlanMode {
 }
 
 /// How the mission is run (the config's `[plan]` section).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlanOptions {
     /// The pose that stands in for each target when sequencing.
@@ -78,6 +78,25 @@ pub struct PlanOptions {
     /// built so far; nothing is planned after a grace of a quarter of it (≥ 1 s). `None`:
     /// no deadline. Results then depend on the machine's speed.
     pub deadline: Option<f64>,
+    /// Once the route is chosen (either mode), plan each of its legs that costs more
+    /// than its lower bound again, on the roadmap as grown since the leg was planned,
+    /// and keep the cheaper path. The choice stays optimal for the planned costs: only
+    /// its own legs got cheaper.
+    pub refine_legs: bool,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        Self {
+            representative: Representative::default(),
+            skip_unreachable: false,
+            keep_headings: false,
+            sequencing_costs: SequencingCosts::default(),
+            mode: PlanMode::default(),
+            deadline: None,
+            refine_legs: true,
+        }
+    }
 }
 
 impl PlanOptions {
@@ -228,6 +247,24 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     }
 }
 
+/// `selection` with each leg of its route that costs more than its lower bound planned
+/// again on the roadmap as grown since (a leg planned early saw a sparser roadmap),
+/// cheaper paths kept, and its cost summed anew.
+fn refine_route(
+    oracle: &mut PathOracle,
+    problem: &SelectionProblem,
+    selection: Selection,
+) -> Result<Selection> {
+    let cost = problem.route_cost(&selection.chosen, |a, b| {
+        let bound = oracle.lower_bound(a, b);
+        if oracle.cost_or_bound(a, b) > bound + 1e-9 * bound.abs().max(1.0) {
+            oracle.refine(a, b)?;
+        }
+        oracle.cost(a, b)
+    })?;
+    Ok(Selection { cost, ..selection })
+}
+
 /// The mission in the options' mode (sequential or joint), without a deadline.
 fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
@@ -309,6 +346,14 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
             }
         };
         break (order, problem, selection);
+    };
+    let selection = if options.refine_legs {
+        let t = Instant::now();
+        let refined = refine_route(&mut oracle, &problem, selection)?;
+        times.insert("refine".to_string(), t.elapsed().as_secs_f64());
+        refined
+    } else {
+        selection
     };
     let t = Instant::now();
     let route = problem.route(&selection.chosen);

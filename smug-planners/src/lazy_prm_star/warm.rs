@@ -7,7 +7,7 @@ use smug_core::{
     ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
     RoadmapSnapshot, SavedAnswer, StateSpace,
 };
-use std::collections::{BTreeMap, HashMap};
+use std::collections::{BTreeMap, HashMap, VecDeque};
 
 /// The planner's name in saved snapshots.
 pub(super) const PLANNER_NAME: &str = "lazy-prm-star";
@@ -28,10 +28,12 @@ pub(super) struct LoadCounts {
 /// Answers given and answers loaded.
 #[derive(Debug, Default)]
 pub(super) struct Warm {
-    /// Exact answers given, by endpoints (saved with the roadmap).
-    given: BTreeMap<(PoseBits, PoseBits), SavedAnswer>,
-    /// Loaded answers no change touches: served as they are.
-    reusable: HashMap<(PoseBits, PoseBits), Path>,
+    /// Exact answers given, by endpoints, in the order given (a pair asked again, e.g.
+    /// to refine a leg, has one per query; saved with the roadmap).
+    given: BTreeMap<(PoseBits, PoseBits), Vec<SavedAnswer>>,
+    /// Loaded answers no change touches: served as they are, in the order they were
+    /// given; the last one of a pair again once the others are served.
+    reusable: HashMap<(PoseBits, PoseBits), VecDeque<Path>>,
     /// Set once a roadmap was loaded.
     pub loaded: Option<LoadCounts>,
 }
@@ -39,10 +41,12 @@ pub(super) struct Warm {
 impl Warm {
     /// A loaded answer for `start → goal`, if one is still valid.
     pub fn reuse(&mut self, start: &Pose2, goal: &Pose2) -> Option<PlannerOutcome> {
-        let path = self
-            .reusable
-            .get(&((*start).into(), (*goal).into()))?
-            .clone();
+        let answers = self.reusable.get_mut(&((*start).into(), (*goal).into()))?;
+        let path = if answers.len() > 1 {
+            answers.pop_front()?
+        } else {
+            answers.front()?.clone()
+        };
         if let Some(counts) = self.loaded.as_mut() {
             counts.answers_served += 1;
         }
@@ -53,7 +57,7 @@ impl Warm {
     pub fn record(&mut self, start: &Pose2, goal: &Pose2, outcome: &PlannerOutcome) {
         if let PlannerOutcome::Exact(path) = outcome {
             let key = ((*start).into(), (*goal).into());
-            self.given.entry(key).or_insert_with(|| SavedAnswer {
+            self.given.entry(key).or_default().push(SavedAnswer {
                 start: key.0,
                 goal: key.1,
                 states: path.states.iter().map(|&s| s.into()).collect(),
@@ -88,7 +92,7 @@ impl LazyPrmStar {
             directed: self.roadmap.is_directed(),
             vertices,
             edges,
-            answers: self.warm.given.values().cloned().collect(),
+            answers: self.warm.given.values().flatten().cloned().collect(),
         }
     }
 
@@ -162,10 +166,9 @@ impl LazyPrmStar {
                 states,
                 cost: f64::from_bits(answer.cost),
             };
-            self.warm
-                .given
-                .insert((answer.start, answer.goal), answer.clone());
-            self.warm.reusable.insert((answer.start, answer.goal), path);
+            let key = (answer.start, answer.goal);
+            self.warm.given.entry(key).or_default().push(answer.clone());
+            self.warm.reusable.entry(key).or_default().push_back(path);
         }
         self.grown = true;
         self.fresh_from = self.roadmap.vertex_count() as u32;
