@@ -77,6 +77,8 @@ pub const MISSIONS: [Mission; 4] = [
             "world.params.targets=200",
             "world.params.pois_per_target=10",
             "world.params.size=[100.0,100.0]",
+            // One search per source: the paper's one query per pair takes ~330 s here.
+            "planner.params.one_to_many=true",
         ],
     },
 ];

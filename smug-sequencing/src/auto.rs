@@ -25,7 +25,8 @@ pub struct AutoParams {
     /// Local search: first tour, `"greedy"` or `"nearest-neighbour"`.
     pub construction: Construction,
     /// Largest clustered (GTSP) problem solved exactly by `gtsp-exact`, in DP steps
-    /// `2^(clusters−1) · nodes²`; larger ones go to `gtsp-lns` with its defaults.
+    /// `2^(clusters−1) · nodes²`; larger ones go to `gtsp-lns` with its defaults (and
+    /// `time_limit_s`).
     pub exact_cluster_work: f64,
 }
 
@@ -85,7 +86,7 @@ impl Auto {
                 ),
             ));
         }
-        if !(params.exact_cluster_work >= 0.0) {
+        if params.exact_cluster_work.is_nan() || params.exact_cluster_work < 0.0 {
             return Err(smug_core::Error::invalid_param(
                 "sequencer",
                 format!(
@@ -100,7 +101,13 @@ impl Auto {
             heuristic: LocalSearch::new(params.local_search(), rng.clone())?,
             exact_cluster_work: params.exact_cluster_work,
             clusters_exact: GtspExact::new(GtspExactParams::default())?,
-            clusters_heuristic: GtspLns::new(GtspLnsParams::default(), rng)?,
+            clusters_heuristic: GtspLns::new(
+                GtspLnsParams {
+                    time_limit_s: params.time_limit_s,
+                    ..GtspLnsParams::default()
+                },
+                rng,
+            )?,
         })
     }
 
@@ -164,3 +171,20 @@ smug_core::register_plugin!(
     params = AutoParams,
     build = |params, ctx| Ok(Box::new(Auto::new(params, ctx.rng("sequencer"))?)),
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_negative_or_nan_exact_cluster_work_is_refused_naming_it() {
+        for bad in [-1.0, f64::NAN] {
+            let params = AutoParams {
+                exact_cluster_work: bad,
+                ..AutoParams::default()
+            };
+            let err = Auto::new(params, smug_core::rng::stage_rng(1, "sequencer")).unwrap_err();
+            assert!(err.to_string().contains("exact_cluster_work"), "{err}");
+        }
+    }
+}
