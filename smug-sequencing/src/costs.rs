@@ -64,6 +64,8 @@ pub(crate) fn trivial_tour(costs: &CostMatrix, kind: TourKind) -> Option<Tour> {
 pub(crate) struct Dist {
     n: usize,
     data: Vec<f64>,
+    /// `data` transposed: the costs into node `j` are row `j`.
+    into: Vec<f64>,
     symmetric: bool,
     eps: f64,
 }
@@ -78,7 +80,7 @@ impl Dist {
             .filter(|c| c.is_finite())
             .fold(0.0_f64, f64::max);
         let penalty = missing_leg_penalty(n, max_finite);
-        let data = (0..n * n)
+        let data: Vec<f64> = (0..n * n)
             .map(|k| {
                 let (i, j) = (k / n, k % n);
                 let c = costs.get(i, j);
@@ -90,9 +92,11 @@ impl Dist {
             })
             .collect();
         let eps = (max_finite * 1e-10).max(f64::MIN_POSITIVE);
+        let into = (0..n * n).map(|k| data[(k % n) * n + k / n]).collect();
         let mut dist = Self {
             n,
             data,
+            into,
             symmetric: false,
             eps,
         };
@@ -114,6 +118,13 @@ impl Dist {
     #[inline]
     pub(crate) fn d(&self, i: usize, j: usize) -> f64 {
         self.data[i * self.n + j]
+    }
+
+    /// Cost from `i` to `j` (the same as [`d`](Self::d)), read where the costs into
+    /// `j` lie side by side: cheap when `i` runs over nearby nodes, e.g. a cluster.
+    #[inline]
+    pub(crate) fn d_into(&self, i: usize, j: usize) -> f64 {
+        self.into[j * self.n + i]
     }
 
     /// True when `d(i, j) == d(j, i)` for every pair (within `eps`).
@@ -140,6 +151,23 @@ fn missing_leg_penalty(n: usize, max_finite: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn costs_into_a_node_read_the_same_as_costs_from_it() {
+        let costs =
+            CostMatrix::from_fn(7, |i, j| (i * 31 + j * 17 % 5) as f64 + 0.25 * j as f64).unwrap();
+        let dist = Dist::new(&costs);
+        assert!(!dist.is_symmetric());
+        for i in 0..7 {
+            for j in 0..7 {
+                assert_eq!(
+                    dist.d(i, j).to_bits(),
+                    dist.d_into(i, j).to_bits(),
+                    "{i} → {j}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn missing_legs_cost_more_than_any_finite_tour() {

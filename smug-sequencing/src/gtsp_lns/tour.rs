@@ -98,7 +98,7 @@ impl<'a> Problem<'a> {
             let (a, b) = (order[p], order[(p + 1) % order.len()]);
             let removed = self.dist.d(a, b);
             for &v in self.clusters.members(c) {
-                let added = self.dist.d(a, v) + self.dist.d(v, b) - removed;
+                let added = self.dist.d(a, v) + self.dist.d_into(v, b) - removed;
                 let noisy = if noise > 0.0 {
                     added + noise * rng.random::<f64>()
                 } else {
