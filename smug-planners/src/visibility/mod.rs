@@ -38,8 +38,8 @@ pub use search::{Route, TangentGraph, Visit};
 use geometry::{Pt, EPS};
 use serde::{Deserialize, Serialize};
 use smug_core::{
-    BuildContext, DiscOnGrid, Error, GridGeometry, Objective, Path, PlannerOutcome, PlannerStats,
-    PointToPointPlanner, Pose2, Result, StateValidityChecker, TimeBreakdown,
+    BuildContext, DiscOnGrid, Error, GridGeometry, NoPathReason, Objective, Path, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Proof, Result, StateValidityChecker, TimeBreakdown,
 };
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -53,6 +53,10 @@ pub struct VisibilityParams {
     /// preprocessing) instead of corner by corner as queries reach them.
     pub build_all: bool,
 }
+
+/// A goal the exact search did not reach: it covered everything the start reaches.
+const PROVED_NONE: PlannerOutcome =
+    PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected));
 
 /// Margin added to the robot's radius for the circles, grid units.
 const RADIUS_MARGIN: f64 = 1e-7;
@@ -228,7 +232,7 @@ impl Visibility {
 impl PointToPointPlanner for Visibility {
     fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
         let mut outcomes = self.plan_many(start, std::slice::from_ref(goal))?;
-        Ok(outcomes.pop().unwrap_or(PlannerOutcome::NoPath))
+        Ok(outcomes.pop().unwrap_or(PROVED_NONE))
     }
 
     fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
@@ -263,7 +267,7 @@ impl PointToPointPlanner for Visibility {
             outcomes.push(match index[k] {
                 None => PlannerOutcome::InvalidGoal,
                 Some(i) => match &routes[i] {
-                    None => PlannerOutcome::NoPath,
+                    None => PROVED_NONE,
                     Some(route) => {
                         self.last_optimum[k] = Some(route.length * res);
                         PlannerOutcome::Exact(self.path_of(start, goal, route))

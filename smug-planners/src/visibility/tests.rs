@@ -377,8 +377,14 @@ fn disc_case(
         return Ok(());
     }
     let expected = brute_force_disc(&check, s, g, r);
+    // The flood fill LazyPRM* proves "no path" with never contradicts a path.
+    let regions = smug_core::FreeRegions::new(&disc(nx, ny, &blocked, r));
+    prop_assert!(
+        expected.is_none() || !regions.disconnected(&sp, &gp),
+        "free-cell components separate a connected pair"
+    );
     match (expected, &outcome) {
-        (None, PlannerOutcome::NoPath) => {}
+        (None, PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected))) => {}
         (Some(len), PlannerOutcome::Exact(path)) => {
             let optimum = p.last_optimum()[0].unwrap();
             prop_assert!(
@@ -433,7 +439,7 @@ proptest! {
         let (sp, gp) = (Pose2::new(s[0] as f64 / 2.0, s[1] as f64 / 2.0, 0.0), Pose2::new(g[0] as f64 / 2.0, g[1] as f64 / 2.0, 0.0));
         let outcome = p.plan(&sp, &gp).unwrap();
         match (expected, &outcome) {
-            (None, PlannerOutcome::NoPath) => {}
+            (None, PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected))) => {}
             (Some(len), PlannerOutcome::Exact(path)) => {
                 let optimum = p.last_optimum()[0].unwrap();
                 prop_assert!((optimum - len).abs() < 1e-5, "optimum {optimum} vs brute force {len}");
@@ -532,8 +538,8 @@ fn invalid_endpoints_and_unreachable_goals_are_named() {
     let mut p = planner(3, 3, &blocked, 0.25);
     let left = Pose2::new(0.5, 1.5, 0.0);
     assert_eq!(
-        p.plan(&left, &Pose2::new(2.5, 1.5, 0.0)).unwrap().status(),
-        "no_path"
+        p.plan(&left, &Pose2::new(2.5, 1.5, 0.0)).unwrap(),
+        PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected))
     );
     assert_eq!(
         p.plan(&Pose2::new(1.5, 1.5, 0.0), &left).unwrap().status(),
