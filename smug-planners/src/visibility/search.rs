@@ -59,20 +59,36 @@ impl Lanes {
     }
 }
 
-/// Where a path to a node or goal came from.
+/// Where a path to a node or goal came from: the start or a node.
 #[derive(Clone, Copy, Debug)]
 enum Src {
     Start,
     Node(u32),
 }
 
-/// How a node was reached.
+/// How a node was reached, packed in a `u32`: [`VIA_CHAIN`] along the arc from the
+/// previous departure of the same lane (node `id − 1`); `START | k` along the start's
+/// `k`-th segment, then the arc; else along the segment of that node, then the arc.
+type Via = u32;
+
+/// See [`Via`].
+const VIA_CHAIN: Via = u32::MAX;
+
+/// See [`Via`].
+const VIA_START: Via = 1 << 31;
+
+/// A node's successor not computed yet (see `TangentGraph::successor`).
+const SUCC_UNSET: u32 = u32::MAX - 1;
+
+/// A node without a successor along its segment.
+const SUCC_NONE: u32 = u32::MAX;
+
+/// One node's search state for the current query (stale when `query` differs).
 #[derive(Clone, Copy, Debug)]
-enum Via {
-    /// Along the arc from the previous departure of the same lane.
-    Chain(u32),
-    /// Along a segment from `from`, arriving at angle `rel_in`, then along the arc.
-    Tangent { from: Src, rel_in: f64 },
+struct Slot {
+    cost: f64,
+    query: u32,
+    via: Via,
 }
 
 /// How a goal was reached: directly from the start, or from an arrival at a corner
@@ -81,6 +97,43 @@ enum Via {
 struct GoalVia {
     from: Src,
     exit: Option<(u32, Lane, f64, f64)>,
+}
+
+/// One query's search: the heap, the goals' costs and how they were reached, the exits.
+struct Search {
+    single: bool,
+    target: Pt,
+    /// Heap ids from this one on are goals (`goal_base + k`).
+    goal_base: u32,
+    goal_cost: Vec<f64>,
+    goal_via: Vec<Option<GoalVia>>,
+    heap: BinaryHeap<Entry>,
+    exits: HashMap<u32, Vec<Exit>>,
+}
+
+impl Search {
+    /// The heuristic: the straight-line distance to the goal of a one-goal query.
+    fn h(&self, p: Pt) -> f64 {
+        if self.single {
+            let (dx, dy) = (p[0] - self.target[0], p[1] - self.target[1]);
+            (dx * dx + dy * dy).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Goal `k` reached at `cost` from `from` (through `exit` at a corner, or straight).
+    fn reach_goal(&mut self, k: usize, cost: f64, from: Src, exit: Option<(u32, Lane, f64, f64)>) {
+        if cost < self.goal_cost[k] {
+            self.goal_cost[k] = cost;
+            self.goal_via[k] = Some(GoalVia { from, exit });
+            self.heap.push(Entry {
+                f: cost,
+                g: cost,
+                id: self.goal_base + k as u32,
+            });
+        }
+    }
 }
 
 /// A segment from a corner's circle straight to a goal.
@@ -166,13 +219,27 @@ pub struct TangentGraph {
     nodes: Vec<Departure>,
     /// Corner of each node.
     node_corner: Vec<u32>,
+    // The search's compact view of the nodes (what an expansion reads), by node.
+    /// The departure point (for the heuristic).
+    point: Vec<Pt>,
+    /// Cost along the arc to the lane's next departure (∞ when there is none).
+    chain_cost: Vec<f64>,
+    /// The corner the node's segment arrives at.
+    arrive_at: Vec<u32>,
+    /// The first departure at or after the arrival, in the arrival's lane, whose arc
+    /// is clear ([`SUCC_NONE`]: none; [`SUCC_UNSET`]: not computed yet).
+    succ: Vec<u32>,
+    /// Segment plus arc to `succ`.
+    succ_cost: Vec<f64>,
     stamp_corner: Vec<u32>,
     stamp: u32,
-    // Per-query search state, indexed by node.
+    // Per-query search state.
     query: u32,
-    node_query: Vec<u32>,
-    cost: Vec<f64>,
-    via: Vec<Via>,
+    slot: Vec<Slot>,
+    /// Corners with exits to goals in this query (`exit_query[c] == query`).
+    exit_query: Vec<u32>,
+    /// Arrival angles of the start's segments to corners, this query.
+    start_rel: Vec<f64>,
     /// Counters.
     pub counts: GraphCounts,
 }
@@ -189,12 +256,17 @@ impl TangentGraph {
             lanes: vec![None; n],
             nodes: Vec::new(),
             node_corner: Vec::new(),
+            point: Vec::new(),
+            chain_cost: Vec::new(),
+            arrive_at: Vec::new(),
+            succ: Vec::new(),
+            succ_cost: Vec::new(),
             stamp_corner: vec![0; n],
             stamp: 0,
             query: 0,
-            node_query: Vec::new(),
-            cost: Vec::new(),
-            via: Vec::new(),
+            slot: Vec::new(),
+            exit_query: vec![0; n],
+            start_rel: Vec::new(),
             counts: GraphCounts::default(),
         }
     }
@@ -298,22 +370,71 @@ impl TangentGraph {
         };
         let count = lanes[0].len() + lanes[1].len();
         let [ccw, cw] = lanes;
+        for list in [&ccw, &cw] {
+            for (k, d) in list.iter().enumerate() {
+                self.point.push(d.point);
+                self.chain_cost.push(if d.to_next {
+                    self.r * (list[k + 1].rel - d.rel).abs()
+                } else {
+                    f64::INFINITY
+                });
+                self.arrive_at.push(d.to);
+            }
+        }
         self.nodes.extend(ccw);
         self.nodes.extend(cw);
         self.node_corner.extend(std::iter::repeat_n(a, count));
-        self.node_query.resize(self.nodes.len(), 0);
-        self.cost.resize(self.nodes.len(), f64::INFINITY);
-        self.via.resize(self.nodes.len(), Via::Chain(0));
+        let len = self.nodes.len();
+        self.succ.resize(len, SUCC_UNSET);
+        self.succ_cost.resize(len, f64::INFINITY);
+        self.slot.resize(
+            len,
+            Slot {
+                cost: f64::INFINITY,
+                query: 0,
+                via: VIA_CHAIN,
+            },
+        );
         self.counts.corners_built += 1;
         self.counts.departures += count as u64;
         self.lanes[a as usize] = Some(entry);
     }
 
-    /// Builds every corner.
+    /// Builds every corner, and every node's successor along its segment.
     pub fn build_all(&mut self) {
         for a in 0..self.grid.corners.len() as u32 {
             self.build_corner(a);
         }
+        for id in 0..self.nodes.len() as u32 {
+            self.successor(id);
+        }
+    }
+
+    /// Node `id`'s successor along its segment (the first departure at or after its
+    /// arrival, in the arrival's lane, whose arc is clear), computed once; building the
+    /// corner it arrives at if needed.
+    fn successor(&mut self, id: u32) -> u32 {
+        let i = id as usize;
+        if self.succ[i] != SUCC_UNSET {
+            return self.succ[i];
+        }
+        let dep = self.nodes[i];
+        self.build_corner(dep.to);
+        let corner = self.grid.corners[dep.to as usize];
+        let (succ, cost) = match self.first_after(dep.to, dep.arrive_lane, dep.arrive_rel) {
+            Some((next, rel))
+                if !self.big
+                    || self
+                        .grid
+                        .arc_clear(&corner, self.r, dep.arrive_rel, rel, self.r_check) =>
+            {
+                (next, dep.len + self.r * (rel - dep.arrive_rel).abs())
+            }
+            _ => (SUCC_NONE, f64::INFINITY),
+        };
+        self.succ[i] = succ;
+        self.succ_cost[i] = cost;
+        succ
     }
 
     fn lanes(&self, c: u32) -> Lanes {
@@ -333,8 +454,9 @@ impl TangentGraph {
     }
 
     fn node_cost(&self, id: u32) -> f64 {
-        if self.node_query[id as usize] == self.query {
-            self.cost[id as usize]
+        let slot = &self.slot[id as usize];
+        if slot.query == self.query {
+            slot.cost
         } else {
             f64::INFINITY
         }
@@ -348,16 +470,20 @@ impl TangentGraph {
     pub fn shortest(&mut self, s: Pt, clear_s: f64, goals: &[(Pt, f64)]) -> Vec<Option<Route>> {
         self.query = self.query.wrapping_add(1);
         if self.query == 0 {
-            self.node_query.fill(0);
+            for slot in &mut self.slot {
+                slot.query = 0;
+            }
+            self.exit_query.fill(0);
             self.query = 1;
         }
         let single = goals.len() == 1;
-        let h = |p: Pt| if single { dist(p, goals[0].0) } else { 0.0 };
+        let target = goals[0].0;
         // Exits: segments from corners straight to each goal.
         let mut exits: HashMap<u32, Vec<Exit>> = HashMap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
             for (c, n, rel, p) in self.clear_tangents(g, self.r_check.min(clear_g)) {
                 let t = [g[0] - p[0], g[1] - p[1]];
+                self.exit_query[c as usize] = self.query;
                 exits.entry(c).or_default().push(Exit {
                     goal: k,
                     lane: Lane::of(n, t),
@@ -366,58 +492,48 @@ impl TangentGraph {
                 });
             }
         }
-        let goal_base = u32::MAX - goals.len() as u32;
-        let mut goal_cost = vec![f64::INFINITY; goals.len()];
-        let mut goal_via: Vec<Option<GoalVia>> = vec![None; goals.len()];
+        let mut search = Search {
+            single,
+            target,
+            goal_base: u32::MAX - goals.len() as u32,
+            goal_cost: vec![f64::INFINITY; goals.len()],
+            goal_via: vec![None; goals.len()],
+            heap: BinaryHeap::new(),
+            exits,
+        };
         let mut goal_done = vec![false; goals.len()];
-        let mut heap = BinaryHeap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
             self.counts.segment_checks += 1;
             if self
                 .grid
                 .segment_clear(s, g, self.r_check.min(clear_s).min(clear_g))
             {
-                goal_cost[k] = dist(s, g);
-                goal_via[k] = Some(GoalVia {
-                    from: Src::Start,
-                    exit: None,
-                });
-                heap.push(Entry {
-                    f: goal_cost[k],
-                    g: goal_cost[k],
-                    id: goal_base + k as u32,
-                });
+                search.reach_goal(k, dist(s, g), Src::Start, None);
             }
         }
         // Segments from the start to the corners it sees.
+        self.start_rel.clear();
         for (c, n, rel, p) in self.clear_tangents(s, self.r_check.min(clear_s)) {
             let t = [p[0] - s[0], p[1] - s[1]];
-            let arrival = (c, Lane::of(n, t), rel);
+            let k = self.start_rel.len() as u32;
+            self.start_rel.push(rel);
+            self.build_corner(c);
+            let lane = Lane::of(n, t);
             let g0 = dist(s, p);
-            self.arrive(
-                arrival,
-                g0,
-                Src::Start,
-                &exits,
-                &h,
-                &mut heap,
-                |k, cost, via| {
-                    if cost < goal_cost[k] {
-                        goal_cost[k] = cost;
-                        goal_via[k] = Some(via);
-                        true
-                    } else {
-                        false
-                    }
-                },
-                goal_base,
-            );
+            let corner = self.grid.corners[c as usize];
+            if let Some((id, to)) = self.first_after(c, lane, rel).filter(|&(_, to)| {
+                !self.big || self.grid.arc_clear(&corner, self.r, rel, to, self.r_check)
+            }) {
+                let cost = g0 + self.r * (to - rel).abs();
+                self.relax(id, cost, VIA_START | k, &mut search);
+            }
+            self.exits_at(c, lane, rel, g0, Src::Start, &mut search);
         }
         let mut left = goals.len();
-        while let Some(Entry { g, id, .. }) = heap.pop() {
-            if id >= goal_base {
-                let k = (id - goal_base) as usize;
-                if !goal_done[k] && g <= goal_cost[k] {
+        while let Some(Entry { g, id, .. }) = search.heap.pop() {
+            if id >= search.goal_base {
+                let k = (id - search.goal_base) as usize;
+                if !goal_done[k] && g <= search.goal_cost[k] {
                     goal_done[k] = true;
                     left -= 1;
                     if left == 0 {
@@ -426,118 +542,100 @@ impl TangentGraph {
                 }
                 continue;
             }
+            let i = id as usize;
             if g > self.node_cost(id) {
                 continue;
             }
             self.counts.expansions += 1;
-            let dep = self.nodes[id as usize];
             // Along the arc to the next departure of the lane.
-            if dep.to_next {
-                let rel = self.nodes[id as usize + 1].rel;
-                let cost = g + self.r * (rel - dep.rel).abs();
-                self.relax(id + 1, cost, Via::Chain(id), &h, &mut heap);
+            let chain = self.chain_cost[i];
+            if chain < f64::INFINITY {
+                self.relax(id + 1, g + chain, VIA_CHAIN, &mut search);
             }
-            // Along the segment, then the arc at the corner it arrives at.
-            self.arrive(
-                (dep.to, dep.arrive_lane, dep.arrive_rel),
-                g + dep.len,
-                Src::Node(id),
-                &exits,
-                &h,
-                &mut heap,
-                |k, cost, via| {
-                    if cost < goal_cost[k] {
-                        goal_cost[k] = cost;
-                        goal_via[k] = Some(via);
-                        true
-                    } else {
-                        false
-                    }
-                },
-                goal_base,
-            );
+            // Along the segment, then the arc at the corner it arrives at: to the
+            // first departure at or after the arrival, and to every exit after it.
+            let next = self.successor(id);
+            if next != SUCC_NONE {
+                self.relax(next, g + self.succ_cost[i], id, &mut search);
+            }
+            let c = self.arrive_at[i];
+            if self.exit_query[c as usize] == self.query {
+                let dep = self.nodes[i];
+                self.exits_at(
+                    c,
+                    dep.arrive_lane,
+                    dep.arrive_rel,
+                    g + dep.len,
+                    Src::Node(id),
+                    &mut search,
+                );
+            }
         }
         (0..goals.len())
             .map(|k| {
                 goal_done[k].then(|| Route {
-                    length: goal_cost[k],
-                    visits: self.visits(goal_via[k].expect("reached goal has a via")),
+                    length: search.goal_cost[k],
+                    visits: self.visits(search.goal_via[k].expect("reached goal has a via")),
                 })
             })
             .collect()
     }
 
-    fn relax(
-        &mut self,
-        id: u32,
-        cost: f64,
-        via: Via,
-        h: &impl Fn(Pt) -> f64,
-        heap: &mut BinaryHeap<Entry>,
-    ) {
-        if cost < self.node_cost(id) {
-            let i = id as usize;
-            self.node_query[i] = self.query;
-            self.cost[i] = cost;
-            self.via[i] = via;
-            let point = self.nodes[i].point;
-            heap.push(Entry {
-                f: cost + h(point),
-                g: cost,
-                id,
-            });
+    fn relax(&mut self, id: u32, cost: f64, via: Via, search: &mut Search) {
+        let i = id as usize;
+        let query = self.query;
+        let slot = &mut self.slot[i];
+        if slot.query != query || cost < slot.cost {
+            *slot = Slot { cost, query, via };
+            let f = cost + search.h(self.point[i]);
+            search.heap.push(Entry { f, g: cost, id });
         }
     }
 
-    /// Arrives at corner `c` in `lane` at angle `rel_in` with cost `g0`: continues to
-    /// the lane's first departure at or after it, and to every exit at or after it.
-    #[allow(clippy::too_many_arguments)]
-    fn arrive(
+    /// Arrives at corner `c` in `lane` at angle `rel_in` with cost `g0`: on to every
+    /// exit to a goal at or after it.
+    fn exits_at(
         &mut self,
-        (c, lane, rel_in): (u32, Lane, f64),
+        c: u32,
+        lane: Lane,
+        rel_in: f64,
         g0: f64,
         from: Src,
-        exits: &HashMap<u32, Vec<Exit>>,
-        h: &impl Fn(Pt) -> f64,
-        heap: &mut BinaryHeap<Entry>,
-        mut reach_goal: impl FnMut(usize, f64, GoalVia) -> bool,
-        goal_base: u32,
+        search: &mut Search,
     ) {
-        self.build_corner(c);
-        let corner = self.grid.corners[c as usize];
-        let arc_clear = |graph: &Self, to: f64| {
-            !graph.big
-                || graph
-                    .grid
-                    .arc_clear(&corner, graph.r, rel_in, to, graph.r_check)
+        let Some(list) = search.exits.get(&c) else {
+            return;
         };
-        if let Some((id, rel)) = self
-            .first_after(c, lane, rel_in)
-            .filter(|&(_, rel)| arc_clear(self, rel))
-        {
-            let cost = g0 + self.r * (rel - rel_in).abs();
-            self.relax(id, cost, Via::Tangent { from, rel_in }, h, heap);
-        }
-        for e in exits.get(&c).into_iter().flatten() {
+        let corner = self.grid.corners[c as usize];
+        let mut reached = Vec::new();
+        for e in list {
             let ahead = match lane {
                 Lane::Ccw => e.rel >= rel_in,
                 Lane::Cw => e.rel <= rel_in,
             };
-            if e.lane != lane || !ahead || !arc_clear(self, e.rel) {
+            if e.lane != lane
+                || !ahead
+                || (self.big
+                    && !self
+                        .grid
+                        .arc_clear(&corner, self.r, rel_in, e.rel, self.r_check))
+            {
                 continue;
             }
             let cost = g0 + self.r * (e.rel - rel_in).abs() + e.len;
-            let via = GoalVia {
-                from,
-                exit: Some((c, lane, rel_in, e.rel)),
-            };
-            if reach_goal(e.goal, cost, via) {
-                heap.push(Entry {
-                    f: cost,
-                    g: cost,
-                    id: goal_base + e.goal as u32,
-                });
-            }
+            reached.push((e.goal, cost, (c, lane, rel_in, e.rel)));
+        }
+        for (goal, cost, exit) in reached {
+            search.reach_goal(goal, cost, from, Some(exit));
+        }
+    }
+
+    /// The arrival angle of a tangent from `from` (a node's segment, or the start's).
+    fn rel_in(&self, via: Via) -> f64 {
+        if via & VIA_START != 0 {
+            self.start_rel[(via & !VIA_START) as usize]
+        } else {
+            self.nodes[via as usize].arrive_rel
         }
     }
 
@@ -556,16 +654,20 @@ impl TangentGraph {
         while let Src::Node(id) = cur {
             let rel = self.nodes[id as usize].rel;
             let out_rel = *pending.get_or_insert(rel);
-            match self.via[id as usize] {
-                Via::Chain(prev) => cur = Src::Node(prev),
-                Via::Tangent { from, rel_in } => {
+            match self.slot[id as usize].via {
+                VIA_CHAIN => cur = Src::Node(id - 1),
+                from => {
                     out.push(Visit {
                         corner: self.node_corner[id as usize],
-                        rel_in,
+                        rel_in: self.rel_in(from),
                         rel_out: out_rel,
                     });
                     pending = None;
-                    cur = from;
+                    cur = if from & VIA_START != 0 {
+                        Src::Start
+                    } else {
+                        Src::Node(from)
+                    };
                 }
             }
         }

@@ -55,6 +55,16 @@ fn disc(nx: usize, ny: usize, blocked: &[bool], r: f64) -> DiscOnGrid {
 }
 
 fn planner(nx: usize, ny: usize, blocked: &[bool], r: f64) -> Visibility {
+    planner_with(nx, ny, blocked, r, VisibilityParams::default())
+}
+
+fn planner_with(
+    nx: usize,
+    ny: usize,
+    blocked: &[bool],
+    r: f64,
+    params: VisibilityParams,
+) -> Visibility {
     let check = DiscCheck {
         nx,
         ny,
@@ -62,7 +72,7 @@ fn planner(nx: usize, ny: usize, blocked: &[bool], r: f64) -> Visibility {
         r,
     };
     Visibility::new(
-        VisibilityParams::default(),
+        params,
         disc(nx, ny, blocked, r),
         Arc::new(check),
         Arc::new(PathLength::new(1.0, 0.0).unwrap()),
@@ -376,6 +386,9 @@ fn disc_case(
         prop_assert_eq!(outcome.status(), "invalid_goal");
         return Ok(());
     }
+    // The whole graph built first (preprocessing) answers the same.
+    let mut built = planner_with(nx, ny, &blocked, r, VisibilityParams { build_all: true });
+    prop_assert_eq!(&built.plan(&sp, &gp).unwrap(), &outcome);
     let expected = brute_force_disc(&check, s, g, r);
     // The flood fill LazyPRM* proves "no path" with never contradicts a path.
     let regions = smug_core::FreeRegions::new(&disc(nx, ny, &blocked, r));
