@@ -176,8 +176,15 @@ impl Visibility {
             let pieces = (span.abs() / step_max).ceil().max(1.0) as usize;
             let step = span / pieces as f64;
             let out = r / (step / 2.0).cos();
-            for k in 0..pieces {
-                points.push(corner.point(out, v.rel_in + (k as f64 + 0.5) * step));
+            // The piece vertices by rotating one unit vector (a sine and a cosine per
+            // arc, not per piece).
+            let first = corner.q0 + v.rel_in + 0.5 * step;
+            let (mut sin, mut cos) = first.sin_cos();
+            let (ds, dc) = step.sin_cos();
+            points.reserve(pieces + 1);
+            for _ in 0..pieces {
+                points.push([corner.at[0] + out * cos, corner.at[1] + out * sin]);
+                (cos, sin) = (cos * dc - sin * ds, sin * dc + cos * ds);
             }
         }
         points.push(corner.point(r, v.rel_out));

@@ -83,12 +83,28 @@ const SUCC_UNSET: u32 = u32::MAX - 1;
 /// A node without a successor along its segment.
 const SUCC_NONE: u32 = u32::MAX;
 
-/// One node's search state for the current query (stale when `query` differs).
+/// One node's search state for the current query (stale when `query` differs), beside
+/// its departure point (the heuristic's input): what a relaxation touches, in 32 bytes.
 #[derive(Clone, Copy, Debug)]
 struct Slot {
+    point: Pt,
     cost: f64,
     query: u32,
     via: Via,
+}
+
+/// What an expansion reads of a node, in 24 bytes.
+#[derive(Clone, Copy, Debug)]
+struct Edges {
+    /// Cost along the arc to the lane's next departure (∞ when there is none).
+    chain_cost: f64,
+    /// Segment plus arc to `succ`.
+    succ_cost: f64,
+    /// The first departure at or after the segment's arrival, in the arrival's lane,
+    /// whose arc is clear ([`SUCC_NONE`]: none; [`SUCC_UNSET`]: not computed yet).
+    succ: u32,
+    /// The corner the node's segment arrives at.
+    arrive_at: u32,
 }
 
 /// How a goal was reached: directly from the start, or from an arrival at a corner
@@ -108,10 +124,39 @@ struct Search {
     goal_cost: Vec<f64>,
     goal_via: Vec<Option<GoalVia>>,
     heap: BinaryHeap<Entry>,
+    /// The best entry offered since the last pop, held out of the heap: when it comes
+    /// before the heap's top it is the next to expand, without a push and a pop (an
+    /// expansion's successors often are: arcs are short).
+    held: Option<Entry>,
     exits: HashMap<u32, Vec<Exit>>,
 }
 
 impl Search {
+    /// Offers a node's entry: held if it is the best offered since the last pop.
+    fn offer(&mut self, entry: Entry) {
+        match self.held {
+            Some(held) if held >= entry => self.heap.push(entry),
+            Some(held) => {
+                self.heap.push(held);
+                self.held = Some(entry);
+            }
+            None => self.held = Some(entry),
+        }
+    }
+
+    /// The next entry in A* order (least `f`, then least id).
+    fn next(&mut self) -> Option<Entry> {
+        match self.held.take() {
+            Some(held) if self.heap.peek().is_none_or(|top| held >= *top) => Some(held),
+            Some(held) => {
+                // Swap it with the top: one sift instead of a pop and a push.
+                let mut top = self.heap.peek_mut().expect("a top beats the held entry");
+                Some(std::mem::replace(&mut *top, held))
+            }
+            None => self.heap.pop(),
+        }
+    }
+
     /// The heuristic: the straight-line distance to the goal of a one-goal query.
     fn h(&self, p: Pt) -> f64 {
         if self.single {
@@ -219,18 +264,8 @@ pub struct TangentGraph {
     nodes: Vec<Departure>,
     /// Corner of each node.
     node_corner: Vec<u32>,
-    // The search's compact view of the nodes (what an expansion reads), by node.
-    /// The departure point (for the heuristic).
-    point: Vec<Pt>,
-    /// Cost along the arc to the lane's next departure (∞ when there is none).
-    chain_cost: Vec<f64>,
-    /// The corner the node's segment arrives at.
-    arrive_at: Vec<u32>,
-    /// The first departure at or after the arrival, in the arrival's lane, whose arc
-    /// is clear ([`SUCC_NONE`]: none; [`SUCC_UNSET`]: not computed yet).
-    succ: Vec<u32>,
-    /// Segment plus arc to `succ`.
-    succ_cost: Vec<f64>,
+    /// The search's compact view of each node's edges.
+    edges: Vec<Edges>,
     stamp_corner: Vec<u32>,
     stamp: u32,
     // Per-query search state.
@@ -256,11 +291,7 @@ impl TangentGraph {
             lanes: vec![None; n],
             nodes: Vec::new(),
             node_corner: Vec::new(),
-            point: Vec::new(),
-            chain_cost: Vec::new(),
-            arrive_at: Vec::new(),
-            succ: Vec::new(),
-            succ_cost: Vec::new(),
+            edges: Vec::new(),
             stamp_corner: vec![0; n],
             stamp: 0,
             query: 0,
@@ -372,29 +403,27 @@ impl TangentGraph {
         let [ccw, cw] = lanes;
         for list in [&ccw, &cw] {
             for (k, d) in list.iter().enumerate() {
-                self.point.push(d.point);
-                self.chain_cost.push(if d.to_next {
-                    self.r * (list[k + 1].rel - d.rel).abs()
-                } else {
-                    f64::INFINITY
+                self.edges.push(Edges {
+                    chain_cost: if d.to_next {
+                        self.r * (list[k + 1].rel - d.rel).abs()
+                    } else {
+                        f64::INFINITY
+                    },
+                    succ_cost: f64::INFINITY,
+                    succ: SUCC_UNSET,
+                    arrive_at: d.to,
                 });
-                self.arrive_at.push(d.to);
+                self.slot.push(Slot {
+                    point: d.point,
+                    cost: f64::INFINITY,
+                    query: 0,
+                    via: VIA_CHAIN,
+                });
             }
         }
         self.nodes.extend(ccw);
         self.nodes.extend(cw);
         self.node_corner.extend(std::iter::repeat_n(a, count));
-        let len = self.nodes.len();
-        self.succ.resize(len, SUCC_UNSET);
-        self.succ_cost.resize(len, f64::INFINITY);
-        self.slot.resize(
-            len,
-            Slot {
-                cost: f64::INFINITY,
-                query: 0,
-                via: VIA_CHAIN,
-            },
-        );
         self.counts.corners_built += 1;
         self.counts.departures += count as u64;
         self.lanes[a as usize] = Some(entry);
@@ -415,8 +444,8 @@ impl TangentGraph {
     /// corner it arrives at if needed.
     fn successor(&mut self, id: u32) -> u32 {
         let i = id as usize;
-        if self.succ[i] != SUCC_UNSET {
-            return self.succ[i];
+        if self.edges[i].succ != SUCC_UNSET {
+            return self.edges[i].succ;
         }
         let dep = self.nodes[i];
         self.build_corner(dep.to);
@@ -432,8 +461,8 @@ impl TangentGraph {
             }
             _ => (SUCC_NONE, f64::INFINITY),
         };
-        self.succ[i] = succ;
-        self.succ_cost[i] = cost;
+        self.edges[i].succ = succ;
+        self.edges[i].succ_cost = cost;
         succ
     }
 
@@ -499,6 +528,7 @@ impl TangentGraph {
             goal_cost: vec![f64::INFINITY; goals.len()],
             goal_via: vec![None; goals.len()],
             heap: BinaryHeap::new(),
+            held: None,
             exits,
         };
         let mut goal_done = vec![false; goals.len()];
@@ -530,7 +560,7 @@ impl TangentGraph {
             self.exits_at(c, lane, rel, g0, Src::Start, &mut search);
         }
         let mut left = goals.len();
-        while let Some(Entry { g, id, .. }) = search.heap.pop() {
+        while let Some(Entry { g, id, .. }) = search.next() {
             if id >= search.goal_base {
                 let k = (id - search.goal_base) as usize;
                 if !goal_done[k] && g <= search.goal_cost[k] {
@@ -548,17 +578,20 @@ impl TangentGraph {
             }
             self.counts.expansions += 1;
             // Along the arc to the next departure of the lane.
-            let chain = self.chain_cost[i];
-            if chain < f64::INFINITY {
-                self.relax(id + 1, g + chain, VIA_CHAIN, &mut search);
+            let edges = self.edges[i];
+            if edges.chain_cost < f64::INFINITY {
+                self.relax(id + 1, g + edges.chain_cost, VIA_CHAIN, &mut search);
             }
             // Along the segment, then the arc at the corner it arrives at: to the
             // first departure at or after the arrival, and to every exit after it.
-            let next = self.successor(id);
+            let next = match edges.succ {
+                SUCC_UNSET => self.successor(id),
+                next => next,
+            };
             if next != SUCC_NONE {
-                self.relax(next, g + self.succ_cost[i], id, &mut search);
+                self.relax(next, g + self.edges[i].succ_cost, id, &mut search);
             }
-            let c = self.arrive_at[i];
+            let c = edges.arrive_at;
             if self.exit_query[c as usize] == self.query {
                 let dep = self.nodes[i];
                 self.exits_at(
@@ -586,9 +619,11 @@ impl TangentGraph {
         let query = self.query;
         let slot = &mut self.slot[i];
         if slot.query != query || cost < slot.cost {
-            *slot = Slot { cost, query, via };
-            let f = cost + search.h(self.point[i]);
-            search.heap.push(Entry { f, g: cost, id });
+            slot.cost = cost;
+            slot.query = query;
+            slot.via = via;
+            let f = cost + search.h(slot.point);
+            search.offer(Entry { f, g: cost, id });
         }
     }
 
