@@ -305,6 +305,7 @@ impl PointToPointPlanner for Visibility {
                 ("corners_built".to_string(), c.corners_built),
                 ("segment_checks".to_string(), c.segment_checks),
                 ("expansions".to_string(), c.expansions),
+                ("pruned_tangents".to_string(), c.pruned),
                 ("radius_millicells".to_string(), (self.radius * 1e3) as u64),
             ]),
         }

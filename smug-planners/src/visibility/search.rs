@@ -77,6 +77,17 @@ const VIA_CHAIN: Via = u32::MAX;
 /// See [`Via`].
 const VIA_START: Via = 1 << 31;
 
+/// Angles within this (radians) of an arrival count as at it.
+const REL_TOL: f64 = 1e-12;
+
+/// Greatest common divisor.
+fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
 /// A node's successor not computed yet (see `TangentGraph::successor`).
 const SUCC_UNSET: u32 = u32::MAX - 1;
 
@@ -221,6 +232,8 @@ pub struct GraphCounts {
     pub segment_checks: u64,
     /// Nodes expanded by searches.
     pub expansions: u64,
+    /// Tangents left out: they pass a corner whose pieces the graph has.
+    pub pruned: u64,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -360,6 +373,10 @@ impl TangentGraph {
                 else {
                     continue;
                 };
+                if na == nb && self.touches_corner_between(ca.at, cb.at, na) {
+                    self.counts.pruned += 1;
+                    continue;
+                }
                 let pa = [ca.at[0] + self.r * na[0], ca.at[1] + self.r * na[1]];
                 let pb = [cb.at[0] + self.r * nb[0], cb.at[1] + self.r * nb[1]];
                 self.counts.segment_checks += 1;
@@ -429,6 +446,22 @@ impl TangentGraph {
         self.lanes[a as usize] = Some(entry);
     }
 
+    /// True when the outer tangent on side `n` of the circles around the grid vertices
+    /// `a` and `b` also touches the quarter circle of a corner between them (its
+    /// centre on the segment `a → b`): the path along it is the same through that
+    /// corner (a zero arc there), so the graph needs only the pieces. Exact on the
+    /// lattice: the vertices between are `a + k·(b − a)/gcd`.
+    fn touches_corner_between(&self, a: Pt, b: Pt, n: Pt) -> bool {
+        let (dx, dy) = ((b[0] - a[0]) as i64, (b[1] - a[1]) as i64);
+        let g = gcd(dx.unsigned_abs(), dy.unsigned_abs()) as i64;
+        (1..g).any(|k| {
+            let (x, y) = (a[0] as i64 + k * dx / g, a[1] as i64 + k * dy / g);
+            self.grid
+                .corner_at(x, y)
+                .is_some_and(|m| self.grid.corners[m as usize].relative_angle(n).is_some())
+        })
+    }
+
     /// Builds every corner, and every node's successor along its segment.
     pub fn build_all(&mut self) {
         for a in 0..self.grid.corners.len() as u32 {
@@ -475,9 +508,12 @@ impl TangentGraph {
     fn first_after(&self, c: u32, lane: Lane, rel: f64) -> Option<(u32, f64)> {
         let range = self.lanes(c).range(lane);
         let list = &self.nodes[range.clone()];
+        // A departure within rounding before the arrival counts as at it: through a
+        // corner touched on the way (see `touches_corner_between`) the arrival and the
+        // departure are the same point, computed from different vectors.
         let k = match lane {
-            Lane::Ccw => list.partition_point(|d| d.rel < rel),
-            Lane::Cw => list.partition_point(|d| d.rel > rel),
+            Lane::Ccw => list.partition_point(|d| d.rel < rel - REL_TOL),
+            Lane::Cw => list.partition_point(|d| d.rel > rel + REL_TOL),
         };
         list.get(k).map(|d| ((range.start + k) as u32, d.rel))
     }
