@@ -94,23 +94,21 @@ const SUCC_UNSET: u32 = u32::MAX - 1;
 /// A node without a successor along its segment.
 const SUCC_NONE: u32 = u32::MAX;
 
-/// One node's search state for the current query (stale when `query` differs), beside
-/// its departure point (the heuristic's input): what a relaxation touches, in 32 bytes.
+/// What the search reads and writes of a node, in one cache line: its edges (the
+/// arc to the lane's next departure, the segment and arc to its successor) and the
+/// current query's state (stale when `query` differs), beside its departure point
+/// (the heuristic's input).
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 struct Slot {
     point: Pt,
     cost: f64,
-    query: u32,
-    via: Via,
-}
-
-/// What an expansion reads of a node, in 24 bytes.
-#[derive(Clone, Copy, Debug)]
-struct Edges {
     /// Cost along the arc to the lane's next departure (∞ when there is none).
     chain_cost: f64,
     /// Segment plus arc to `succ`.
     succ_cost: f64,
+    query: u32,
+    via: Via,
     /// The first departure at or after the segment's arrival, in the arrival's lane,
     /// whose arc is clear ([`SUCC_NONE`]: none; [`SUCC_UNSET`]: not computed yet).
     succ: u32,
@@ -277,8 +275,6 @@ pub struct TangentGraph {
     nodes: Vec<Departure>,
     /// Corner of each node.
     node_corner: Vec<u32>,
-    /// The search's compact view of each node's edges.
-    edges: Vec<Edges>,
     stamp_corner: Vec<u32>,
     stamp: u32,
     // Per-query search state.
@@ -304,7 +300,6 @@ impl TangentGraph {
             lanes: vec![None; n],
             nodes: Vec::new(),
             node_corner: Vec::new(),
-            edges: Vec::new(),
             stamp_corner: vec![0; n],
             stamp: 0,
             query: 0,
@@ -420,21 +415,19 @@ impl TangentGraph {
         let [ccw, cw] = lanes;
         for list in [&ccw, &cw] {
             for (k, d) in list.iter().enumerate() {
-                self.edges.push(Edges {
+                self.slot.push(Slot {
+                    point: d.point,
+                    cost: f64::INFINITY,
                     chain_cost: if d.to_next {
                         self.r * (list[k + 1].rel - d.rel).abs()
                     } else {
                         f64::INFINITY
                     },
                     succ_cost: f64::INFINITY,
-                    succ: SUCC_UNSET,
-                    arrive_at: d.to,
-                });
-                self.slot.push(Slot {
-                    point: d.point,
-                    cost: f64::INFINITY,
                     query: 0,
                     via: VIA_CHAIN,
+                    succ: SUCC_UNSET,
+                    arrive_at: d.to,
                 });
             }
         }
@@ -477,8 +470,8 @@ impl TangentGraph {
     /// corner it arrives at if needed.
     fn successor(&mut self, id: u32) -> u32 {
         let i = id as usize;
-        if self.edges[i].succ != SUCC_UNSET {
-            return self.edges[i].succ;
+        if self.slot[i].succ != SUCC_UNSET {
+            return self.slot[i].succ;
         }
         let dep = self.nodes[i];
         self.build_corner(dep.to);
@@ -494,8 +487,8 @@ impl TangentGraph {
             }
             _ => (SUCC_NONE, f64::INFINITY),
         };
-        self.edges[i].succ = succ;
-        self.edges[i].succ_cost = cost;
+        self.slot[i].succ = succ;
+        self.slot[i].succ_cost = cost;
         succ
     }
 
@@ -614,7 +607,7 @@ impl TangentGraph {
             }
             self.counts.expansions += 1;
             // Along the arc to the next departure of the lane.
-            let edges = self.edges[i];
+            let edges = self.slot[i];
             if edges.chain_cost < f64::INFINITY {
                 self.relax(id + 1, g + edges.chain_cost, VIA_CHAIN, &mut search);
             }
@@ -625,7 +618,7 @@ impl TangentGraph {
                 next => next,
             };
             if next != SUCC_NONE {
-                self.relax(next, g + self.edges[i].succ_cost, id, &mut search);
+                self.relax(next, g + self.slot[i].succ_cost, id, &mut search);
             }
             let c = edges.arrive_at;
             if self.exit_query[c as usize] == self.query {
