@@ -922,6 +922,18 @@ mod tests {
     }
 
     #[test]
+    fn a_spent_time_budget_is_named_as_such() {
+        let mut p = ring_planner(true);
+        p.params.max_samples = u64::MAX;
+        p.params.time_limit = Some(0.05);
+        let outcome = p.plan(&Pose2::new(1.0, 1.0, 0.0), &Pose2::new(8.0, 8.0, 0.0));
+        assert_eq!(
+            outcome.unwrap(),
+            PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Time))
+        );
+    }
+
+    #[test]
     fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
         let pocket = Pose2::new(8.0, 8.0, 0.0);
         let mut p = ring_planner(false);
