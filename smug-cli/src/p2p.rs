@@ -2,7 +2,9 @@
 
 use crate::Outcome;
 use serde::Serialize;
-use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
+use smug_core::{
+    EndpointFault, LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2, StateValidityChecker,
+};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -44,14 +46,47 @@ pub struct P2pArgs {
 #[derive(Debug, Serialize)]
 struct QueryResult {
     status: &'static str,
-    /// Why a query has no path: proved (the exact planner searched everything the
-    /// start reaches) or the planner's budget ran out; absent when solved.
+    /// For `no_path`: `proved` (no path exists) or `budget_spent` (one may exist).
     #[serde(skip_serializing_if = "Option::is_none")]
-    reason: Option<&'static str>,
+    no_path: Option<&'static str>,
+    /// The cause, machine-readable: for `no_path` `disconnected` (the goal lies
+    /// outside the start's free region), `samples`, `time`, `deadline`,
+    /// `earlier_query`, `unspecified`; for an invalid endpoint `off_map`,
+    /// `in_inflated_obstacle` or `invalid` (the checker says no more).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    why: Option<&'static str>,
+    /// The same in words; absent when solved.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason: Option<String>,
     cost: Option<f64>,
     time_s: f64,
     vertices: u64,
     waypoints: Vec<[f64; 3]>,
+}
+
+/// Why an endpoint is invalid: machine-readable cause and the sentence on stderr.
+fn endpoint_fault(
+    states: Option<&dyn StateValidityChecker>,
+    which: &str,
+    pose: &Pose2,
+) -> (&'static str, String) {
+    let disc = states.and_then(|s| s.disc_on_grid());
+    let at = format!("the {which} ({}, {})", pose.x, pose.y);
+    match disc.as_ref().map(|d| (d.radius, d.fault(pose))) {
+        Some((_, Some(EndpointFault::OffMap))) => ("off_map", format!("{at} is {}", EndpointFault::OffMap)),
+        Some((radius, Some(fault @ EndpointFault::InInflatedObstacle { .. }))) => (
+            "in_inflated_obstacle",
+            format!("{at} is {fault}, closer than the robot's radius {radius} m"),
+        ),
+        Some((radius, None)) => (
+            "in_inflated_obstacle",
+            format!("{at} is on the boundary of an obstacle inflated by the robot's radius {radius} m"),
+        ),
+        None => (
+            "invalid",
+            format!("{at} is invalid for the validity checker (inside an inflated obstacle, or off the map)"),
+        ),
+    }
 }
 
 /// All results.
@@ -132,36 +167,42 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         .planner
         .as_mut()
         .ok_or_else(|| anyhow::anyhow!("the config has no [planner] section"))?;
+    let states = pipeline.state_validity.clone();
     let started = Instant::now();
     let mut results = Vec::with_capacity(queries.len());
+    let mut bad_input: Option<String> = None;
     for (k, (start, goal)) in queries.iter().enumerate() {
         let t = Instant::now();
         let outcome = planner.plan(start, goal)?;
-        let reason = match (&outcome, planner_type.as_str()) {
-            (PlannerOutcome::NoPath, "visibility") => Some(
-                "no path exists: the exact search covered everything the start reaches",
+        let time_s = t.elapsed().as_secs_f64();
+        let (no_path, why, reason) = match &outcome {
+            PlannerOutcome::NoPath(reason) => (
+                Some(reason.kind()),
+                Some(reason.why()),
+                Some(reason.to_string()),
             ),
-            (PlannerOutcome::NoPath, _) => Some(
-                "no path found within the planner's budget (max_samples or time_limit); one may exist",
-            ),
-            (PlannerOutcome::InvalidStart, _) => {
-                Some("the start is inside an (inflated) obstacle or off the map")
+            PlannerOutcome::InvalidStart | PlannerOutcome::InvalidGoal => {
+                let (which, pose) = match outcome {
+                    PlannerOutcome::InvalidStart => ("start", start),
+                    _ => ("goal", goal),
+                };
+                let (why, reason) = endpoint_fault(states.as_deref(), which, pose);
+                bad_input.get_or_insert_with(|| format!("query {}: {reason}", k + 1));
+                (None, Some(why), Some(reason))
             }
-            (PlannerOutcome::InvalidGoal, _) => {
-                Some("the goal is inside an (inflated) obstacle or off the map")
-            }
-            _ => None,
+            _ => (None, None, None),
         };
-        if let Some(reason) = reason {
+        if let Some(reason) = &reason {
             eprintln!("query {}: {}: {reason}", k + 1, outcome.status());
         }
-        let time_s = t.elapsed().as_secs_f64();
         let path = match &outcome {
             PlannerOutcome::Exact(p) | PlannerOutcome::Approximate { path: p, .. } => Some(p),
             _ => None,
         };
         results.push(QueryResult {
             status: outcome.status(),
+            no_path,
+            why,
             reason,
             cost: outcome.exact_path().map(|p| p.cost),
             time_s,
@@ -189,16 +230,29 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
             results.queries.iter().filter_map(|q| q.cost).sum::<f64>() / n as f64
         ),
     };
+    let count = |kind: &str| {
+        results
+            .queries
+            .iter()
+            .filter(|q| q.no_path == Some(kind))
+            .count()
+    };
     println!(
-        "{} queries ({planner_type}): {exact} exact, {} without a path; mean cost {mean_cost}; {:.3} s; roadmap {} vertices",
+        "{} queries ({planner_type}): {exact} exact, {} without a path ({} proved none exists, {} budget spent), {} invalid endpoints; mean cost {mean_cost}; {:.3} s; roadmap {} vertices",
         results.queries.len(),
-        results.queries.len() - exact,
+        count("proved") + count("budget_spent"),
+        count("proved"),
+        count("budget_spent"),
+        results.queries.iter().filter(|q| q.status.starts_with("invalid")).count(),
         results.total_time_s,
         results.planner.vertices
     );
     if let Some(out) = &args.out {
         smug_core::output::write_atomic(out, serde_json::to_string_pretty(&results)?.as_bytes())
             .map_err(|e| anyhow::anyhow!("{}: {e}", out.display()))?;
+    }
+    if let Some(first) = bad_input {
+        anyhow::bail!("bad query: {first}");
     }
     Ok(if exact == results.queries.len() {
         Outcome::Ok

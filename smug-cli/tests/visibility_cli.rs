@@ -105,7 +105,8 @@ fn p2p_uses_the_exact_planner_by_default_and_names_invalid_goals() {
     std::fs::create_dir_all(&dir).unwrap();
     let queries = dir.join("q.csv");
     let results = dir.join("results.json");
-    // Corner to corner, then a goal off the map.
+    // Corner to corner, then a goal off the map: bad input (exit 2), every query
+    // still answered in the results.
     std::fs::write(
         &queries,
         "sx,sy,syaw,gx,gy,gyaw\n0.5,0.5,0,30.5,30.5,1\n0.5,0.5,0,40.5,1.5,0\n",
@@ -122,10 +123,15 @@ fn p2p_uses_the_exact_planner_by_default_and_names_invalid_goals() {
         "--out",
         results.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(1), "stderr: {}", stderr(&out));
+    assert_eq!(out.status.code(), Some(2), "stderr: {}", stderr(&out));
     assert!(stdout(&out).contains("(visibility)"), "{}", stdout(&out));
     assert!(
-        stderr(&out).contains("query 2: invalid_goal: the goal is inside"),
+        stderr(&out).contains("query 2: invalid_goal: the goal (40.5, 1.5) is off the map"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(
+        stderr(&out).contains("error: bad query: query 2: the goal (40.5, 1.5) is off the map"),
         "{}",
         stderr(&out)
     );
@@ -134,6 +140,7 @@ fn p2p_uses_the_exact_planner_by_default_and_names_invalid_goals() {
     assert_eq!(json["planner_type"], "visibility");
     assert_eq!(json["queries"][0]["status"], "exact");
     assert_eq!(json["queries"][1]["status"], "invalid_goal");
+    assert_eq!(json["queries"][1]["why"], "off_map");
     // Its length is at least the straight line and at most the 8-connected detour.
     let cost = json["queries"][0]["cost"].as_f64().unwrap();
     assert!(

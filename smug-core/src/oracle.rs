@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
-use crate::stages::{PlannerOutcome, PointToPointPlanner};
+use crate::stages::{Budget, NoPathReason, PlannerOutcome, PointToPointPlanner};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -32,10 +32,12 @@ impl PlannedPath {
             PlannerOutcome::Exact(path) => PlannerOutcome::Exact(path.reversed()),
             // An approximate path ends short of the goal: it does not reverse into one
             // from the other end, and it is not a path between the pair anyway.
-            PlannerOutcome::Approximate { .. } => PlannerOutcome::NoPath,
+            PlannerOutcome::Approximate { .. } => {
+                PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Unspecified))
+            }
             PlannerOutcome::InvalidStart => PlannerOutcome::InvalidGoal,
             PlannerOutcome::InvalidGoal => PlannerOutcome::InvalidStart,
-            PlannerOutcome::NoPath => PlannerOutcome::NoPath,
+            PlannerOutcome::NoPath(reason) => PlannerOutcome::NoPath(*reason),
         };
         Self {
             outcome,
@@ -280,7 +282,7 @@ impl std::fmt::Debug for PathOracle {
 mod tests {
     use super::*;
     use crate::objective::PathLength;
-    use crate::stages::PlannerStats;
+    use crate::stages::{PlannerStats, Proof};
 
     /// Connects everything with the straight line, except into pose index 2's position.
     struct StraightLine {
@@ -292,7 +294,9 @@ mod tests {
         fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
             self.calls += 1;
             if goal.x == 9.0 || start.x == 9.0 {
-                return Ok(PlannerOutcome::NoPath);
+                return Ok(PlannerOutcome::NoPath(NoPathReason::Proved(
+                    Proof::Disconnected,
+                )));
             }
             Ok(PlannerOutcome::Exact(Path::new(
                 vec![*start, *goal],

@@ -615,8 +615,11 @@ fn p2p(
             let waypoints: Vec<[f64; 3]> = path.map_or(Vec::new(), |p| {
                 p.states.iter().map(|s| [s.x, s.y, s.yaw]).collect()
             });
+            let reason = outcome.no_path_reason();
             rows.push(serde_json::json!({
                 "status": outcome.status(),
+                "no_path": reason.map(|r| r.kind()),
+                "why": reason.map(|r| r.why()),
                 "cost": outcome.exact_path().map(|p| p.cost),
                 "time_s": time_s,
                 "vertices": planner.stats().vertices,

@@ -325,6 +325,7 @@ def test_p2p_on_a_shared_roadmap():
     results = smug.p2p(queries, world=world)
     assert [q["status"] for q in results["queries"]] == ["exact", "exact"]
     first = results["queries"][0]
+    assert first["no_path"] is None and first["why"] is None
     assert first["cost"] > 16.0 + 2.0  # around the wall, not through it
     assert all(not (9.5 <= x <= 10.5 and y < 8.0) for x, y, _ in first["waypoints"])
     # the second query reuses the roadmap the first grew

@@ -112,7 +112,9 @@ mod tests {
     impl PointToPointPlanner for StraightLine {
         fn plan(&mut self, a: &Pose2, b: &Pose2) -> Result<PlannerOutcome> {
             if a.x == 9.0 || b.x == 9.0 {
-                return Ok(PlannerOutcome::NoPath);
+                return Ok(PlannerOutcome::NoPath(smug_core::NoPathReason::Proved(
+                    smug_core::Proof::Disconnected,
+                )));
             }
             Ok(PlannerOutcome::Exact(Path::new(
                 vec![*a, *b],

@@ -13,7 +13,9 @@ struct StraightLine;
 impl PointToPointPlanner for StraightLine {
     fn plan(&mut self, a: &Pose2, b: &Pose2) -> Result<PlannerOutcome> {
         if a.x == 9.0 || b.x == 9.0 {
-            return Ok(PlannerOutcome::NoPath);
+            return Ok(PlannerOutcome::NoPath(smug_core::NoPathReason::Proved(
+                smug_core::Proof::Disconnected,
+            )));
         }
         Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &objective())))
     }
@@ -52,7 +54,9 @@ struct Radius;
 impl PointToPointPlanner for Radius {
     fn plan(&mut self, a: &Pose2, b: &Pose2) -> Result<PlannerOutcome> {
         if (a.x - b.x).hypot(a.y - b.y) > 10.0 {
-            return Ok(PlannerOutcome::NoPath);
+            return Ok(PlannerOutcome::NoPath(smug_core::NoPathReason::Proved(
+                smug_core::Proof::Disconnected,
+            )));
         }
         Ok(PlannerOutcome::Exact(Path::new(vec![*a, *b], &objective())))
     }

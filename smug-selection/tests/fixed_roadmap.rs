@@ -106,7 +106,9 @@ impl PointToPointPlanner for GridPlanner {
             return Ok(PlannerOutcome::InvalidGoal);
         };
         let Some(vertices) = Self::dijkstra(s, g) else {
-            return Ok(PlannerOutcome::NoPath);
+            return Ok(PlannerOutcome::NoPath(smug_core::NoPathReason::Proved(
+                smug_core::Proof::Disconnected,
+            )));
         };
         let states: Vec<Pose2> = std::iter::once(*start)
             .chain(

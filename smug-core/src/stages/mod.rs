@@ -12,7 +12,9 @@ mod validity;
 
 pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
-pub use planner::{NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use planner::{
+    Budget, NoPathReason, NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner, Proof,
+};
 pub use roadmap_file::{
     read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
     PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
@@ -21,4 +23,4 @@ pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
 pub use traversability::TraversabilityEstimator;
-pub use validity::{Counters, DiscOnGrid, StateValidityChecker};
+pub use validity::{Counters, DiscOnGrid, EndpointFault, FreeRegions, StateValidityChecker};

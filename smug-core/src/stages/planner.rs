@@ -20,8 +20,8 @@ pub enum PlannerOutcome {
         /// Metric distance from its end to the goal.
         goal_distance: f64,
     },
-    /// The budget ran out without a path.
-    NoPath,
+    /// No path: proved that none exists, or the budget ran out (see [`NoPathReason`]).
+    NoPath(NoPathReason),
     /// The start state is invalid.
     InvalidStart,
     /// The goal state is invalid.
@@ -37,15 +37,110 @@ impl PlannerOutcome {
         }
     }
 
+    /// Why there is no path, for a query between valid endpoints that found none.
+    pub fn no_path_reason(&self) -> Option<NoPathReason> {
+        match self {
+            PlannerOutcome::NoPath(reason) => Some(*reason),
+            _ => None,
+        }
+    }
+
     /// Short machine-readable status: `exact`, `approximate`, `no_path`, `invalid_start`, `invalid_goal`.
     pub fn status(&self) -> &'static str {
         match self {
             PlannerOutcome::Exact(_) => "exact",
             PlannerOutcome::Approximate { .. } => "approximate",
-            PlannerOutcome::NoPath => "no_path",
+            PlannerOutcome::NoPath(_) => "no_path",
             PlannerOutcome::InvalidStart => "invalid_start",
             PlannerOutcome::InvalidGoal => "invalid_goal",
         }
+    }
+}
+
+/// Why a query between valid endpoints ended without a path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NoPathReason {
+    /// No path exists: the planner proved it.
+    Proved(Proof),
+    /// The planner's budget ran out first: a path may exist.
+    BudgetSpent(Budget),
+}
+
+/// How a planner proved that no path exists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Proof {
+    /// The goal lies outside the start's free region (another connected component of
+    /// the free space: an exact search covered everything the start reaches, or a
+    /// flood fill of the free cells does not join them).
+    Disconnected,
+}
+
+/// Which budget ran out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Budget {
+    /// The sample (iteration) budget, e.g. LazyPRM*'s `max_samples`.
+    Samples,
+    /// The query's time budget, e.g. LazyPRM*'s `time_limit`.
+    Time,
+    /// The run's deadline (`smug plan --deadline`).
+    Deadline,
+    /// An endpoint was cut off after an earlier query between the same regions spent
+    /// its budget (LazyPRM*'s pocket rule, see `retry_cut_off`).
+    EarlierQuery,
+    /// The planner does not say which.
+    Unspecified,
+}
+
+impl NoPathReason {
+    /// True when no path exists (proved), false when the budget ran out.
+    pub fn is_proved(&self) -> bool {
+        matches!(self, NoPathReason::Proved(_))
+    }
+
+    /// Short machine-readable kind: `proved` or `budget_spent`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            NoPathReason::Proved(_) => "proved",
+            NoPathReason::BudgetSpent(_) => "budget_spent",
+        }
+    }
+
+    /// Short machine-readable cause: `disconnected`, `samples`, `time`, `deadline`,
+    /// `earlier_query`, `unspecified`.
+    pub fn why(&self) -> &'static str {
+        match self {
+            NoPathReason::Proved(Proof::Disconnected) => "disconnected",
+            NoPathReason::BudgetSpent(Budget::Samples) => "samples",
+            NoPathReason::BudgetSpent(Budget::Time) => "time",
+            NoPathReason::BudgetSpent(Budget::Deadline) => "deadline",
+            NoPathReason::BudgetSpent(Budget::EarlierQuery) => "earlier_query",
+            NoPathReason::BudgetSpent(Budget::Unspecified) => "unspecified",
+        }
+    }
+}
+
+impl std::fmt::Display for NoPathReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            NoPathReason::Proved(Proof::Disconnected) => {
+                "no path exists: the goal lies outside the start's free region"
+            }
+            NoPathReason::BudgetSpent(Budget::Samples) => {
+                "no path found before the sample budget ran out (max_samples); one may exist"
+            }
+            NoPathReason::BudgetSpent(Budget::Time) => {
+                "no path found before the time budget ran out (time_limit); one may exist"
+            }
+            NoPathReason::BudgetSpent(Budget::Deadline) => {
+                "no path found before the run's deadline; one may exist"
+            }
+            NoPathReason::BudgetSpent(Budget::EarlierQuery) => {
+                "no path searched: an endpoint was cut off after an earlier query spent its budget; one may exist"
+            }
+            NoPathReason::BudgetSpent(Budget::Unspecified) => {
+                "no path found within the planner's budget; one may exist"
+            }
+        })
     }
 }
 

@@ -5,7 +5,7 @@
 use super::checks::Checks;
 use super::LazyPrmStar;
 use crate::roadmap::GraphPath;
-use smug_core::{Path, PlannerOutcome, Pose2};
+use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::time::Instant;
 
 impl LazyPrmStar {
@@ -66,7 +66,11 @@ impl LazyPrmStar {
         }
         let outcomes: Vec<PlannerOutcome> = outcomes
             .into_iter()
-            .map(|outcome| outcome.unwrap_or(PlannerOutcome::NoPath))
+            .map(|outcome| {
+                outcome.unwrap_or(PlannerOutcome::NoPath(NoPathReason::BudgetSpent(
+                    Budget::EarlierQuery,
+                )))
+            })
             .collect();
         for (goal, outcome) in goals.iter().zip(&outcomes) {
             self.warm.record(start, goal, outcome);
@@ -107,9 +111,14 @@ impl LazyPrmStar {
                 states: vec![*start],
                 cost: 0.0,
             })),
+            Some(_) if self.proved_disconnected(start, goal) => Ok(PlannerOutcome::NoPath(
+                NoPathReason::Proved(Proof::Disconnected),
+            )),
             Some(g) if self.cut_off.contains(&g) => {
                 self.counts.cut_off_queries += 1;
-                Ok(PlannerOutcome::NoPath)
+                Ok(PlannerOutcome::NoPath(NoPathReason::BudgetSpent(
+                    Budget::EarlierQuery,
+                )))
             }
             Some(g) => Err(g),
         }

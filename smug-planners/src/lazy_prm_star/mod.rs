@@ -32,9 +32,9 @@ use rayon::prelude::*;
 use smug_core::pose::angle_distance;
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    Bounds2, BuildContext, Error, InformedSet, MotionValidator, Objective, Path, PlannerOutcome,
-    PlannerStats, PointToPointPlanner, Pose2, Result, Sampler, StateSpace, StateValidityChecker,
-    Termination, TimeBreakdown,
+    Bounds2, Budget, BuildContext, Error, FreeRegions, InformedSet, MotionValidator, NoPathReason,
+    Objective, Path, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Proof, Result,
+    Sampler, StateSpace, StateValidityChecker, Termination, TimeBreakdown,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::Ordering::Relaxed;
@@ -63,6 +63,9 @@ struct Counts {
     repairs: u64,
     /// Queries answered "no path" at once: an endpoint was cut off.
     cut_off_queries: u64,
+    /// Queries answered "no path exists" at once: the endpoints lie in different
+    /// components of the free cells (a disc on a grid).
+    proved_no_path: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -89,6 +92,11 @@ pub struct LazyPrmStar {
     counts: Counts,
     /// Answers given (saved with the roadmap) and loaded (see `load_roadmap`).
     warm: warm::Warm,
+    /// The free cells' components when the checker is a disc on a grid (built at the
+    /// first query that needs them; `Some(None)`: the checker is not one).
+    regions: Option<Option<FreeRegions>>,
+    /// Which budget ended the latest query without a path.
+    last_budget: Budget,
 }
 
 /// `k = ⌈e(1 + 1/d) ln n⌉` with `d = 3`, at least 1.
@@ -192,6 +200,8 @@ impl LazyPrmStar {
             cut_off: BTreeSet::new(),
             counts: Counts::default(),
             warm: warm::Warm::default(),
+            regions: None,
+            last_budget: Budget::Samples,
         })
     }
 
@@ -530,8 +540,35 @@ impl LazyPrmStar {
         }
         if best.is_none() {
             self.cut_off_pocket(s, g);
+            self.last_budget = if smug_core::deadline::passed() {
+                Budget::Deadline
+            } else if self
+                .params
+                .time_limit
+                .is_some_and(|t| clock.elapsed().as_secs_f64() >= t)
+            {
+                Budget::Time
+            } else {
+                Budget::Samples
+            };
         }
         best
+    }
+
+    /// True when no path joins `start` and `goal`, proved cheaply: for a disc on a
+    /// grid, they lie in different components of the free cells (see [`FreeRegions`]).
+    fn proved_disconnected(&mut self, start: &Pose2, goal: &Pose2) -> bool {
+        let states = &self.states;
+        let regions = self
+            .regions
+            .get_or_insert_with(|| states.disc_on_grid().map(|disc| FreeRegions::new(&disc)));
+        let proved = regions
+            .as_ref()
+            .is_some_and(|r| r.disconnected(start, goal));
+        if proved {
+            self.counts.proved_no_path += 1;
+        }
+        proved
     }
 
     /// Grows the initial roadmap before the first query.
@@ -545,13 +582,16 @@ impl LazyPrmStar {
     /// A query between the valid endpoint vertices `s ≠ g` of `start` and `goal`:
     /// "no path" at once when one is cut off, else solved and post-processed.
     fn solve_query(&mut self, start: &Pose2, goal: &Pose2, s: u32, g: u32) -> PlannerOutcome {
+        if self.proved_disconnected(start, goal) {
+            return PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected));
+        }
         if self.cut_off.contains(&s) || self.cut_off.contains(&g) {
             self.counts.cut_off_queries += 1;
-            return PlannerOutcome::NoPath;
+            return PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::EarlierQuery));
         }
         match self.solve(start, goal, s, g) {
             Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
-            None => PlannerOutcome::NoPath,
+            None => PlannerOutcome::NoPath(NoPathReason::BudgetSpent(self.last_budget)),
         }
     }
 
@@ -716,6 +756,7 @@ impl PointToPointPlanner for LazyPrmStar {
             ("astar_searches".to_string(), c.searches),
             ("astar_repairs".to_string(), c.repairs),
             ("cut_off_queries".to_string(), c.cut_off_queries),
+            ("proved_no_path".to_string(), c.proved_no_path),
             ("astar_expansions".to_string(), self.astar.expansions),
         ]);
         counters.extend(self.load_counters());
@@ -881,15 +922,33 @@ mod tests {
     }
 
     #[test]
+    fn a_spent_time_budget_is_named_as_such() {
+        let mut p = ring_planner(true);
+        p.params.max_samples = u64::MAX;
+        p.params.time_limit = Some(0.05);
+        let outcome = p.plan(&Pose2::new(1.0, 1.0, 0.0), &Pose2::new(8.0, 8.0, 0.0));
+        assert_eq!(
+            outcome.unwrap(),
+            PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Time))
+        );
+    }
+
+    #[test]
     fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
         let pocket = Pose2::new(8.0, 8.0, 0.0);
         let mut p = ring_planner(false);
         let first = p.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
-        assert!(matches!(first, PlannerOutcome::NoPath));
+        assert_eq!(
+            first,
+            PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Samples))
+        );
         let spent = p.stats().counters["samples"];
         assert!(spent >= 1_000, "the whole budget: {spent}");
         let second = p.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
-        assert!(matches!(second, PlannerOutcome::NoPath));
+        assert_eq!(
+            second,
+            PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::EarlierQuery))
+        );
         assert_eq!(
             p.stats().counters["samples"],
             spent,

@@ -38,8 +38,8 @@ pub use search::{Route, TangentGraph, Visit};
 use geometry::{Pt, EPS};
 use serde::{Deserialize, Serialize};
 use smug_core::{
-    BuildContext, DiscOnGrid, Error, GridGeometry, Objective, Path, PlannerOutcome, PlannerStats,
-    PointToPointPlanner, Pose2, Result, StateValidityChecker, TimeBreakdown,
+    BuildContext, DiscOnGrid, Error, GridGeometry, NoPathReason, Objective, Path, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Proof, Result, StateValidityChecker, TimeBreakdown,
 };
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -53,6 +53,10 @@ pub struct VisibilityParams {
     /// preprocessing) instead of corner by corner as queries reach them.
     pub build_all: bool,
 }
+
+/// A goal the exact search did not reach: it covered everything the start reaches.
+const PROVED_NONE: PlannerOutcome =
+    PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected));
 
 /// Margin added to the robot's radius for the circles, grid units.
 const RADIUS_MARGIN: f64 = 1e-7;
@@ -172,8 +176,15 @@ impl Visibility {
             let pieces = (span.abs() / step_max).ceil().max(1.0) as usize;
             let step = span / pieces as f64;
             let out = r / (step / 2.0).cos();
-            for k in 0..pieces {
-                points.push(corner.point(out, v.rel_in + (k as f64 + 0.5) * step));
+            // The piece vertices by rotating one unit vector (a sine and a cosine per
+            // arc, not per piece).
+            let first = corner.q0 + v.rel_in + 0.5 * step;
+            let (mut sin, mut cos) = first.sin_cos();
+            let (ds, dc) = step.sin_cos();
+            points.reserve(pieces + 1);
+            for _ in 0..pieces {
+                points.push([corner.at[0] + out * cos, corner.at[1] + out * sin]);
+                (cos, sin) = (cos * dc - sin * ds, sin * dc + cos * ds);
             }
         }
         points.push(corner.point(r, v.rel_out));
@@ -228,7 +239,7 @@ impl Visibility {
 impl PointToPointPlanner for Visibility {
     fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
         let mut outcomes = self.plan_many(start, std::slice::from_ref(goal))?;
-        Ok(outcomes.pop().unwrap_or(PlannerOutcome::NoPath))
+        Ok(outcomes.pop().unwrap_or(PROVED_NONE))
     }
 
     fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
@@ -263,7 +274,7 @@ impl PointToPointPlanner for Visibility {
             outcomes.push(match index[k] {
                 None => PlannerOutcome::InvalidGoal,
                 Some(i) => match &routes[i] {
-                    None => PlannerOutcome::NoPath,
+                    None => PROVED_NONE,
                     Some(route) => {
                         self.last_optimum[k] = Some(route.length * res);
                         PlannerOutcome::Exact(self.path_of(start, goal, route))
@@ -294,6 +305,7 @@ impl PointToPointPlanner for Visibility {
                 ("corners_built".to_string(), c.corners_built),
                 ("segment_checks".to_string(), c.segment_checks),
                 ("expansions".to_string(), c.expansions),
+                ("pruned_tangents".to_string(), c.pruned),
                 ("radius_millicells".to_string(), (self.radius * 1e3) as u64),
             ]),
         }

@@ -10,6 +10,8 @@
 //! arrival's lane) to the first departure at or after the arrival point. Arcs stay in
 //! the corner's quarter circle, where the inflated obstacle's boundary is that circle.
 
+mod build;
+
 use super::geometry::{circle_tangents, dist, point_tangents, Grid, Lane, Pt};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
@@ -59,20 +61,61 @@ impl Lanes {
     }
 }
 
-/// Where a path to a node or goal came from.
+/// Where a path to a node or goal came from: the start or a node.
 #[derive(Clone, Copy, Debug)]
 enum Src {
     Start,
     Node(u32),
 }
 
-/// How a node was reached.
+/// How a node was reached, packed in a `u32`: [`VIA_CHAIN`] along the arc from the
+/// previous departure of the same lane (node `id − 1`); `START | k` along the start's
+/// `k`-th segment, then the arc; else along the segment of that node, then the arc.
+type Via = u32;
+
+/// See [`Via`].
+const VIA_CHAIN: Via = u32::MAX;
+
+/// See [`Via`].
+const VIA_START: Via = 1 << 31;
+
+/// Angles within this (radians) of an arrival count as at it.
+const REL_TOL: f64 = 1e-12;
+
+/// Greatest common divisor.
+fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
+}
+
+/// A node's successor not computed yet (see `TangentGraph::successor`).
+const SUCC_UNSET: u32 = u32::MAX - 1;
+
+/// A node without a successor along its segment.
+const SUCC_NONE: u32 = u32::MAX;
+
+/// What the search reads and writes of a node, in one cache line: its edges (the
+/// arc to the lane's next departure, the segment and arc to its successor) and the
+/// current query's state (stale when `query` differs), beside its departure point
+/// (the heuristic's input).
 #[derive(Clone, Copy, Debug)]
-enum Via {
-    /// Along the arc from the previous departure of the same lane.
-    Chain(u32),
-    /// Along a segment from `from`, arriving at angle `rel_in`, then along the arc.
-    Tangent { from: Src, rel_in: f64 },
+#[repr(C, align(64))]
+struct Slot {
+    point: Pt,
+    cost: f64,
+    /// Cost along the arc to the lane's next departure (∞ when there is none).
+    chain_cost: f64,
+    /// Segment plus arc to `succ`.
+    succ_cost: f64,
+    query: u32,
+    via: Via,
+    /// The first departure at or after the segment's arrival, in the arrival's lane,
+    /// whose arc is clear ([`SUCC_NONE`]: none; [`SUCC_UNSET`]: not computed yet).
+    succ: u32,
+    /// The corner the node's segment arrives at.
+    arrive_at: u32,
 }
 
 /// How a goal was reached: directly from the start, or from an arrival at a corner
@@ -81,6 +124,72 @@ enum Via {
 struct GoalVia {
     from: Src,
     exit: Option<(u32, Lane, f64, f64)>,
+}
+
+/// One query's search: the heap, the goals' costs and how they were reached, the exits.
+struct Search {
+    single: bool,
+    target: Pt,
+    /// Heap ids from this one on are goals (`goal_base + k`).
+    goal_base: u32,
+    goal_cost: Vec<f64>,
+    goal_via: Vec<Option<GoalVia>>,
+    heap: BinaryHeap<Entry>,
+    /// The best entry offered since the last pop, held out of the heap: when it comes
+    /// before the heap's top it is the next to expand, without a push and a pop (an
+    /// expansion's successors often are: arcs are short).
+    held: Option<Entry>,
+    exits: HashMap<u32, Vec<Exit>>,
+}
+
+impl Search {
+    /// Offers a node's entry: held if it is the best offered since the last pop.
+    fn offer(&mut self, entry: Entry) {
+        match self.held {
+            Some(held) if held >= entry => self.heap.push(entry),
+            Some(held) => {
+                self.heap.push(held);
+                self.held = Some(entry);
+            }
+            None => self.held = Some(entry),
+        }
+    }
+
+    /// The next entry in A* order (least `f`, then least id).
+    fn next(&mut self) -> Option<Entry> {
+        match self.held.take() {
+            Some(held) if self.heap.peek().is_none_or(|top| held >= *top) => Some(held),
+            Some(held) => {
+                // Swap it with the top: one sift instead of a pop and a push.
+                let mut top = self.heap.peek_mut().expect("a top beats the held entry");
+                Some(std::mem::replace(&mut *top, held))
+            }
+            None => self.heap.pop(),
+        }
+    }
+
+    /// The heuristic: the straight-line distance to the goal of a one-goal query.
+    fn h(&self, p: Pt) -> f64 {
+        if self.single {
+            let (dx, dy) = (p[0] - self.target[0], p[1] - self.target[1]);
+            (dx * dx + dy * dy).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Goal `k` reached at `cost` from `from` (through `exit` at a corner, or straight).
+    fn reach_goal(&mut self, k: usize, cost: f64, from: Src, exit: Option<(u32, Lane, f64, f64)>) {
+        if cost < self.goal_cost[k] {
+            self.goal_cost[k] = cost;
+            self.goal_via[k] = Some(GoalVia { from, exit });
+            self.heap.push(Entry {
+                f: cost,
+                g: cost,
+                id: self.goal_base + k as u32,
+            });
+        }
+    }
 }
 
 /// A segment from a corner's circle straight to a goal.
@@ -123,6 +232,8 @@ pub struct GraphCounts {
     pub segment_checks: u64,
     /// Nodes expanded by searches.
     pub expansions: u64,
+    /// Tangents left out: they pass a corner whose pieces the graph has.
+    pub pruned: u64,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -168,11 +279,13 @@ pub struct TangentGraph {
     node_corner: Vec<u32>,
     stamp_corner: Vec<u32>,
     stamp: u32,
-    // Per-query search state, indexed by node.
+    // Per-query search state.
     query: u32,
-    node_query: Vec<u32>,
-    cost: Vec<f64>,
-    via: Vec<Via>,
+    slot: Vec<Slot>,
+    /// Corners with exits to goals in this query (`exit_query[c] == query`).
+    exit_query: Vec<u32>,
+    /// Arrival angles of the start's segments to corners, this query.
+    start_rel: Vec<f64>,
     /// Counters.
     pub counts: GraphCounts,
 }
@@ -192,127 +305,10 @@ impl TangentGraph {
             stamp_corner: vec![0; n],
             stamp: 0,
             query: 0,
-            node_query: Vec::new(),
-            cost: Vec::new(),
-            via: Vec::new(),
+            slot: Vec::new(),
+            exit_query: vec![0; n],
+            start_rel: Vec::new(),
             counts: GraphCounts::default(),
-        }
-    }
-
-    /// The tangent points `p` on the circles of the corners `q` may see whose segment
-    /// to `q` is clear by `need` (`segment_clear` is symmetric, so this serves segments
-    /// into and out of `q`): `(corner, unit normal at p, angle relative to the corner,
-    /// p)`, in corner and tangent order.
-    fn clear_tangents(&mut self, q: Pt, need: f64) -> Vec<(u32, Pt, f64, Pt)> {
-        let mut tangents = Vec::new();
-        for c in self.visible_corners(q, None) {
-            let corner = self.grid.corners[c as usize];
-            for n in point_tangents(q, corner.at, self.r) {
-                let Some(rel) = corner.relative_angle(n) else {
-                    continue;
-                };
-                let p = [corner.at[0] + self.r * n[0], corner.at[1] + self.r * n[1]];
-                self.counts.segment_checks += 1;
-                if self.grid.segment_clear(q, p, need) {
-                    tangents.push((c, n, rel, p));
-                }
-            }
-        }
-        tangents
-    }
-
-    /// The corners a point may see (a superset of those it sees), without `skip`.
-    fn visible_corners(&mut self, s: Pt, skip: Option<u32>) -> Vec<u32> {
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
-            self.stamp_corner.fill(0);
-            self.stamp = 1;
-        }
-        let mut found = Vec::new();
-        let (grid, stamps, stamp) = (&self.grid, &mut self.stamp_corner, self.stamp);
-        grid.visible_cells(s, |i, j| {
-            for (x, y) in [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)] {
-                if let Some(c) = grid.corner_at(x, y) {
-                    if stamps[c as usize] != stamp && Some(c) != skip {
-                        stamps[c as usize] = stamp;
-                        found.push(c);
-                    }
-                }
-            }
-        });
-        found
-    }
-
-    /// Builds corner `a`'s departures (once).
-    pub fn build_corner(&mut self, a: u32) {
-        if self.lanes[a as usize].is_some() {
-            return;
-        }
-        let ca = self.grid.corners[a as usize];
-        let mut lanes: [Vec<Departure>; 2] = [Vec::new(), Vec::new()];
-        for b in self.visible_corners(ca.at, Some(a)) {
-            let cb = self.grid.corners[b as usize];
-            for (na, nb) in circle_tangents(ca.at, cb.at, self.r) {
-                let (Some(rel_a), Some(rel_b)) = (ca.relative_angle(na), cb.relative_angle(nb))
-                else {
-                    continue;
-                };
-                let pa = [ca.at[0] + self.r * na[0], ca.at[1] + self.r * na[1]];
-                let pb = [cb.at[0] + self.r * nb[0], cb.at[1] + self.r * nb[1]];
-                self.counts.segment_checks += 1;
-                if !self.grid.segment_clear(pa, pb, self.r_check) {
-                    continue;
-                }
-                let t = [pb[0] - pa[0], pb[1] - pa[1]];
-                lanes[Lane::of(na, t).index()].push(Departure {
-                    rel: rel_a,
-                    point: pa,
-                    to: b,
-                    arrive_rel: rel_b,
-                    arrive_lane: Lane::of(nb, t),
-                    len: dist(pa, pb),
-                    to_next: true,
-                });
-            }
-        }
-        lanes[0].sort_by(|x, y| x.rel.total_cmp(&y.rel));
-        lanes[1].sort_by(|x, y| y.rel.total_cmp(&x.rel));
-        for list in &mut lanes {
-            let n = list.len();
-            for k in 0..n {
-                list[k].to_next = k + 1 < n
-                    && (!self.big
-                        || self.grid.arc_clear(
-                            &ca,
-                            self.r,
-                            list[k].rel,
-                            list[k + 1].rel,
-                            self.r_check,
-                        ));
-            }
-        }
-        let entry = Lanes {
-            first: self.nodes.len() as u32,
-            ccw: lanes[0].len() as u32,
-            cw: lanes[1].len() as u32,
-        };
-        let count = lanes[0].len() + lanes[1].len();
-        let [ccw, cw] = lanes;
-        self.nodes.extend(ccw);
-        self.nodes.extend(cw);
-        self.node_corner.extend(std::iter::repeat_n(a, count));
-        self.node_query.resize(self.nodes.len(), 0);
-        self.cost.resize(self.nodes.len(), f64::INFINITY);
-        self.via.resize(self.nodes.len(), Via::Chain(0));
-        self.counts.corners_built += 1;
-        self.counts.departures += count as u64;
-        self.lanes[a as usize] = Some(entry);
-    }
-
-    /// Builds every corner.
-    pub fn build_all(&mut self) {
-        for a in 0..self.grid.corners.len() as u32 {
-            self.build_corner(a);
         }
     }
 
@@ -325,16 +321,20 @@ impl TangentGraph {
     fn first_after(&self, c: u32, lane: Lane, rel: f64) -> Option<(u32, f64)> {
         let range = self.lanes(c).range(lane);
         let list = &self.nodes[range.clone()];
+        // A departure within rounding before the arrival counts as at it: through a
+        // corner touched on the way (see `touches_corner_between`) the arrival and the
+        // departure are the same point, computed from different vectors.
         let k = match lane {
-            Lane::Ccw => list.partition_point(|d| d.rel < rel),
-            Lane::Cw => list.partition_point(|d| d.rel > rel),
+            Lane::Ccw => list.partition_point(|d| d.rel < rel - REL_TOL),
+            Lane::Cw => list.partition_point(|d| d.rel > rel + REL_TOL),
         };
         list.get(k).map(|d| ((range.start + k) as u32, d.rel))
     }
 
     fn node_cost(&self, id: u32) -> f64 {
-        if self.node_query[id as usize] == self.query {
-            self.cost[id as usize]
+        let slot = &self.slot[id as usize];
+        if slot.query == self.query {
+            slot.cost
         } else {
             f64::INFINITY
         }
@@ -348,16 +348,20 @@ impl TangentGraph {
     pub fn shortest(&mut self, s: Pt, clear_s: f64, goals: &[(Pt, f64)]) -> Vec<Option<Route>> {
         self.query = self.query.wrapping_add(1);
         if self.query == 0 {
-            self.node_query.fill(0);
+            for slot in &mut self.slot {
+                slot.query = 0;
+            }
+            self.exit_query.fill(0);
             self.query = 1;
         }
         let single = goals.len() == 1;
-        let h = |p: Pt| if single { dist(p, goals[0].0) } else { 0.0 };
+        let target = goals[0].0;
         // Exits: segments from corners straight to each goal.
         let mut exits: HashMap<u32, Vec<Exit>> = HashMap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
             for (c, n, rel, p) in self.clear_tangents(g, self.r_check.min(clear_g)) {
                 let t = [g[0] - p[0], g[1] - p[1]];
+                self.exit_query[c as usize] = self.query;
                 exits.entry(c).or_default().push(Exit {
                     goal: k,
                     lane: Lane::of(n, t),
@@ -366,58 +370,49 @@ impl TangentGraph {
                 });
             }
         }
-        let goal_base = u32::MAX - goals.len() as u32;
-        let mut goal_cost = vec![f64::INFINITY; goals.len()];
-        let mut goal_via: Vec<Option<GoalVia>> = vec![None; goals.len()];
+        let mut search = Search {
+            single,
+            target,
+            goal_base: u32::MAX - goals.len() as u32,
+            goal_cost: vec![f64::INFINITY; goals.len()],
+            goal_via: vec![None; goals.len()],
+            heap: BinaryHeap::new(),
+            held: None,
+            exits,
+        };
         let mut goal_done = vec![false; goals.len()];
-        let mut heap = BinaryHeap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
             self.counts.segment_checks += 1;
             if self
                 .grid
                 .segment_clear(s, g, self.r_check.min(clear_s).min(clear_g))
             {
-                goal_cost[k] = dist(s, g);
-                goal_via[k] = Some(GoalVia {
-                    from: Src::Start,
-                    exit: None,
-                });
-                heap.push(Entry {
-                    f: goal_cost[k],
-                    g: goal_cost[k],
-                    id: goal_base + k as u32,
-                });
+                search.reach_goal(k, dist(s, g), Src::Start, None);
             }
         }
         // Segments from the start to the corners it sees.
+        self.start_rel.clear();
         for (c, n, rel, p) in self.clear_tangents(s, self.r_check.min(clear_s)) {
             let t = [p[0] - s[0], p[1] - s[1]];
-            let arrival = (c, Lane::of(n, t), rel);
+            let k = self.start_rel.len() as u32;
+            self.start_rel.push(rel);
+            self.build_corner(c);
+            let lane = Lane::of(n, t);
             let g0 = dist(s, p);
-            self.arrive(
-                arrival,
-                g0,
-                Src::Start,
-                &exits,
-                &h,
-                &mut heap,
-                |k, cost, via| {
-                    if cost < goal_cost[k] {
-                        goal_cost[k] = cost;
-                        goal_via[k] = Some(via);
-                        true
-                    } else {
-                        false
-                    }
-                },
-                goal_base,
-            );
+            let corner = self.grid.corners[c as usize];
+            if let Some((id, to)) = self.first_after(c, lane, rel).filter(|&(_, to)| {
+                !self.big || self.grid.arc_clear(&corner, self.r, rel, to, self.r_check)
+            }) {
+                let cost = g0 + self.r * (to - rel).abs();
+                self.relax(id, cost, VIA_START | k, &mut search);
+            }
+            self.exits_at(c, lane, rel, g0, Src::Start, &mut search);
         }
         let mut left = goals.len();
-        while let Some(Entry { g, id, .. }) = heap.pop() {
-            if id >= goal_base {
-                let k = (id - goal_base) as usize;
-                if !goal_done[k] && g <= goal_cost[k] {
+        while let Some(Entry { g, id, .. }) = search.next() {
+            if id >= search.goal_base {
+                let k = (id - search.goal_base) as usize;
+                if !goal_done[k] && g <= search.goal_cost[k] {
                     goal_done[k] = true;
                     left -= 1;
                     if left == 0 {
@@ -426,118 +421,105 @@ impl TangentGraph {
                 }
                 continue;
             }
+            let i = id as usize;
             if g > self.node_cost(id) {
                 continue;
             }
             self.counts.expansions += 1;
-            let dep = self.nodes[id as usize];
             // Along the arc to the next departure of the lane.
-            if dep.to_next {
-                let rel = self.nodes[id as usize + 1].rel;
-                let cost = g + self.r * (rel - dep.rel).abs();
-                self.relax(id + 1, cost, Via::Chain(id), &h, &mut heap);
+            let edges = self.slot[i];
+            if edges.chain_cost < f64::INFINITY {
+                self.relax(id + 1, g + edges.chain_cost, VIA_CHAIN, &mut search);
             }
-            // Along the segment, then the arc at the corner it arrives at.
-            self.arrive(
-                (dep.to, dep.arrive_lane, dep.arrive_rel),
-                g + dep.len,
-                Src::Node(id),
-                &exits,
-                &h,
-                &mut heap,
-                |k, cost, via| {
-                    if cost < goal_cost[k] {
-                        goal_cost[k] = cost;
-                        goal_via[k] = Some(via);
-                        true
-                    } else {
-                        false
-                    }
-                },
-                goal_base,
-            );
+            // Along the segment, then the arc at the corner it arrives at: to the
+            // first departure at or after the arrival, and to every exit after it.
+            let next = match edges.succ {
+                SUCC_UNSET => self.successor(id),
+                next => next,
+            };
+            if next != SUCC_NONE {
+                self.relax(next, g + self.slot[i].succ_cost, id, &mut search);
+            }
+            let c = edges.arrive_at;
+            if self.exit_query[c as usize] == self.query {
+                let dep = self.nodes[i];
+                self.exits_at(
+                    c,
+                    dep.arrive_lane,
+                    dep.arrive_rel,
+                    g + dep.len,
+                    Src::Node(id),
+                    &mut search,
+                );
+            }
         }
         (0..goals.len())
             .map(|k| {
                 goal_done[k].then(|| Route {
-                    length: goal_cost[k],
-                    visits: self.visits(goal_via[k].expect("reached goal has a via")),
+                    length: search.goal_cost[k],
+                    visits: self.visits(search.goal_via[k].expect("reached goal has a via")),
                 })
             })
             .collect()
     }
 
-    fn relax(
-        &mut self,
-        id: u32,
-        cost: f64,
-        via: Via,
-        h: &impl Fn(Pt) -> f64,
-        heap: &mut BinaryHeap<Entry>,
-    ) {
-        if cost < self.node_cost(id) {
-            let i = id as usize;
-            self.node_query[i] = self.query;
-            self.cost[i] = cost;
-            self.via[i] = via;
-            let point = self.nodes[i].point;
-            heap.push(Entry {
-                f: cost + h(point),
-                g: cost,
-                id,
-            });
+    fn relax(&mut self, id: u32, cost: f64, via: Via, search: &mut Search) {
+        let i = id as usize;
+        let query = self.query;
+        let slot = &mut self.slot[i];
+        if slot.query != query || cost < slot.cost {
+            slot.cost = cost;
+            slot.query = query;
+            slot.via = via;
+            let f = cost + search.h(slot.point);
+            search.offer(Entry { f, g: cost, id });
         }
     }
 
-    /// Arrives at corner `c` in `lane` at angle `rel_in` with cost `g0`: continues to
-    /// the lane's first departure at or after it, and to every exit at or after it.
-    #[allow(clippy::too_many_arguments)]
-    fn arrive(
+    /// Arrives at corner `c` in `lane` at angle `rel_in` with cost `g0`: on to every
+    /// exit to a goal at or after it.
+    fn exits_at(
         &mut self,
-        (c, lane, rel_in): (u32, Lane, f64),
+        c: u32,
+        lane: Lane,
+        rel_in: f64,
         g0: f64,
         from: Src,
-        exits: &HashMap<u32, Vec<Exit>>,
-        h: &impl Fn(Pt) -> f64,
-        heap: &mut BinaryHeap<Entry>,
-        mut reach_goal: impl FnMut(usize, f64, GoalVia) -> bool,
-        goal_base: u32,
+        search: &mut Search,
     ) {
-        self.build_corner(c);
-        let corner = self.grid.corners[c as usize];
-        let arc_clear = |graph: &Self, to: f64| {
-            !graph.big
-                || graph
-                    .grid
-                    .arc_clear(&corner, graph.r, rel_in, to, graph.r_check)
+        let Some(list) = search.exits.get(&c) else {
+            return;
         };
-        if let Some((id, rel)) = self
-            .first_after(c, lane, rel_in)
-            .filter(|&(_, rel)| arc_clear(self, rel))
-        {
-            let cost = g0 + self.r * (rel - rel_in).abs();
-            self.relax(id, cost, Via::Tangent { from, rel_in }, h, heap);
-        }
-        for e in exits.get(&c).into_iter().flatten() {
+        let corner = self.grid.corners[c as usize];
+        let mut reached = Vec::new();
+        for e in list {
             let ahead = match lane {
                 Lane::Ccw => e.rel >= rel_in,
                 Lane::Cw => e.rel <= rel_in,
             };
-            if e.lane != lane || !ahead || !arc_clear(self, e.rel) {
+            if e.lane != lane
+                || !ahead
+                || (self.big
+                    && !self
+                        .grid
+                        .arc_clear(&corner, self.r, rel_in, e.rel, self.r_check))
+            {
                 continue;
             }
             let cost = g0 + self.r * (e.rel - rel_in).abs() + e.len;
-            let via = GoalVia {
-                from,
-                exit: Some((c, lane, rel_in, e.rel)),
-            };
-            if reach_goal(e.goal, cost, via) {
-                heap.push(Entry {
-                    f: cost,
-                    g: cost,
-                    id: goal_base + e.goal as u32,
-                });
-            }
+            reached.push((e.goal, cost, (c, lane, rel_in, e.rel)));
+        }
+        for (goal, cost, exit) in reached {
+            search.reach_goal(goal, cost, from, Some(exit));
+        }
+    }
+
+    /// The arrival angle of a tangent from `from` (a node's segment, or the start's).
+    fn rel_in(&self, via: Via) -> f64 {
+        if via & VIA_START != 0 {
+            self.start_rel[(via & !VIA_START) as usize]
+        } else {
+            self.nodes[via as usize].arrive_rel
         }
     }
 
@@ -556,16 +538,20 @@ impl TangentGraph {
         while let Src::Node(id) = cur {
             let rel = self.nodes[id as usize].rel;
             let out_rel = *pending.get_or_insert(rel);
-            match self.via[id as usize] {
-                Via::Chain(prev) => cur = Src::Node(prev),
-                Via::Tangent { from, rel_in } => {
+            match self.slot[id as usize].via {
+                VIA_CHAIN => cur = Src::Node(id - 1),
+                from => {
                     out.push(Visit {
                         corner: self.node_corner[id as usize],
-                        rel_in,
+                        rel_in: self.rel_in(from),
                         rel_out: out_rel,
                     });
                     pending = None;
-                    cur = from;
+                    cur = if from & VIA_START != 0 {
+                        Src::Start
+                    } else {
+                        Src::Node(from)
+                    };
                 }
             }
         }

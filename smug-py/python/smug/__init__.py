@@ -323,8 +323,11 @@ def p2p(
     ``queries``: ``(n, 6)`` rows ``sx, sy, syaw, gx, gy, gyaw``; ``config``: the pipeline
     (default: the CLI's ``configs/p2p-grid.toml``, a disc robot on an occupancy grid);
     ``world`` or ``map`` (a map_server YAML): where to plan (default: the config's world).
-    Returns ``{"queries": [{"status", "cost", "time_s", "vertices", "waypoints"}],
-    "total_time_s", "planner"}``, the JSON ``smug p2p --out`` writes.
+    Returns ``{"queries": [{"status", "no_path", "why", "cost", "time_s", "vertices",
+    "waypoints"}], "total_time_s", "planner"}``, the JSON ``smug p2p --out`` writes;
+    ``no_path`` is ``"proved"`` (no path exists) or ``"budget_spent"`` (one may exist)
+    for a ``no_path`` status, else ``None``, and ``why`` its cause (``"disconnected"``,
+    ``"samples"``, ``"time"``, …).
     """
     array = np.asarray(queries, dtype=np.float64)
     if array.ndim == 1 and array.size == 6:
