@@ -5,6 +5,7 @@ use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotC
 use crate::error::{Error, Result};
 use crate::mission::Mission;
 use crate::objective::{Objective, PathLength};
+use crate::oracle::KnownAnswers;
 use crate::pose::Pose2;
 use crate::registry::{
     Built, MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
@@ -249,6 +250,11 @@ pub struct Pipeline {
     pub resolved: Vec<ResolvedStage>,
     /// Build time per stage, seconds.
     pub build_times_s: BTreeMap<String, f64>,
+    /// Paths kept from earlier missions on this pipeline (`None`: none kept, the
+    /// default). When set, [`plan_mission`](crate::plan_mission) serves the pose pairs
+    /// found here without planning and adds every exact path it planned (what a
+    /// [`MissionSession`](crate::mission::MissionSession) remembers between replans).
+    pub answers: Option<KnownAnswers>,
     context: BuildContext,
 }
 
@@ -297,6 +303,7 @@ impl Pipeline {
             selector: None,
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
+            answers: None,
             context: ctx.clone(),
         };
         if config.cost.is_some() {
@@ -414,6 +421,18 @@ impl Pipeline {
         Ok(built.object)
     }
 
+    /// Builds a stage again (already resolved once), timed.
+    fn rebuild_stage<S: Stage>(
+        &mut self,
+        ctx: &BuildContext,
+        section: &PluginSection,
+    ) -> Result<Box<S::Object>> {
+        let started = Instant::now();
+        let built = ctx.build::<S>(section)?;
+        self.add_time(&section.key, started);
+        Ok(built.object)
+    }
+
     fn add_time(&mut self, key: &str, started: Instant) {
         *self.build_times_s.entry(key.to_string()).or_default() += started.elapsed().as_secs_f64();
     }
@@ -421,6 +440,38 @@ impl Pipeline {
     /// The context the stages were built with (to build more, e.g. a fresh planner).
     pub fn context(&self) -> &BuildContext {
         &self.context
+    }
+
+    /// Puts `world` (this pipeline's world with obstacles added) in place of the world
+    /// and rebuilds the stages that read it, through the config's plugins: the
+    /// objective (when configured), the validity checker and the motion validator, each
+    /// timed in [`build_times_s`](Self::build_times_s). The planner, sequencer and
+    /// selector are kept: the caller tells the planner
+    /// ([`PointToPointPlanner::update_world`] with [`context`](Self::context)).
+    pub fn rebuild_on_world(&mut self, world: Arc<World>) -> Result<()> {
+        let config = self.config.clone();
+        let mut ctx = self.context.clone().with_world(world.clone());
+        if let Some(section) = &config.objective {
+            let objective: Arc<dyn Objective> =
+                self.rebuild_stage::<ObjectiveStage>(&ctx, section)?.into();
+            ctx = ctx.with_objective(objective.clone());
+            self.objective = objective;
+        }
+        if let Some(section) = &config.validity {
+            let checker: Arc<dyn StateValidityChecker> =
+                self.rebuild_stage::<ValidityStage>(&ctx, section)?.into();
+            ctx = ctx.with_state_validity(checker.clone());
+            self.state_validity = Some(checker);
+        }
+        if let Some(section) = &config.motion {
+            let validator: Arc<dyn MotionValidator> =
+                self.rebuild_stage::<MotionStage>(&ctx, section)?.into();
+            ctx = ctx.with_motion_validator(validator.clone());
+            self.motion_validator = Some(validator);
+        }
+        self.world = Some(world);
+        self.context = ctx;
+        Ok(())
     }
 
     /// The resolved pipeline as TOML: seed, robot, every stage with its parameters.

@@ -7,6 +7,7 @@ mod obstacles;
 mod replan;
 mod run;
 mod sequential;
+mod session;
 mod state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
@@ -14,6 +15,7 @@ pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,
 };
+pub use session::{MissionSession, WorldUpdate};
 pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
 pub use state::{MissionState, StateError};
 

@@ -12,7 +12,9 @@ mod validity;
 
 pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
-pub use planner::{NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner};
+pub use planner::{
+    refuse_world_update, NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner,
+};
 pub use roadmap_file::{
     read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
     PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
@@ -20,5 +22,5 @@ pub use roadmap_file::{
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
-pub use traversability::TraversabilityEstimator;
+pub use traversability::{CellRect, TraversabilityEstimator};
 pub use validity::{Counters, DiscOnGrid, StateValidityChecker};

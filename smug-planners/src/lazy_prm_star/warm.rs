@@ -4,7 +4,7 @@
 use super::LazyPrmStar;
 use crate::roadmap::Validity;
 use smug_core::{
-    ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
+    BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
     RoadmapSnapshot, SavedAnswer, StateSpace,
 };
 use std::collections::{BTreeMap, HashMap};
@@ -120,6 +120,35 @@ impl LazyPrmStar {
             edges: snapshot.edges.len() as u64,
             ..LoadCounts::default()
         };
+        self.invalidate(changed, &mut counts);
+        for answer in snapshot.answers {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
+                counts.answers_dropped += 1;
+                continue;
+            }
+            counts.answers_reused += 1;
+            let path = Path {
+                states,
+                cost: f64::from_bits(answer.cost),
+            };
+            self.warm
+                .given
+                .insert((answer.start, answer.goal), answer.clone());
+            self.warm.reusable.insert((answer.start, answer.goal), path);
+        }
+        self.grown = true;
+        self.fresh_from = self.roadmap.vertex_count() as u32;
+        self.warm.loaded = Some(counts);
+        Ok(())
+    }
+
+    /// Checks again the vertices in `changed` (kept if valid, dropped if not) and marks
+    /// the valid edges whose motion may pass there unchecked.
+    fn invalidate(&mut self, changed: &[ChangedDisc], counts: &mut LoadCounts) {
+        if changed.is_empty() {
+            return;
+        }
         for v in 0..self.roadmap.vertex_count() as u32 {
             let pose = *self.roadmap.pose(v);
             if self.roadmap.vertex_validity(v) == Validity::Invalid
@@ -147,13 +176,37 @@ impl LazyPrmStar {
             }
         }
         self.roadmap.refresh_components();
-        for answer in snapshot.answers {
-            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
-            let touched = states
+    }
+
+    /// True when no state of `states` lies in `changed` and no motion between them may
+    /// pass there (an empty path counts as touched).
+    fn untouched(&self, states: &[Pose2], changed: &[ChangedDisc]) -> bool {
+        !states.is_empty()
+            && !states
                 .windows(2)
                 .any(|w| touches(self.space.as_ref(), changed, &w[0], &w[1]))
-                || states.iter().any(|s| changed.iter().any(|d| d.contains(s)));
-            if touched || answer.goal_distance.is_some() || states.is_empty() {
+            && !states.iter().any(|s| changed.iter().any(|d| d.contains(s)))
+    }
+
+    /// Carries on with the stages of `ctx` (rebuilt for a world with obstacles added in
+    /// `changed`): checks again what reaches into `changed`, and keeps every answer given
+    /// so far that no change touches for serving again (the sampler is kept: its
+    /// stream goes on).
+    pub(super) fn carry_on(
+        &mut self,
+        ctx: &BuildContext,
+        changed: &[ChangedDisc],
+    ) -> Result<()> {
+        self.states = ctx.state_validity()?;
+        self.motions = ctx.motion_validator()?;
+        self.objective = ctx.objective();
+        let mut counts = self.warm.loaded.unwrap_or_default();
+        self.invalidate(changed, &mut counts);
+        let given = std::mem::take(&mut self.warm.given);
+        self.warm.reusable.clear();
+        for (key, answer) in given {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
                 counts.answers_dropped += 1;
                 continue;
             }
@@ -162,12 +215,9 @@ impl LazyPrmStar {
                 states,
                 cost: f64::from_bits(answer.cost),
             };
-            self.warm
-                .given
-                .insert((answer.start, answer.goal), answer.clone());
-            self.warm.reusable.insert((answer.start, answer.goal), path);
+            self.warm.reusable.insert(key, path);
+            self.warm.given.insert(key, answer);
         }
-        self.grown = true;
         self.fresh_from = self.roadmap.vertex_count() as u32;
         self.warm.loaded = Some(counts);
         Ok(())
