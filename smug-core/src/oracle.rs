@@ -461,6 +461,61 @@ mod tests {
         assert_eq!(o.stats().paths_planned, 2);
     }
 
+    /// Every motion valid except those ending right of x = 5.
+    struct LeftOfFive;
+
+    impl MotionValidator for LeftOfFive {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            a.x <= 5.0 && b.x <= 5.0
+        }
+
+        fn check_motion(&self, _: &Pose2, _: &Pose2) -> crate::stages::MotionCheck {
+            unreachable!("not used")
+        }
+    }
+
+    #[test]
+    fn known_answers_are_served_without_planning_and_rechecked_near_changes() {
+        let mut first = oracle();
+        first.cost(0, 1).unwrap();
+        first.cost(0, 2).unwrap();
+        let mut known = first.known_answers();
+        // 0 → 1 both ways; 0 → 2 has no path: not kept.
+        assert_eq!(known.len(), 2);
+        let mut again = oracle().with_known(known.clone());
+        let (a, b) = (*again.pose(0), *again.pose(1));
+        // Registered at other indices: found by the poses.
+        let j = again.add_pose(b);
+        let i = again.add_pose(a);
+        assert!(again.is_planned(i, j));
+        assert_eq!(again.planned_cost(i, j), Some(first.planned_cost(0, 1).unwrap()));
+        assert_eq!(again.cost(j, i).unwrap(), first.planned_cost(1, 0).unwrap());
+        assert_eq!(again.stats().paths_planned, 0);
+        assert_eq!(again.stats().known_hits, 1);
+        // A change far away keeps them; one on the way checks them again.
+        let space = crate::space::Se2Space::default();
+        let far = ChangedDisc {
+            center: [-20.0, -20.0],
+            radius: 1.0,
+        };
+        assert_eq!(known.recheck_touched(&space, &[far], &LeftOfFive), (0, 0));
+        let near = ChangedDisc {
+            center: [1.5, 2.0],
+            radius: 0.5,
+        };
+        assert_eq!(known.recheck_touched(&space, &[near], &LeftOfFive), (2, 0));
+        let mut moved = KnownAnswers::default();
+        let far_right = Pose2::new(6.0, 4.0, 0.0);
+        let path = Path::new(vec![a, far_right], &PathLength::default());
+        let planned = Arc::new(PlannedPath {
+            cost: path.cost,
+            outcome: PlannerOutcome::Exact(path),
+        });
+        moved.insert(&a, &far_right, planned);
+        assert_eq!(moved.recheck_touched(&space, &[near], &LeftOfFive), (1, 1));
+        assert!(moved.is_empty());
+    }
+
     #[test]
     fn asymmetric_oracle_plans_both_directions() {
         let mut o = oracle().with_symmetry(false);

@@ -243,6 +243,77 @@ mod tests {
         assert!(*esdf.at([5.1, 5.1, 0.7]).unwrap() < 0.0);
     }
 
+    /// The whole-grid loops the local updates replace.
+    fn global_update(world: &mut World, obstacle: &DiscObstacle, top: f64) {
+        let occupancy = world.occupancy.as_mut().unwrap();
+        let g = occupancy.geometry;
+        let esdf = world.esdf.as_mut().unwrap();
+        for k in 0..g.size[2] {
+            for j in 0..g.size[1] {
+                for i in 0..g.size[0] {
+                    let [x, y, z] = g.center_of([i, j, k]);
+                    if z <= top && obstacle.contains(x, y) {
+                        occupancy.set([i, j, k], true);
+                    }
+                    let d = column_distance([x, y, z], obstacle, top) as f32;
+                    if d < *esdf.get([i, j, k]) {
+                        esdf.set([i, j, k], d);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn local_volume_updates_equal_the_whole_grid_loops() {
+        let mut world = flat_world();
+        // A distance field with structure: distances to a wall at x = 0, capped.
+        let esdf = world.esdf.as_mut().unwrap();
+        let g = esdf.geometry;
+        for k in 0..g.size[2] {
+            for j in 0..g.size[1] {
+                for i in 0..g.size[0] {
+                    let [x, _, z] = g.center_of([i, j, k]);
+                    esdf.set([i, j, k], (x.min(z + 1.0)).min(2.5) as f32);
+                }
+            }
+        }
+        let mut naive = world.clone();
+        for (n, (cx, cy, r, h)) in [
+            (5.0, 5.0, 1.0, 1.5),
+            (0.2, 9.7, 0.7, 0.5),
+            (9.9, 0.1, 2.5, 3.0),
+            (3.3, 6.1, 0.26, 0.8),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let obstacle = DiscObstacle {
+                center: [cx, cy],
+                radius: r,
+                height: h,
+            };
+            add_obstacles(&mut world, &[obstacle]);
+            for [i, j] in obstacle.cells(&naive.elevation.geometry) {
+                let z = naive.elevation.get(i, j) + h as f32;
+                naive.elevation.set(i, j, z);
+            }
+            let top = obstacle
+                .cells(&naive.elevation.geometry)
+                .iter()
+                .map(|&[i, j]| naive.elevation.get(i, j) as f64)
+                .fold(f64::NEG_INFINITY, f64::max);
+            global_update(&mut naive, &obstacle, top);
+            mask_layer(naive.traversability.as_mut().unwrap(), &[obstacle]);
+            assert_eq!(world.occupancy, naive.occupancy, "obstacle {n}");
+            let bits = |w: &World| {
+                let e = w.esdf.as_ref().unwrap();
+                e.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            };
+            assert_eq!(bits(&world), bits(&naive), "obstacle {n}");
+        }
+    }
+
     #[test]
     fn a_disc_off_the_map_changes_nothing() {
         let mut world = flat_world();

@@ -4,10 +4,11 @@
 use super::LazyPrmStar;
 use crate::roadmap::Validity;
 use smug_core::{
-    BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
+    Bounds2, BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
     RoadmapSnapshot, SavedAnswer, StateSpace,
 };
 use std::collections::{BTreeMap, HashMap};
+use std::time::Instant;
 
 /// The planner's name in saved snapshots.
 pub(super) const PLANNER_NAME: &str = "lazy-prm-star";
@@ -178,6 +179,42 @@ impl LazyPrmStar {
         self.roadmap.refresh_components();
     }
 
+    /// Draws `n` samples (spread over the discs) into the squares around `changed`
+    /// (within the bounds), so that the roadmap keeps its density where the vertices
+    /// the obstacles took were: the ways around them are in the roadmap.
+    fn resample(&mut self, changed: &[ChangedDisc], n: u64) {
+        let finite: Vec<&ChangedDisc> = changed.iter().filter(|d| d.radius.is_finite()).collect();
+        if finite.is_empty() || n == 0 {
+            return;
+        }
+        let per_disc = n.div_ceil(finite.len() as u64);
+        for disc in finite {
+            let [x, y] = disc.center;
+            let square = Bounds2 {
+                min: [
+                    (x - disc.radius).max(self.bounds.min[0]),
+                    (y - disc.radius).max(self.bounds.min[1]),
+                ],
+                max: [
+                    (x + disc.radius).min(self.bounds.max[0]),
+                    (y + disc.radius).min(self.bounds.max[1]),
+                ],
+            };
+            if square.min[0] > square.max[0] || square.min[1] > square.max[1] {
+                continue;
+            }
+            for _ in 0..per_disc {
+                let started = Instant::now();
+                let sample = self.sampler.sample(&square, None);
+                self.counts.samples += 1;
+                self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+                if let Some(sample) = sample {
+                    self.insert_sample(sample);
+                }
+            }
+        }
+    }
+
     /// True when no state of `states` lies in `changed` and no motion between them may
     /// pass there (an empty path counts as touched).
     fn untouched(&self, states: &[Pose2], changed: &[ChangedDisc]) -> bool {
@@ -201,7 +238,9 @@ impl LazyPrmStar {
         self.motions = ctx.motion_validator()?;
         self.objective = ctx.objective();
         let mut counts = self.warm.loaded.unwrap_or_default();
+        let dropped_before = counts.vertices_dropped;
         self.invalidate(changed, &mut counts);
+        self.resample(changed, 2 * (counts.vertices_dropped - dropped_before));
         let given = std::mem::take(&mut self.warm.given);
         self.warm.reusable.clear();
         for (key, answer) in given {
