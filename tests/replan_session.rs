@@ -151,12 +151,14 @@ fn lunar_obstacles(plan: &Plan, seed: u64) -> Vec<DiscObstacle> {
 
 /// The world updated locally, in one step and in two, is the world built from scratch
 /// for the state, with the same checker verdicts; on lunar with the paper's fastest
-/// thresholds (distance field never derived) and with `t_high = 0.8` (derived).
+/// thresholds (distance field never derived), with `t_high = 0.8` and with full
+/// collision checking (derived, then updated in place).
 #[test]
 fn local_world_updates_equal_the_world_built_from_scratch() {
     for (name, set) in [
         ("lunar.toml", vec![]),
         ("lunar.toml", vec!["validity.params.t_high=0.8"]),
+        ("lunar-full-collision.toml", vec![]),
         ("lunar-wheeled.toml", vec![]),
     ] {
         let loaded = config(name, &set);

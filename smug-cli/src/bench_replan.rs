@@ -170,12 +170,7 @@ fn measure(
             (Err(e), _) | (_, Err(e)) => (f64::NAN, 0, f64::NAN, Some(e.to_string())),
         };
         let (session_cost, session_paths_planned, error) = match in_memory {
-            Ok(p) => {
-                if std::env::var_os("SMUG_DEBUG_SESSION").is_some() {
-                    eprintln!("{event}: {:?} {:?}", p.stats.stage_times_s, p.stats.counters);
-                }
-                (p.cost, p.stats.paths_planned, error)
-            }
+            Ok(p) => (p.cost, p.stats.paths_planned, error),
             Err(e) => (f64::NAN, 0, error.or(Some(format!("in memory: {e}")))),
         };
         runs.push(Run {

@@ -3,7 +3,7 @@
 
 use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
 use crate::error::{Error, Result};
-use crate::mission::Mission;
+use crate::mission::{DiscObstacle, Mission};
 use crate::objective::{Objective, PathLength};
 use crate::oracle::KnownAnswers;
 use crate::pose::Pose2;
@@ -62,7 +62,21 @@ pub struct BuildContext {
     state_validity: Option<Arc<dyn StateValidityChecker>>,
     motion_validator: Option<Arc<dyn MotionValidator>>,
     sampler: Option<PluginSection>,
+    world_change: Option<Arc<WorldChange>>,
     building: String,
+}
+
+/// How the context's world came from the one the stages were built for before: that
+/// world with obstacles added (set while a
+/// [`MissionSession`](crate::mission::MissionSession) rebuilds the stages). A plugin may
+/// update what it derived from the previous world instead of deriving it again, as
+/// long as the result is the same.
+#[derive(Clone, Debug)]
+pub struct WorldChange {
+    /// The world before.
+    pub previous: Arc<World>,
+    /// The obstacles added to it, in order.
+    pub obstacles: Vec<DiscObstacle>,
 }
 
 impl BuildContext {
@@ -80,6 +94,7 @@ impl BuildContext {
             state_validity: None,
             motion_validator: None,
             sampler: None,
+            world_change: None,
             building: String::new(),
         }
     }
@@ -118,6 +133,18 @@ impl BuildContext {
     pub fn with_sampler(mut self, section: PluginSection) -> Self {
         self.sampler = Some(section);
         self
+    }
+
+    /// Sets (or clears) what changed since the previous world.
+    pub fn with_world_change(mut self, change: Option<Arc<WorldChange>>) -> Self {
+        self.world_change = change;
+        self
+    }
+
+    /// What changed since the world the stages were built for before, if the context
+    /// rebuilds them after a change.
+    pub fn world_change(&self) -> Option<&WorldChange> {
+        self.world_change.as_deref()
     }
 
     /// The run's seed.
@@ -447,10 +474,20 @@ impl Pipeline {
     /// objective (when configured), the validity checker and the motion validator, each
     /// timed in [`build_times_s`](Self::build_times_s). The planner, sequencer and
     /// selector are kept: the caller tells the planner
-    /// ([`PointToPointPlanner::update_world`] with [`context`](Self::context)).
-    pub fn rebuild_on_world(&mut self, world: Arc<World>) -> Result<()> {
+    /// ([`PointToPointPlanner::update_world`] with [`context`](Self::context)). With
+    /// `change` (how `world` came from the current one), plugins may update what they
+    /// derived instead of deriving it again ([`BuildContext::world_change`]).
+    pub fn rebuild_on_world(
+        &mut self,
+        world: Arc<World>,
+        change: Option<WorldChange>,
+    ) -> Result<()> {
         let config = self.config.clone();
-        let mut ctx = self.context.clone().with_world(world.clone());
+        let mut ctx = self
+            .context
+            .clone()
+            .with_world(world.clone())
+            .with_world_change(change.map(Arc::new));
         if let Some(section) = &config.objective {
             let objective: Arc<dyn Objective> =
                 self.rebuild_stage::<ObjectiveStage>(&ctx, section)?.into();
@@ -470,7 +507,7 @@ impl Pipeline {
             self.motion_validator = Some(validator);
         }
         self.world = Some(world);
-        self.context = ctx;
+        self.context = ctx.with_world_change(None);
         Ok(())
     }
 

@@ -20,7 +20,7 @@ use super::{plan_mission, PlanOptions};
 use crate::config::{LoadedConfig, RobotConfig};
 use crate::error::{Error, Result};
 use crate::oracle::KnownAnswers;
-use crate::pipeline::Pipeline;
+use crate::pipeline::{Pipeline, WorldChange};
 use crate::plan::Plan;
 use crate::registry::{PlannerStage, TraversabilityStage};
 use crate::stages::{CellRect, ChangedDisc, TraversabilityEstimator};
@@ -125,7 +125,11 @@ impl MissionSession {
         self.pipeline
             .build_times_s
             .insert("world-update".into(), started.elapsed().as_secs_f64());
-        self.pipeline.rebuild_on_world(Arc::new(world))?;
+        let change = WorldChange {
+            previous: self.world()?.clone(),
+            obstacles: new.clone(),
+        };
+        self.pipeline.rebuild_on_world(Arc::new(world), Some(change))?;
         let started = Instant::now();
         let mut planner_kept = false;
         if let Some(mut planner) = self.pipeline.planner.take() {
