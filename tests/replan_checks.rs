@@ -125,4 +125,3 @@ pub fn state_strategy() -> impl Strategy<Value = MissionState> {
             }
         })
 }
-

@@ -41,7 +41,10 @@ fn scratch(loaded: &LoadedConfig, state: &MissionState) -> (Result<Plan, Error>,
         Err(e) => return (Err(e), None),
     };
     let options = pipeline.config.plan;
-    (replan_mission(&mut pipeline, options, state), Some(pipeline))
+    (
+        replan_mission(&mut pipeline, options, state),
+        Some(pipeline),
+    )
 }
 
 fn session(loaded: &LoadedConfig) -> (MissionSession, Plan) {
@@ -132,7 +135,13 @@ fn a_session_plans_the_mission_as_smug_plan_bit_identically() {
 fn lunar_obstacles(plan: &Plan, seed: u64) -> Vec<DiscObstacle> {
     let start = plan.segments[0].path.states[0];
     let mut obstacles = Vec::new();
-    for (k, segment) in plan.segments.iter().enumerate().skip(seed as usize % 3).step_by(4) {
+    for (k, segment) in plan
+        .segments
+        .iter()
+        .enumerate()
+        .skip(seed as usize % 3)
+        .step_by(4)
+    {
         let states = &segment.path.states;
         let p = states[states.len() / 2];
         let obstacle = DiscObstacle {
@@ -169,7 +178,10 @@ fn local_world_updates_equal_the_world_built_from_scratch() {
         let half = obstacles.len() / 2;
         let update = session.apply_obstacles(&obstacles[..half]).unwrap();
         assert_eq!(update.applied, half);
-        assert!(update.local_traversability, "{name}: the geometric layer is updated locally");
+        assert!(
+            update.local_traversability,
+            "{name}: the geometric layer is updated locally"
+        );
         assert!(update.planner_kept, "{name}: LazyPRM* keeps its roadmap");
         session.apply_obstacles(&obstacles).unwrap();
         let state = MissionState {

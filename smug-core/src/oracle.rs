@@ -106,7 +106,10 @@ impl KnownAnswers {
             let Some(path) = planned.path() else {
                 return false;
             };
-            let inside = path.states.iter().any(|s| changed.iter().any(|d| d.contains(s)));
+            let inside = path
+                .states
+                .iter()
+                .any(|s| changed.iter().any(|d| d.contains(s)));
             let crossing = path.states.windows(2).any(|w| {
                 let length = space.motion_extent(&w[0], &w[1]).length;
                 changed.iter().any(|d| d.may_touch(&w[0], &w[1], length))
@@ -236,9 +239,7 @@ impl PathOracle {
 
     /// True when the pair has been planned (in either direction if symmetric).
     pub fn is_planned(&self, i: usize, j: usize) -> bool {
-        i == j
-            || self.cache.contains_key(&(i, j))
-            || self.known_pair(i, j).is_some()
+        i == j || self.cache.contains_key(&(i, j)) || self.known_pair(i, j).is_some()
     }
 
     /// The planned cost if the pair has been planned (`INFINITY` for no path).
@@ -488,7 +489,10 @@ mod tests {
         let j = again.add_pose(b);
         let i = again.add_pose(a);
         assert!(again.is_planned(i, j));
-        assert_eq!(again.planned_cost(i, j), Some(first.planned_cost(0, 1).unwrap()));
+        assert_eq!(
+            again.planned_cost(i, j),
+            Some(first.planned_cost(0, 1).unwrap())
+        );
         assert_eq!(again.cost(j, i).unwrap(), first.planned_cost(1, 0).unwrap());
         assert_eq!(again.stats().paths_planned, 0);
         assert_eq!(again.stats().known_hits, 1);

@@ -15,8 +15,8 @@ use smug_core::mission::{NoTargetLeft, Unreachable};
 
 mod replan;
 use smug_core::{
-    Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome,
-    Pose2, TraversabilityEstimator, World,
+    Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2,
+    TraversabilityEstimator, World,
 };
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};

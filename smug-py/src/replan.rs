@@ -174,7 +174,12 @@ impl PySession {
 
     /// Replans from a mission state given as TOML text (`name` stands for it in
     /// errors); returns the plan's parts.
-    fn replan<'py>(&mut self, py: Python<'py>, state: &str, name: &str) -> PyResult<PlanParts<'py>> {
+    fn replan<'py>(
+        &mut self,
+        py: Python<'py>,
+        state: &str,
+        name: &str,
+    ) -> PyResult<PlanParts<'py>> {
         let parsed =
             MissionState::from_toml(state, name).map_err(|e| InputError::new_err(e.to_string()))?;
         let session = &mut self.inner;

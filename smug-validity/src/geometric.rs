@@ -384,7 +384,9 @@ mod tests {
     fn a_local_update_equals_the_layer_estimated_again() {
         use smug_core::{CellRect, GridGeometry, Mission, Pose2};
         let g = GridGeometry::new([0.0, 0.0], 0.1, [60, 50]).unwrap();
-        let hills = GridLayer::from_fn(g, |i, j| ((i as f32 * 0.3).sin() + (j as f32 * 0.2).cos()) * 0.2);
+        let hills = GridLayer::from_fn(g, |i, j| {
+            ((i as f32 * 0.3).sin() + (j as f32 * 0.2).cos()) * 0.2
+        });
         let mission = Mission {
             start: Pose2::new(1.0, 1.0, 0.0),
             end: None,
@@ -395,9 +397,24 @@ mod tests {
         let estimator = GeometricEstimator::new(GeometricParams::default(), 0.6).unwrap();
         let mut layer = estimator.estimate(&world).unwrap();
         for (n, rect) in [
-            CellRect { i0: 20, j0: 20, i1: 27, j1: 25 },
-            CellRect { i0: 0, j0: 44, i1: 5, j1: 50 },
-            CellRect { i0: 55, j0: 0, i1: 60, j1: 3 },
+            CellRect {
+                i0: 20,
+                j0: 20,
+                i1: 27,
+                j1: 25,
+            },
+            CellRect {
+                i0: 0,
+                j0: 44,
+                i1: 5,
+                j1: 50,
+            },
+            CellRect {
+                i0: 55,
+                j0: 0,
+                i1: 60,
+                j1: 3,
+            },
         ]
         .into_iter()
         .enumerate()

@@ -74,7 +74,13 @@ pub(crate) fn update_distances(
     if added.is_empty() {
         return true;
     }
-    let coords = |idx: usize| [idx % size[0], (idx / size[0]) % size[1], idx / (size[0] * size[1])];
+    let coords = |idx: usize| {
+        [
+            idx % size[0],
+            (idx / size[0]) % size[1],
+            idx / (size[0] * size[1]),
+        ]
+    };
     let (mut lo, mut hi) = ([usize::MAX; 3], [0usize; 3]);
     for &idx in added {
         let c = coords(idx);
@@ -134,7 +140,11 @@ impl Window {
         let local = |c: [usize; 3]| (c[2] * wsize[1] + c[1]) * wsize[0] + c[0];
         let mut is_added = vec![false; wsize[0] * wsize[1] * wsize[2]];
         for &idx in added {
-            let c = [idx % size[0], (idx / size[0]) % size[1], idx / (size[0] * size[1])];
+            let c = [
+                idx % size[0],
+                (idx / size[0]) % size[1],
+                idx / (size[0] * size[1]),
+            ];
             is_added[local([c[0] - w0[0], c[1] - w0[1], c[2] - w0[2]])] = true;
         }
         let mut free = vec![false; is_added.len()];
@@ -200,7 +210,11 @@ mod tests {
     fn terrain() -> World {
         let g = GridGeometry::new([0.0, 0.0], 0.1, [40, 30]).unwrap();
         let mut elevation = GridLayer::from_fn(g, |i, j| {
-            let pit = if (10..14).contains(&i) && (5..9).contains(&j) { -0.6 } else { 0.0 };
+            let pit = if (10..14).contains(&i) && (5..9).contains(&j) {
+                -0.6
+            } else {
+                0.0
+            };
             ((i as f32 * 0.4).sin() * 0.15 + (j as f32 * 0.3).cos() * 0.1) + pit
         });
         elevation.set(30, 20, f32::NAN);

@@ -152,8 +152,12 @@ impl StateValidityChecker for VolumetricChecker {
 pub(crate) fn shared_volumes(ctx: &BuildContext, robot: &RobotBox) -> Result<SharedVolumes, Error> {
     let world = ctx.world()?;
     if let Some(change) = ctx.world_change() {
-        let updated =
-            SharedVolumes::updated(&change.previous, &world, robot.headroom(), &change.obstacles);
+        let updated = SharedVolumes::updated(
+            &change.previous,
+            &world,
+            robot.headroom(),
+            &change.obstacles,
+        );
         if let Some(volumes) = updated {
             return Ok(volumes);
         }

@@ -15,8 +15,8 @@ pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,
 };
-pub use session::{MissionSession, WorldUpdate};
 pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use session::{MissionSession, WorldUpdate};
 pub use state::{MissionState, StateError};
 
 use crate::pose::{Bounds2, Point3, Pose2};

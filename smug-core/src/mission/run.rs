@@ -14,9 +14,9 @@ use crate::evaluation::plan_metrics;
 use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
 use crate::plan::Plan;
-use crate::world::World;
 use crate::post_process::{concatenate, waypoints};
 use crate::stages::{Selection, SelectionProblem};
+use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -275,13 +275,7 @@ fn plan_on_oracle(
     let (order, problem, selection) = loop {
         let (order, selected) = match options.mode {
             PlanMode::Sequential => order_then_select(
-                pipeline,
-                oracle,
-                mission,
-                &layout,
-                &targets,
-                options,
-                &mut times,
+                pipeline, oracle, mission, &layout, &targets, options, &mut times,
             )?,
             PlanMode::Joint => {
                 let t = Instant::now();
@@ -334,14 +328,7 @@ fn plan_on_oracle(
     };
     let t = Instant::now();
     let route = problem.route(&selection.chosen);
-    let mut plan = assemble_plan(
-        oracle,
-        mission,
-        world,
-        &order,
-        &selection.chosen,
-        &route,
-    )?;
+    let mut plan = assemble_plan(oracle, mission, world, &order, &selection.chosen, &route)?;
     let objective = pipeline
         .config
         .objective

@@ -62,7 +62,12 @@ impl MissionSession {
     pub fn new(loaded: &LoadedConfig) -> Result<Self> {
         let mut pipeline = Pipeline::assemble(loaded)?;
         let estimator = match &loaded.config.traversability {
-            Some(section) => Some(pipeline.context().build::<TraversabilityStage>(section)?.object),
+            Some(section) => Some(
+                pipeline
+                    .context()
+                    .build::<TraversabilityStage>(section)?
+                    .object,
+            ),
             None => None,
         };
         pipeline.answers = Some(KnownAnswers::default());
@@ -129,7 +134,8 @@ impl MissionSession {
             previous: self.world()?.clone(),
             obstacles: new.clone(),
         };
-        self.pipeline.rebuild_on_world(Arc::new(world), Some(change))?;
+        self.pipeline
+            .rebuild_on_world(Arc::new(world), Some(change))?;
         let started = Instant::now();
         let mut planner_kept = false;
         if let Some(mut planner) = self.pipeline.planner.take() {
@@ -150,18 +156,20 @@ impl MissionSession {
             self.pipeline.planner = Some(planner);
         }
         let space = self.pipeline.space.clone();
-        let (answers_checked, answers_dropped) =
-            match (self.pipeline.answers.as_mut(), &self.pipeline.motion_validator) {
-                (Some(answers), Some(motions)) => {
-                    answers.recheck_touched(space.as_ref(), &changed, motions.as_ref())
-                }
-                (Some(answers), None) => {
-                    let n = answers.len();
-                    *answers = KnownAnswers::default();
-                    (n, n)
-                }
-                (None, _) => (0, 0),
-            };
+        let (answers_checked, answers_dropped) = match (
+            self.pipeline.answers.as_mut(),
+            &self.pipeline.motion_validator,
+        ) {
+            (Some(answers), Some(motions)) => {
+                answers.recheck_touched(space.as_ref(), &changed, motions.as_ref())
+            }
+            (Some(answers), None) => {
+                let n = answers.len();
+                *answers = KnownAnswers::default();
+                (n, n)
+            }
+            (None, _) => (0, 0),
+        };
         self.pipeline
             .build_times_s
             .insert("planner-update".into(), started.elapsed().as_secs_f64());

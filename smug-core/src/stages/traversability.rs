@@ -67,7 +67,12 @@ pub trait TraversabilityEstimator: Send + Sync {
     /// estimating again only the cells the change can reach; the result must equal
     /// [`estimate`](Self::estimate) of `world`. Returns false when it cannot (the
     /// default): the caller then estimates the whole layer again.
-    fn update_layer(&self, world: &World, layer: &mut GridLayer, changed: CellRect) -> Result<bool> {
+    fn update_layer(
+        &self,
+        world: &World,
+        layer: &mut GridLayer,
+        changed: CellRect,
+    ) -> Result<bool> {
         let _ = (world, layer, changed);
         Ok(false)
     }

@@ -4,8 +4,8 @@
 use super::LazyPrmStar;
 use crate::roadmap::Validity;
 use smug_core::{
-    Bounds2, BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
-    RoadmapSnapshot, SavedAnswer, StateSpace,
+    Bounds2, BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2,
+    PoseBits, Result, RoadmapSnapshot, SavedAnswer, StateSpace,
 };
 use std::collections::{BTreeMap, HashMap};
 use std::time::Instant;
@@ -229,11 +229,7 @@ impl LazyPrmStar {
     /// `changed`): checks again what reaches into `changed`, and keeps every answer given
     /// so far that no change touches for serving again (the sampler is kept: its
     /// stream goes on).
-    pub(super) fn carry_on(
-        &mut self,
-        ctx: &BuildContext,
-        changed: &[ChangedDisc],
-    ) -> Result<()> {
+    pub(super) fn carry_on(&mut self, ctx: &BuildContext, changed: &[ChangedDisc]) -> Result<()> {
         self.states = ctx.state_validity()?;
         self.motions = ctx.motion_validator()?;
         self.objective = ctx.objective();
