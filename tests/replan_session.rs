@@ -230,6 +230,14 @@ fn a_state_without_an_applied_obstacle_is_refused() {
     });
     let plan = session.replan(&more).unwrap();
     check_replan(&plan, session.pipeline(), &more);
+    // The whole mission again, from its start, on the updated world.
+    let whole = session.plan().unwrap();
+    let start = MissionState {
+        obstacles: more.obstacles.clone(),
+        ..MissionState::at_start(&session.world().unwrap().mission)
+    };
+    assert_eq!(whole.sequence.len(), 3);
+    check_replan(&whole, session.pipeline(), &start);
 }
 
 /// How much more a session's replan may cost than the one from scratch on the flat

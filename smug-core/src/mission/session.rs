@@ -16,11 +16,11 @@
 use super::obstacles::{add_obstacles, mask_layer, DiscObstacle};
 use super::replan::replan_mission;
 use super::state::{MissionState, StateError};
-use super::{plan_mission, PlanOptions};
+use super::{plan_mission, Mission, PlanOptions};
 use crate::config::{LoadedConfig, RobotConfig};
 use crate::error::{Error, Result};
 use crate::oracle::KnownAnswers;
-use crate::pipeline::{Pipeline, WorldChange};
+use crate::pipeline::{DroppedPoi, Pipeline, WorldChange};
 use crate::plan::Plan;
 use crate::registry::{PlannerStage, TraversabilityStage};
 use crate::stages::{CellRect, ChangedDisc, TraversabilityEstimator};
@@ -36,6 +36,9 @@ pub struct MissionSession {
     estimator: Option<Box<dyn TraversabilityEstimator>>,
     /// The obstacles applied so far, in order.
     obstacles: Vec<DiscObstacle>,
+    /// The mission as assembled (PoIs not valid for the robot left out) and the PoIs
+    /// left out, for [`plan`](Self::plan).
+    assembled: (Option<Mission>, Vec<DroppedPoi>),
 }
 
 /// What one world update changed (see [`MissionSession::apply_obstacles`]).
@@ -73,6 +76,7 @@ impl MissionSession {
         pipeline.answers = Some(KnownAnswers::default());
         Ok(Self {
             options: pipeline.config.plan,
+            assembled: (pipeline.mission.clone(), pipeline.dropped_pois.clone()),
             pipeline,
             estimator,
             obstacles: Vec::new(),
@@ -80,9 +84,12 @@ impl MissionSession {
     }
 
     /// Plans the whole mission, as [`plan_mission`] (the same plan as `smug plan`, bit
-    /// for bit); the paths it plans are kept for the replans.
+    /// for bit, when called first); the paths it plans are kept for the replans. After
+    /// replans it plans the mission as assembled again, from its start, on the updated
+    /// world.
     pub fn plan(&mut self) -> Result<Plan> {
         self.pipeline.build_times_s.clear();
+        (self.pipeline.mission, self.pipeline.dropped_pois) = self.assembled.clone();
         plan_mission(&mut self.pipeline, self.options)
     }
 
@@ -117,8 +124,8 @@ impl MissionSession {
         let started = Instant::now();
         let mut world = (**self.world()?).clone();
         add_obstacles(&mut world, &new);
-        self.obstacles.extend(new.iter().copied());
-        let local_traversability = self.update_traversability(&mut world, &new)?;
+        let all: Vec<DiscObstacle> = self.obstacles.iter().chain(&new).copied().collect();
+        let local_traversability = self.update_traversability(&mut world, &new, &all)?;
         let margin = self.change_margin(&world);
         let changed: Vec<ChangedDisc> = new
             .iter()
@@ -136,6 +143,8 @@ impl MissionSession {
         };
         self.pipeline
             .rebuild_on_world(Arc::new(world), Some(change))?;
+        // The world holds them now: later states must list them.
+        self.obstacles = all;
         let started = Instant::now();
         let mut planner_kept = false;
         if let Some(mut planner) = self.pipeline.planner.take() {
@@ -227,8 +236,14 @@ impl MissionSession {
     }
 
     /// Brings the estimator's layer up to date for `world` (its elevation updated with
-    /// the `latest` obstacles) and masks every obstacle's cells; true when done locally.
-    fn update_traversability(&self, world: &mut World, latest: &[DiscObstacle]) -> Result<bool> {
+    /// the `latest` obstacles) and masks the cells of `all` the obstacles applied; true
+    /// when done locally.
+    fn update_traversability(
+        &self,
+        world: &mut World,
+        latest: &[DiscObstacle],
+        all: &[DiscObstacle],
+    ) -> Result<bool> {
         let Some(estimator) = self.estimator.as_ref() else {
             return Ok(false);
         };
@@ -252,7 +267,7 @@ impl MissionSession {
             (true, Some(layer)) => layer,
             _ => estimator.estimate(world)?,
         };
-        mask_layer(&mut layer, &self.obstacles);
+        mask_layer(&mut layer, all);
         world.traversability = Some(layer);
         Ok(local)
     }
