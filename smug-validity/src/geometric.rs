@@ -5,7 +5,7 @@
 //! (minimum or weighted mean). Cells without elevation data get no data (NaN).
 
 use serde::{Deserialize, Serialize};
-use smug_core::{CellRect, Error, GridLayer, TraversabilityEstimator, World};
+use smug_core::{Error, GridLayer};
 
 /// How the three scores combine.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -315,52 +315,8 @@ fn det3(m: [[f64; 3]; 3]) -> f64 {
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
-impl GeometricEstimator {
-    /// The layer's value at cell `(i, j)`.
-    fn value(&self, window: &Window, elevation: &GridLayer, i: usize, j: usize) -> f32 {
-        window
-            .features(elevation, i, j)
-            .map_or(f32::NAN, |f| self.score(&f) as f32)
-    }
-}
-
-impl TraversabilityEstimator for GeometricEstimator {
-    fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
-        let elevation = &world.elevation;
-        let window = Window::new(self.window_radius, elevation.geometry.resolution);
-        Ok(GridLayer::from_fn(elevation.geometry, |i, j| {
-            self.value(&window, elevation, i, j)
-        }))
-    }
-
-    /// The fitting window's radius: a cell reads the elevation within it.
-    fn reach(&self) -> Option<f64> {
-        Some(self.window_radius)
-    }
-
-    /// Estimates again the cells whose window holds a changed cell (the changed
-    /// rectangle grown by the window's reach); each cell's value is computed as in
-    /// [`estimate`](TraversabilityEstimator::estimate), so the layer is the same.
-    fn update_layer(
-        &self,
-        world: &World,
-        layer: &mut GridLayer,
-        changed: CellRect,
-    ) -> Result<bool, Error> {
-        let elevation = &world.elevation;
-        if layer.geometry != elevation.geometry {
-            return Ok(false);
-        }
-        let window = Window::new(self.window_radius, elevation.geometry.resolution);
-        let area = changed.grown(window.reach.max(0) as usize, elevation.geometry.size);
-        for j in area.j0..area.j1 {
-            for i in area.i0..area.i1 {
-                layer.set(i, j, self.value(&window, elevation, i, j));
-            }
-        }
-        Ok(true)
-    }
-}
+#[path = "geometric_estimate.rs"]
+mod estimate;
 
 smug_core::register_plugin!(
     smug_core::registry::TraversabilityStage,
@@ -380,60 +336,9 @@ smug_core::register_plugin!(
 mod tests {
     use super::*;
 
-    #[test]
-    fn a_local_update_equals_the_layer_estimated_again() {
-        use smug_core::{CellRect, GridGeometry, Mission, Pose2};
-        let g = GridGeometry::new([0.0, 0.0], 0.1, [60, 50]).unwrap();
-        let hills = GridLayer::from_fn(g, |i, j| {
-            ((i as f32 * 0.3).sin() + (j as f32 * 0.2).cos()) * 0.2
-        });
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        let mut world = World::new("hills", hills, mission);
-        world.elevation.set(0, 0, f32::NAN);
-        let estimator = GeometricEstimator::new(GeometricParams::default(), 0.6).unwrap();
-        let mut layer = estimator.estimate(&world).unwrap();
-        for (n, rect) in [
-            CellRect {
-                i0: 20,
-                j0: 20,
-                i1: 27,
-                j1: 25,
-            },
-            CellRect {
-                i0: 0,
-                j0: 44,
-                i1: 5,
-                j1: 50,
-            },
-            CellRect {
-                i0: 55,
-                j0: 0,
-                i1: 60,
-                j1: 3,
-            },
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            for j in rect.j0..rect.j1 {
-                for i in rect.i0..rect.i1 {
-                    let z = world.elevation.get(i, j);
-                    world.elevation.set(i, j, z + 0.4 + 0.01 * n as f32);
-                }
-            }
-            assert!(estimator.update_layer(&world, &mut layer, rect).unwrap());
-            let whole = estimator.estimate(&world).unwrap();
-            let bits = |l: &GridLayer| l.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(&layer), bits(&whole), "change {n}");
-        }
-        assert_eq!(estimator.reach(), Some(0.6));
-    }
     use proptest::prelude::*;
     use smug_core::{GridGeometry, Mission, Pose2};
+    use smug_core::{TraversabilityEstimator, World};
 
     /// The original accumulation (heights' range as options), verbatim.
     #[derive(Default)]
