@@ -162,9 +162,10 @@ impl PathOracle {
     }
 
     /// The known answers given with [`with_known`](Self::with_known), with every exact
-    /// path this oracle planned or served added (by the poses' bits).
-    pub fn known_answers(&self) -> KnownAnswers {
-        let mut known = self.known.clone();
+    /// path this oracle planned or served added (by the poses' bits); they are moved out
+    /// (the oracle keeps none after).
+    pub fn take_known_answers(&mut self) -> KnownAnswers {
+        let mut known = std::mem::take(&mut self.known);
         for (&(i, j), planned) in &self.cache {
             if i != j {
                 known.insert(&self.poses[i], &self.poses[j], planned.clone());
@@ -480,7 +481,7 @@ mod tests {
         let mut first = oracle();
         first.cost(0, 1).unwrap();
         first.cost(0, 2).unwrap();
-        let mut known = first.known_answers();
+        let mut known = first.take_known_answers();
         // 0 → 1 both ways; 0 → 2 has no path: not kept.
         assert_eq!(known.len(), 2);
         let mut again = oracle().with_known(known.clone());

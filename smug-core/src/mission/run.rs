@@ -250,7 +250,7 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
         .with_known(pipeline.answers.take().unwrap_or_default());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
     if keep_answers {
-        pipeline.answers = Some(oracle.known_answers());
+        pipeline.answers = Some(oracle.take_known_answers());
     }
     // The planner goes back to the pipeline with its roadmap (`--save-roadmap`, a
     // session's next replan), whatever the outcome.
