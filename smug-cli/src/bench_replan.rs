@@ -10,7 +10,7 @@ use crate::bench_output::write_report;
 use crate::Outcome;
 use serde::Serialize;
 use smug_core::mission::{
-    assemble_replan, changed_discs, replan_mission, DiscObstacle, MissionState,
+    assemble_replan, changed_discs, replan_mission, DiscObstacle, MissionSession, MissionState,
 };
 use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
 use std::fmt::Write as _;
@@ -61,6 +61,12 @@ struct Run {
     /// The same replan on the plan's warm roadmap: time and cost.
     warm_s: f64,
     warm_cost: f64,
+    /// The same replan in a [`MissionSession`] that planned the mission and kept its
+    /// pipeline in memory: time, cost, and paths it planned (the others were served
+    /// from the session's kept paths).
+    session_s: f64,
+    session_cost: f64,
+    session_paths_planned: u64,
     error: Option<String>,
 }
 
@@ -154,9 +160,18 @@ fn measure(
             replan_mission(&mut p, options, &state)
         });
         let warm_s = started.elapsed().as_secs_f64();
+        let mut session = MissionSession::new(&loaded)?;
+        session.plan()?;
+        let started = Instant::now();
+        let in_memory = session.replan(&state);
+        let session_s = started.elapsed().as_secs_f64();
         let (replan_cost, targets_left, warm_cost, error) = match (replanned, warm) {
             (Ok(r), Ok(w)) => (r.cost, r.sequence.len(), w.cost, None),
             (Err(e), _) | (_, Err(e)) => (f64::NAN, 0, f64::NAN, Some(e.to_string())),
+        };
+        let (session_cost, session_paths_planned, error) = match in_memory {
+            Ok(p) => (p.cost, p.stats.paths_planned, error),
+            Err(e) => (f64::NAN, 0, error.or(Some(format!("in memory: {e}")))),
         };
         runs.push(Run {
             size: size.into(),
@@ -169,6 +184,9 @@ fn measure(
             targets_left,
             warm_s,
             warm_cost,
+            session_s,
+            session_cost,
+            session_paths_planned,
             error,
         });
     }
@@ -191,9 +209,14 @@ fn report(runs: &[Run], seeds: u64) -> String {
          whose replan succeeded. Warm = the same replan with the roadmap the plan left \
          loaded first (in memory; what only the new obstacle touches is checked again): \
          its time (world and checkers still built), the speed-up of from scratch over \
-         warm, and its cost / the from-scratch replan's.\n\n\
-         | mission | event | ok | plan (s) | replan (s) | replan / plan time | replan cost | original rest | cost ratio | warm (s) | scratch / warm time | warm / scratch cost |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n"
+         warm, and its cost / the from-scratch replan's. In memory = the same replan in a \
+         `MissionSession` that planned the mission and kept its pipeline (world, checkers, \
+         planner with its roadmap, planned paths): the new obstacle applied locally, \
+         kept paths it does not touch served again: its time, the speed-up of from \
+         scratch over it, its cost / the from-scratch replan's, and the paths it planned \
+         (mean).\n\n\
+         | mission | event | ok | plan (s) | replan (s) | replan / plan time | replan cost | original rest | cost ratio | warm (s) | scratch / warm time | warm / scratch cost | in memory (s) | scratch / in-memory time | in-memory / scratch cost | in-memory paths planned |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
     );
     for (size, _) in SIZES {
         for event in EVENTS {
@@ -209,13 +232,17 @@ fn report(runs: &[Run], seeds: u64) -> String {
             let ratio = mean(ok.iter().map(|r| r.replan_cost / r.rest_cost));
             let warm = mean(ok.iter().map(|r| r.warm_s));
             let warm_ratio = mean(ok.iter().map(|r| r.warm_cost / r.replan_cost));
+            let memory = mean(ok.iter().map(|r| r.session_s));
+            let memory_ratio = mean(ok.iter().map(|r| r.session_cost / r.replan_cost));
+            let memory_paths = mean(ok.iter().map(|r| r.session_paths_planned as f64));
             let _ = writeln!(
                 md,
-                "| {size} | {event} | {}/{} | {plan:.3} | {replan:.3} | {:.2} | {cost:.2} | {rest:.2} | {ratio:.3} | {warm:.3} | {:.2} | {warm_ratio:.4} |",
+                "| {size} | {event} | {}/{} | {plan:.3} | {replan:.3} | {:.2} | {cost:.2} | {rest:.2} | {ratio:.3} | {warm:.3} | {:.2} | {warm_ratio:.4} | {memory:.4} | {:.1} | {memory_ratio:.4} | {memory_paths:.1} |",
                 ok.len(),
                 all.len(),
                 replan / plan,
-                replan / warm
+                replan / warm,
+                replan / memory
             );
         }
     }

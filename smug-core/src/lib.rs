@@ -42,7 +42,7 @@ pub use mission::{Mission, Target};
 pub use objective::{Objective, PathLength};
 pub use oracle::{PathOracle, PlannedPath};
 pub use path::Path;
-pub use pipeline::{BuildContext, Pipeline};
+pub use pipeline::{BuildContext, Pipeline, WorldChange};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, Waypoint};
 pub use space::{MotionExtent, Se2Space, StateSpace};

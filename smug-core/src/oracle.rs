@@ -7,7 +7,11 @@ use crate::error::{Error, Result};
 use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
-use crate::stages::{Budget, NoPathReason, PlannerOutcome, PointToPointPlanner};
+use crate::space::StateSpace;
+use crate::stages::{
+    Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PointToPointPlanner,
+    PoseBits,
+};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -53,6 +57,81 @@ pub struct OracleStats {
     pub paths_planned: u64,
     /// Answers served from the cache.
     pub cache_hits: u64,
+    /// Pairs served from the [`KnownAnswers`] of earlier missions, without planning.
+    #[serde(default)]
+    pub known_hits: u64,
+}
+
+/// Exact paths between poses kept from earlier missions (the memory of a
+/// [`crate::mission::MissionSession`]), keyed by the poses' bits, so that an answer is
+/// found again whatever index the poses get in the next mission's oracle.
+#[derive(Clone, Debug, Default)]
+pub struct KnownAnswers {
+    paths: HashMap<(PoseBits, PoseBits), Arc<PlannedPath>>,
+}
+
+impl KnownAnswers {
+    /// Number of pose pairs (each direction counts).
+    pub fn len(&self) -> usize {
+        self.paths.len()
+    }
+
+    /// True when nothing is known.
+    pub fn is_empty(&self) -> bool {
+        self.paths.is_empty()
+    }
+
+    /// The known path from `a` to `b`, if any.
+    pub fn get(&self, a: &Pose2, b: &Pose2) -> Option<&Arc<PlannedPath>> {
+        self.paths.get(&((*a).into(), (*b).into()))
+    }
+
+    /// Keeps `planned` as the answer from `a` to `b` when it is an exact path.
+    pub fn insert(&mut self, a: &Pose2, b: &Pose2, planned: Arc<PlannedPath>) {
+        if planned.path().is_some() {
+            self.paths.insert(((*a).into(), (*b).into()), planned);
+        }
+    }
+
+    /// Checks again, with `motions` (built for the updated world), every path with a
+    /// state in one of `changed` or a motion that may pass through one (see
+    /// [`ChangedDisc::may_touch`]): kept if every motion is still valid, dropped if not.
+    /// Returns `(checked, dropped)`.
+    pub fn recheck_touched(
+        &mut self,
+        space: &dyn StateSpace,
+        changed: &[ChangedDisc],
+        motions: &dyn MotionValidator,
+    ) -> (usize, usize) {
+        if changed.is_empty() {
+            return (0, 0);
+        }
+        let (mut checked, before) = (0, self.paths.len());
+        self.paths.retain(|_, planned| {
+            let Some(path) = planned.path() else {
+                return false;
+            };
+            let inside = path
+                .states
+                .iter()
+                .any(|s| changed.iter().any(|d| d.contains(s)));
+            let crossing = path.states.windows(2).any(|w| {
+                let length = space.motion_extent(&w[0], &w[1]).length;
+                changed.iter().any(|d| d.may_touch(&w[0], &w[1], length))
+            });
+            if !(inside || crossing) {
+                return true;
+            }
+            checked += 1;
+            match path.states.as_slice() {
+                [only] => motions.is_valid_motion(only, only),
+                states => states
+                    .windows(2)
+                    .all(|w| motions.is_valid_motion(&w[0], &w[1])),
+            }
+        });
+        (checked, before - self.paths.len())
+    }
 }
 
 /// Lower bounds and lazily planned paths between registered poses.
@@ -63,6 +142,7 @@ pub struct PathOracle {
     cache: HashMap<(usize, usize), Arc<PlannedPath>>,
     symmetric: bool,
     stats: OracleStats,
+    known: KnownAnswers,
 }
 
 impl PathOracle {
@@ -76,7 +156,48 @@ impl PathOracle {
             planner,
             cache: HashMap::new(),
             stats: OracleStats::default(),
+            known: KnownAnswers::default(),
         }
+    }
+
+    /// Serves the pairs `known` holds without planning (counted as `known_hits`).
+    pub fn with_known(mut self, known: KnownAnswers) -> Self {
+        self.known = known;
+        self
+    }
+
+    /// The known answers given with [`with_known`](Self::with_known), with every exact
+    /// path this oracle planned or served added (by the poses' bits); they are moved out
+    /// (the oracle keeps none after).
+    pub fn take_known_answers(&mut self) -> KnownAnswers {
+        let mut known = std::mem::take(&mut self.known);
+        for (&(i, j), planned) in &self.cache {
+            if i != j {
+                known.insert(&self.poses[i], &self.poses[j], planned.clone());
+            }
+        }
+        known
+    }
+
+    /// The known answer for `i → j`, if any.
+    fn known_pair(&self, i: usize, j: usize) -> Option<&Arc<PlannedPath>> {
+        if self.known.is_empty() {
+            return None;
+        }
+        self.known.get(&self.poses[i], &self.poses[j])
+    }
+
+    /// Moves a known answer for `i → j` (if any) into the cache; true if one was found.
+    fn take_known(&mut self, i: usize, j: usize) -> bool {
+        let Some(found) = self.known_pair(i, j).cloned() else {
+            return false;
+        };
+        self.stats.known_hits += 1;
+        if self.symmetric && !self.cache.contains_key(&(j, i)) {
+            self.cache.insert((j, i), Arc::new(found.reversed()));
+        }
+        self.cache.insert((i, j), found);
+        true
     }
 
     /// Whether a path i→j reversed may serve j→i (true for undirected roadmaps,
@@ -124,7 +245,7 @@ impl PathOracle {
 
     /// True when the pair has been planned (in either direction if symmetric).
     pub fn is_planned(&self, i: usize, j: usize) -> bool {
-        i == j || self.cache.contains_key(&(i, j))
+        i == j || self.cache.contains_key(&(i, j)) || self.known_pair(i, j).is_some()
     }
 
     /// The planned cost if the pair has been planned (`INFINITY` for no path).
@@ -132,7 +253,10 @@ impl PathOracle {
         if i == j {
             return Some(0.0);
         }
-        self.cache.get(&(i, j)).map(|p| p.cost)
+        self.cache
+            .get(&(i, j))
+            .or_else(|| self.known_pair(i, j))
+            .map(|p| p.cost)
     }
 
     /// The planned cost if planned, else the lower bound.
@@ -146,6 +270,9 @@ impl PathOracle {
         if let Some(hit) = self.cache.get(&(i, j)) {
             self.stats.cache_hits += 1;
             return Ok(hit.clone());
+        }
+        if self.take_known(i, j) {
+            return Ok(self.cache[&(i, j)].clone());
         }
         let planned = Arc::new(if i == j {
             PlannedPath {
@@ -178,7 +305,11 @@ impl PathOracle {
     pub fn plan_from(&mut self, i: usize, js: &[usize]) -> Result<()> {
         let mut wanted: Vec<usize> = Vec::new();
         for &j in js {
-            if j != i && !self.cache.contains_key(&(i, j)) && !wanted.contains(&j) {
+            if j != i
+                && !self.cache.contains_key(&(i, j))
+                && !wanted.contains(&j)
+                && !self.take_known(i, j)
+            {
                 wanted.push(j);
             }
         }
@@ -406,6 +537,64 @@ mod tests {
         assert_eq!(o.cost(2, 0).unwrap(), f64::INFINITY);
         assert_eq!(o.cost(0, 1).unwrap(), o.lower_bound(0, 1));
         assert_eq!(o.stats().paths_planned, 2);
+    }
+
+    /// Every motion valid except those ending right of x = 5.
+    struct LeftOfFive;
+
+    impl MotionValidator for LeftOfFive {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            a.x <= 5.0 && b.x <= 5.0
+        }
+
+        fn check_motion(&self, _: &Pose2, _: &Pose2) -> crate::stages::MotionCheck {
+            unreachable!("not used")
+        }
+    }
+
+    #[test]
+    fn known_answers_are_served_without_planning_and_rechecked_near_changes() {
+        let mut first = oracle();
+        first.cost(0, 1).unwrap();
+        first.cost(0, 2).unwrap();
+        let mut known = first.take_known_answers();
+        // 0 → 1 both ways; 0 → 2 has no path: not kept.
+        assert_eq!(known.len(), 2);
+        let mut again = oracle().with_known(known.clone());
+        let (a, b) = (*again.pose(0), *again.pose(1));
+        // Registered at other indices: found by the poses.
+        let j = again.add_pose(b);
+        let i = again.add_pose(a);
+        assert!(again.is_planned(i, j));
+        assert_eq!(
+            again.planned_cost(i, j),
+            Some(first.planned_cost(0, 1).unwrap())
+        );
+        assert_eq!(again.cost(j, i).unwrap(), first.planned_cost(1, 0).unwrap());
+        assert_eq!(again.stats().paths_planned, 0);
+        assert_eq!(again.stats().known_hits, 1);
+        // A change far away keeps them; one on the way checks them again.
+        let space = crate::space::Se2Space::default();
+        let far = ChangedDisc {
+            center: [-20.0, -20.0],
+            radius: 1.0,
+        };
+        assert_eq!(known.recheck_touched(&space, &[far], &LeftOfFive), (0, 0));
+        let near = ChangedDisc {
+            center: [1.5, 2.0],
+            radius: 0.5,
+        };
+        assert_eq!(known.recheck_touched(&space, &[near], &LeftOfFive), (2, 0));
+        let mut moved = KnownAnswers::default();
+        let far_right = Pose2::new(6.0, 4.0, 0.0);
+        let path = Path::new(vec![a, far_right], &PathLength::default());
+        let planned = Arc::new(PlannedPath {
+            cost: path.cost,
+            outcome: PlannerOutcome::Exact(path),
+        });
+        moved.insert(&a, &far_right, planned);
+        assert_eq!(moved.recheck_touched(&space, &[near], &LeftOfFive), (1, 1));
+        assert!(moved.is_empty());
     }
 
     #[test]

@@ -5,6 +5,7 @@ use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotC
 use crate::error::{Error, Result};
 use crate::mission::Mission;
 use crate::objective::{Objective, PathLength};
+use crate::oracle::KnownAnswers;
 use crate::pose::Pose2;
 use crate::registry::{
     Built, MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
@@ -21,6 +22,10 @@ use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
+
+#[path = "pipeline_rebuild.rs"]
+mod rebuild;
+pub use rebuild::WorldChange;
 
 /// The message for a config that still has the `[cost]` section of earlier versions.
 const REMOVED_COST: &str =
@@ -61,6 +66,7 @@ pub struct BuildContext {
     state_validity: Option<Arc<dyn StateValidityChecker>>,
     motion_validator: Option<Arc<dyn MotionValidator>>,
     sampler: Option<PluginSection>,
+    world_change: Option<Arc<WorldChange>>,
     building: String,
 }
 
@@ -79,6 +85,7 @@ impl BuildContext {
             state_validity: None,
             motion_validator: None,
             sampler: None,
+            world_change: None,
             building: String::new(),
         }
     }
@@ -117,6 +124,18 @@ impl BuildContext {
     pub fn with_sampler(mut self, section: PluginSection) -> Self {
         self.sampler = Some(section);
         self
+    }
+
+    /// Sets (or clears) what changed since the previous world.
+    pub fn with_world_change(mut self, change: Option<Arc<WorldChange>>) -> Self {
+        self.world_change = change;
+        self
+    }
+
+    /// What changed since the world the stages were built for before, if the context
+    /// rebuilds them after a change.
+    pub fn world_change(&self) -> Option<&WorldChange> {
+        self.world_change.as_deref()
     }
 
     /// The run's seed.
@@ -249,6 +268,11 @@ pub struct Pipeline {
     pub resolved: Vec<ResolvedStage>,
     /// Build time per stage, seconds.
     pub build_times_s: BTreeMap<String, f64>,
+    /// Paths kept from earlier missions on this pipeline (`None`: none kept, the
+    /// default). When set, [`plan_mission`](crate::plan_mission) serves the pose pairs
+    /// found here without planning and adds every exact path it planned (what a
+    /// [`MissionSession`](crate::mission::MissionSession) remembers between replans).
+    pub answers: Option<KnownAnswers>,
     context: BuildContext,
 }
 
@@ -297,6 +321,7 @@ impl Pipeline {
             selector: None,
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
+            answers: None,
             context: ctx.clone(),
         };
         if config.cost.is_some() {

@@ -15,8 +15,8 @@ use smug_core::mission::{NoTargetLeft, Unreachable};
 
 mod replan;
 use smug_core::{
-    plan_mission, Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome,
-    Pose2, TraversabilityEstimator, World,
+    Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2,
+    TraversabilityEstimator, World,
 };
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -451,46 +451,6 @@ fn load(config: &Path, mut set: Vec<String>, seed: Option<u64>) -> PyResult<Load
     LoadedConfig::from_file(config, &set).map_err(|e| to_py(e.into()))
 }
 
-/// Plans a mission; returns `(plan.json text, waypoints (n, 4), world)`.
-#[pyfunction]
-#[pyo3(signature = (config, set=Vec::new(), seed=None, world=None, traversability=None))]
-fn plan<'py>(
-    py: Python<'py>,
-    config: PathBuf,
-    set: Vec<String>,
-    seed: Option<u64>,
-    world: Option<PyRef<'py, PyWorld>>,
-    traversability: Option<Py<PyAny>>,
-) -> PyResult<(String, Bound<'py, PyArray2<f64>>, PyWorld)> {
-    let loaded = load(&config, set, seed)?;
-    let given_world = world.map(|w| (*w.inner).clone());
-    let raised = Arc::new(Mutex::new(None));
-    let estimator = traversability.map(|function| {
-        let estimator: Box<dyn TraversabilityEstimator> = Box::new(PyEstimator {
-            function,
-            raised: raised.clone(),
-        });
-        ("python", estimator)
-    });
-    let planned = py.detach(move || {
-        let mut pipeline = Pipeline::assemble_with(&loaded, given_world, estimator)?;
-        let options = pipeline.config.plan;
-        let plan = plan_mission(&mut pipeline, options)?;
-        let world = pipeline.world.clone();
-        Ok::<_, Error>((plan, world))
-    });
-    let (plan, world) = planned.map_err(|err| raise(&raised, err))?;
-    let world = world.ok_or_else(|| ConfigError::new_err("the config has no [world] section"))?;
-    let text = serde_json::to_string_pretty(&plan)
-        .map_err(|e| InputError::new_err(format!("cannot write the plan as JSON: {e}")))?;
-    let waypoints = Array2::from_shape_fn((plan.waypoints.len(), 4), |(k, c)| {
-        let w = &plan.waypoints[k];
-        [w.x, w.y, w.z, w.yaw][c]
-    })
-    .into_pyarray(py);
-    Ok((text, waypoints, PyWorld { inner: world }))
-}
-
 /// Builds a config's world (with its traversability layer) without planning.
 #[pyfunction]
 #[pyo3(signature = (config, set=Vec::new(), seed=None))]
@@ -645,7 +605,8 @@ fn _smug(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", py.get_type::<InputError>())?;
     m.add("NoSolution", py.get_type::<NoSolution>())?;
     m.add_class::<PyWorld>()?;
-    m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_class::<replan::PySession>()?;
+    m.add_function(wrap_pyfunction!(replan::plan, m)?)?;
     m.add_function(wrap_pyfunction!(replan::replan, m)?)?;
     m.add_function(wrap_pyfunction!(load_world, m)?)?;
     m.add_function(wrap_pyfunction!(plugins_json, m)?)?;

@@ -366,3 +366,73 @@ def test_replan_errors_name_the_key_or_say_nothing_is_left(tmp_path):
     state.write_text('pose = [1.0, 1.0, 0.0]\nvisited = ["gauge-a", "gauge-b", "valve-c"]\n')
     with pytest.raises(smug.NoSolution, match="no reachable target"):
         smug.replan(DEMO, state)
+
+
+def test_plan_saves_a_roadmap_that_replan_starts_from(tmp_path):
+    roadmap = tmp_path / "demo.roadmap"
+    plan = smug.plan(DEMO, save_roadmap=roadmap)
+    assert roadmap.is_file()
+    state = tmp_path / "state.toml"
+    state.write_text("pose = [1.0, 1.0, 0.0]\n")
+    # An empty state on the saved roadmap reproduces the plan bit for bit.
+    again = smug.replan(DEMO, state, roadmap=roadmap)
+    assert again.cost == plan.cost and again.sequence == plan.sequence
+    np.testing.assert_array_equal(again.waypoints, plan.waypoints)
+    assert again.stats["counters"]["warm_answers_served"] > 0
+    cli = run_cli(
+        "replan", str(DEMO), "--state", str(state), "--roadmap", str(roadmap),
+        "--out", str(tmp_path / "out"),
+    )
+    assert cli.returncode == 0, cli.stderr
+    assert json.loads((tmp_path / "out" / "plan.json").read_text())["cost"] == again.cost
+    with pytest.raises(smug.InputError, match="built for another config"):
+        smug.replan(DEMO, state, seed=2, roadmap=roadmap)
+    truncated = tmp_path / "truncated.roadmap"
+    truncated.write_bytes(roadmap.read_bytes()[:-10])
+    with pytest.raises(smug.InputError, match="truncated"):
+        smug.replan(DEMO, state, roadmap=truncated)
+    with pytest.raises(smug.InputError, match="the configured planner keeps none"):
+        smug.plan(
+            REPO / "configs" / "indoor-disc.toml",
+            set={"planner.type": "visibility"},
+            save_roadmap=tmp_path / "none.roadmap",
+        )
+
+
+def test_a_session_plans_as_plan_and_replans_in_place(tmp_path):
+    session = smug.Session(DEMO)
+    plan = session.plan()
+    direct = smug.plan(DEMO)
+    assert plan.cost == direct.cost
+    np.testing.assert_array_equal(plan.waypoints, direct.waypoints)
+    assert session.known_paths > 0 and session.obstacles == []
+    rock = {"center": (2.5, 3.5), "radius": 0.6, "height": 1.0}
+    state = {"pose": (6.5, 3.0, -1.5), "visited": ["gauge-b"], "obstacles": [rock]}
+    replan = session.replan(state)
+    assert tuple(replan.waypoints[0, :2]) == (6.5, 3.0)
+    assert "gauge-b" not in replan.sequence
+    assert replan.to_dict()["replan"]["state"]["visited"] == ["gauge-b"]
+    assert session.obstacles == [(2.5, 3.5, 0.6, 1.0)]
+    for x, y, *_ in replan.waypoints:
+        assert (x - 2.5) ** 2 + (y - 3.5) ** 2 > 0.6**2
+    # The same replan from scratch: same targets, cost within the flat demo's spread.
+    path = tmp_path / "state.toml"
+    path.write_text(
+        'pose = [6.5, 3.0, -1.5]\nvisited = ["gauge-b"]\n'
+        "[[obstacles]]\ncenter = [2.5, 3.5]\nradius = 0.6\nheight = 1.0\n"
+    )
+    scratch = smug.replan(DEMO, path)
+    assert sorted(scratch.sequence) == sorted(replan.sequence)
+    assert replan.cost <= scratch.cost * 1.25
+    # Obstacles accumulate: dropping an applied one is refused, naming the key.
+    with pytest.raises(smug.InputError, match="`obstacles`"):
+        session.replan({"pose": (6.5, 3.0, -1.5)})
+    with pytest.raises(smug.NoSolution, match="no reachable target"):
+        session.replan({"pose": (1.0, 1.0, 0.0), "visited": ["gauge-a", "gauge-b", "valve-c"],
+                        "obstacles": [rock]})
+    # The session goes on after errors; a state file works too.
+    again = session.replan(path)
+    assert again.sequence == replan.sequence
+    more = dict(state, obstacles=[rock, {"center": (10.5, 1.0), "radius": 0.4, "height": 0.5}])
+    session.replan(more)
+    assert len(session.obstacles) == 2

@@ -5,7 +5,7 @@
 //! (minimum or weighted mean). Cells without elevation data get no data (NaN).
 
 use serde::{Deserialize, Serialize};
-use smug_core::{Error, GridLayer, TraversabilityEstimator, World};
+use smug_core::{Error, GridLayer};
 
 /// How the three scores combine.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -315,17 +315,8 @@ fn det3(m: [[f64; 3]; 3]) -> f64 {
         + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
 }
 
-impl TraversabilityEstimator for GeometricEstimator {
-    fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
-        let elevation = &world.elevation;
-        let window = Window::new(self.window_radius, elevation.geometry.resolution);
-        Ok(GridLayer::from_fn(elevation.geometry, |i, j| {
-            window
-                .features(elevation, i, j)
-                .map_or(f32::NAN, |f| self.score(&f) as f32)
-        }))
-    }
-}
+#[path = "geometric_estimate.rs"]
+mod estimate;
 
 smug_core::register_plugin!(
     smug_core::registry::TraversabilityStage,
@@ -344,8 +335,10 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
+
     use proptest::prelude::*;
     use smug_core::{GridGeometry, Mission, Pose2};
+    use smug_core::{TraversabilityEstimator, World};
 
     /// The original accumulation (heights' range as options), verbatim.
     #[derive(Default)]

@@ -20,6 +20,7 @@ pub mod geometric;
 pub mod hierarchical;
 pub mod robot_box;
 pub mod volumes;
+mod volumes_update;
 pub mod volumetric;
 
 pub use clearance_2d::Clearance2dChecker;

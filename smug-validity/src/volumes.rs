@@ -8,7 +8,9 @@
 //! checker with `t_low = t_high`) never pays for them.
 
 use crate::edt::squared_edt_3d;
+use crate::volumes_update::{update_distances, update_occupancy};
 use crate::ValidityError;
+use smug_core::mission::DiscObstacle;
 use smug_core::{VoxelGeometry, VoxelGrid, World};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
@@ -161,6 +163,56 @@ impl SharedVolumes {
     pub fn is_derived(&self) -> bool {
         self.0.volumes.get().is_some()
     }
+
+    /// The shared volumes of `world`, which is `previous` with `obstacles` added
+    /// ([`smug_core::mission::add_obstacles`]), updated from those derived for `previous`
+    /// (with the same `headroom`, still held by a checker) instead of derived again: the
+    /// obstacles' columns voxelised again and the distance field recomputed in a window
+    /// around them (`volumes_update`), the same volumes bit for bit. `None` when that
+    /// cannot be done (nothing derived for `previous`, a world carrying its own volumes,
+    /// a voxel grid of another extent, a distance not settled in the window): derive
+    /// them with [`for_world`](Self::for_world) instead.
+    pub fn updated(
+        previous: &Arc<World>,
+        world: &Arc<World>,
+        headroom: f64,
+        obstacles: &[DiscObstacle],
+    ) -> Option<Self> {
+        let old = live_source(previous, headroom)?;
+        let geometry = old.derived_geometry?;
+        if occupancy_geometry(world, headroom).ok()? != geometry {
+            return None;
+        }
+        let occupancy = match old.volumes.get() {
+            Some(volumes) => &volumes.occupancy,
+            None => old.occupancy.get()?,
+        };
+        let mut occupancy = occupancy.clone();
+        let added = update_occupancy(&mut occupancy, world, obstacles);
+        let source = match old.volumes.get() {
+            Some(volumes) => {
+                let mut esdf = volumes.esdf.clone();
+                if !update_distances(&mut esdf, &occupancy, &added) {
+                    return None;
+                }
+                VolumeSource {
+                    world: world.clone(),
+                    headroom,
+                    derived_geometry: Some(geometry),
+                    occupancy: OnceLock::new(),
+                    volumes: OnceLock::from(Arc::new(Volumes::new(occupancy, esdf))),
+                }
+            }
+            None => VolumeSource {
+                world: world.clone(),
+                headroom,
+                derived_geometry: Some(geometry),
+                occupancy: OnceLock::from(occupancy),
+                volumes: OnceLock::new(),
+            },
+        };
+        Some(Self(register(source)))
+    }
 }
 
 impl VolumeSource {
@@ -188,30 +240,43 @@ impl VolumeSource {
     }
 }
 
+/// The volume sources alive (held by a checker).
+static SOURCES: Mutex<Vec<Weak<VolumeSource>>> = Mutex::new(Vec::new());
+
+/// The live volume source of `world` and `headroom`, if any.
+fn live_source(world: &Arc<World>, headroom: f64) -> Option<Arc<VolumeSource>> {
+    let mut sources = SOURCES.lock().unwrap_or_else(PoisonError::into_inner);
+    sources.retain(|source| source.strong_count() > 0);
+    let same = |source: &Arc<VolumeSource>| {
+        Arc::ptr_eq(&source.world, world) && source.headroom.to_bits() == headroom.to_bits()
+    };
+    sources.iter().filter_map(Weak::upgrade).find(same)
+}
+
+/// Registers `source` (for a world that has none yet).
+fn register(source: VolumeSource) -> Arc<VolumeSource> {
+    let source = Arc::new(source);
+    let mut sources = SOURCES.lock().unwrap_or_else(PoisonError::into_inner);
+    sources.push(Arc::downgrade(&source));
+    source
+}
+
 /// The live volume source of `world` and `headroom`, or a new one (registered).
 fn shared_source(
     world: &Arc<World>,
     headroom: f64,
     derived_geometry: Option<VoxelGeometry>,
 ) -> Arc<VolumeSource> {
-    static SOURCES: Mutex<Vec<Weak<VolumeSource>>> = Mutex::new(Vec::new());
-    let mut sources = SOURCES.lock().unwrap_or_else(PoisonError::into_inner);
-    sources.retain(|source| source.strong_count() > 0);
-    let same = |source: &Arc<VolumeSource>| {
-        Arc::ptr_eq(&source.world, world) && source.headroom.to_bits() == headroom.to_bits()
-    };
-    if let Some(found) = sources.iter().filter_map(Weak::upgrade).find(same) {
+    if let Some(found) = live_source(world, headroom) {
         return found;
     }
-    let source = Arc::new(VolumeSource {
+    register(VolumeSource {
         world: world.clone(),
         headroom,
         derived_geometry,
         occupancy: OnceLock::new(),
         volumes: OnceLock::new(),
-    });
-    sources.push(Arc::downgrade(&source));
-    source
+    })
 }
 
 /// Voxelises the terrain: ground and everything below it occupied, columns without

@@ -147,9 +147,22 @@ impl StateValidityChecker for VolumetricChecker {
 
 /// The volumes of the context's world for `robot`, shared with the other checkers of
 /// that world (derived on first use).
+/// After a world change ([`BuildContext::world_change`]), the previous world's volumes
+/// updated in place when they can be ([`SharedVolumes::updated`]).
 pub(crate) fn shared_volumes(ctx: &BuildContext, robot: &RobotBox) -> Result<SharedVolumes, Error> {
-    SharedVolumes::for_world(&ctx.world()?, robot.headroom())
-        .map_err(|e| Error::stage("validity", e))
+    let world = ctx.world()?;
+    if let Some(change) = ctx.world_change() {
+        let updated = SharedVolumes::updated(
+            &change.previous,
+            &world,
+            robot.headroom(),
+            &change.obstacles,
+        );
+        if let Some(volumes) = updated {
+            return Ok(volumes);
+        }
+    }
+    SharedVolumes::for_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))
 }
 
 /// Builds the checker for the context's world and robot, deriving the volumes now

@@ -93,6 +93,9 @@ pub(super) fn stats(
     counters.insert("roadmap_vertices".into(), planner.vertices);
     counters.insert("roadmap_edges".into(), planner.edges);
     counters.insert("oracle_cache_hits".into(), oracle.stats().cache_hits);
+    if oracle.stats().known_hits > 0 {
+        counters.insert("oracle_known_hits".into(), oracle.stats().known_hits);
+    }
     for (k, v) in &validity {
         counters.insert(format!("validity_{k}"), *v);
     }

@@ -7,6 +7,7 @@ mod obstacles;
 mod replan;
 mod run;
 mod sequential;
+mod session;
 mod state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
@@ -15,6 +16,7 @@ pub use replan::{
     ReplanInfo, SkippedTarget,
 };
 pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use session::{MissionSession, WorldUpdate};
 pub use state::{MissionState, StateError};
 
 use crate::pose::{Bounds2, Point3, Pose2};

@@ -16,6 +16,7 @@ use crate::pipeline::Pipeline;
 use crate::plan::Plan;
 use crate::post_process::{concatenate, waypoints};
 use crate::stages::{Selection, SelectionProblem};
+use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -280,23 +281,38 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
         stage: "smug plan".into(),
         needed: "planner",
     })?;
+    let keep_answers = pipeline.answers.is_some();
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
-        .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric());
-    check_selection_size(&mission)?;
-    let layout = register_poses(&mut oracle, &mission);
+        .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
+        .with_known(pipeline.answers.take().unwrap_or_default());
+    let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
+    if keep_answers {
+        pipeline.answers = Some(oracle.take_known_answers());
+    }
+    // The planner goes back to the pipeline with its roadmap (`--save-roadmap`, a
+    // session's next replan), whatever the outcome.
+    pipeline.planner = Some(oracle.into_planner());
+    planned
+}
+
+/// The mission in the options' mode on `oracle`, its poses not registered yet.
+fn plan_on_oracle(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    world: &World,
+    options: PlanOptions,
+    started: Instant,
+) -> Result<Plan> {
+    check_selection_size(mission)?;
+    let layout = register_poses(oracle, mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
     let (order, problem, selection) = loop {
         let (order, selected) = match options.mode {
             PlanMode::Sequential => order_then_select(
-                pipeline,
-                &mut oracle,
-                &mission,
-                &layout,
-                &targets,
-                options,
-                &mut times,
+                pipeline, oracle, mission, &layout, &targets, options, &mut times,
             )?,
             PlanMode::Joint => {
                 let t = Instant::now();
@@ -309,7 +325,7 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
                     groups: targets.iter().map(|&t| layout.pois[t].clone()).collect(),
                     end: mission.end.is_some().then_some(layout.end),
                 };
-                let (positions, selection) = joint_tour(sequencer.as_ref(), &mut oracle, &joint)?;
+                let (positions, selection) = joint_tour(sequencer.as_ref(), oracle, &joint)?;
                 *times.entry("joint".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
                 let order: Vec<usize> = positions.iter().map(|&k| targets[k]).collect();
                 (order, Ok(selection))
@@ -323,7 +339,7 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
         let selection = match selected {
             Ok(s) if s.cost.is_finite() => s,
             other => {
-                let unreachable = unreachable_targets(&mut oracle, &layout, &targets)?;
+                let unreachable = unreachable_targets(oracle, &layout, &targets)?;
                 if unreachable.is_empty() {
                     other?;
                     return Err(Error::stage(
@@ -349,7 +365,7 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
     };
     let selection = if options.refine_legs {
         let t = Instant::now();
-        let refined = refine_route(&mut oracle, &problem, selection)?;
+        let refined = refine_route(oracle, &problem, selection)?;
         times.insert("refine".to_string(), t.elapsed().as_secs_f64());
         refined
     } else {
@@ -357,21 +373,14 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
     };
     let t = Instant::now();
     let route = problem.route(&selection.chosen);
-    let mut plan = assemble_plan(
-        &mut oracle,
-        &mission,
-        &world,
-        &order,
-        &selection.chosen,
-        &route,
-    )?;
+    let mut plan = assemble_plan(oracle, mission, world, &order, &selection.chosen, &route)?;
     let objective = pipeline
         .config
         .objective
         .as_ref()
         .map_or("path-length", |section| section.kind.as_str());
-    plan.metrics = plan_metrics(pipeline.context(), &world, objective, &concatenate(&plan).0);
-    (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, &world, options.keep_headings);
+    plan.metrics = plan_metrics(pipeline.context(), world, objective, &concatenate(&plan).0);
+    (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, world, options.keep_headings);
     plan.cost = selection.cost;
     plan.skipped = skipped;
     times.insert("post-processing".into(), t.elapsed().as_secs_f64());
@@ -382,8 +391,6 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
     for (stage, s) in &pipeline.build_times_s {
         times.insert(format!("build:{stage}"), *s);
     }
-    plan.stats = stats(&oracle, pipeline, times);
-    // The planner goes back to the pipeline with its roadmap (`--save-roadmap`).
-    pipeline.planner = Some(oracle.into_planner());
+    plan.stats = stats(oracle, pipeline, times);
     Ok(plan)
 }

@@ -13,7 +13,8 @@ mod validity;
 pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
 pub use planner::{
-    Budget, NoPathReason, NoRoadmap, PlannerOutcome, PlannerStats, PointToPointPlanner, Proof,
+    refuse_world_update, Budget, NoPathReason, NoRoadmap, PlannerOutcome, PlannerStats,
+    PointToPointPlanner, Proof,
 };
 pub use roadmap_file::{
     read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
@@ -22,5 +23,5 @@ pub use roadmap_file::{
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
-pub use traversability::TraversabilityEstimator;
+pub use traversability::{CellRect, TraversabilityEstimator};
 pub use validity::{Counters, DiscOnGrid, EndpointFault, FreeRegions, StateValidityChecker};

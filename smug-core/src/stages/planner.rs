@@ -2,6 +2,7 @@
 
 use crate::error::Result;
 use crate::path::Path;
+use crate::pipeline::BuildContext;
 use crate::plan::TimeBreakdown;
 use crate::pose::Pose2;
 use crate::stages::roadmap_file::{ChangedDisc, RoadmapSnapshot};
@@ -196,6 +197,24 @@ pub trait PointToPointPlanner: Send + Sync {
         let _ = (snapshot, changed);
         Err(crate::error::Error::stage("planner", NoRoadmap))
     }
+
+    /// Carries on after obstacles were added to the world in `changed`: the validity
+    /// checker, the motion validator and the objective of `ctx` (rebuilt for the updated
+    /// world) replace the planner's, and what reaches into `changed` is checked again as
+    /// after [`load_roadmap`](Self::load_roadmap) (vertices there checked again, edges
+    /// that may pass there unchecked again, answers through there dropped); the rest
+    /// of the roadmap is kept. The default refuses ([`refuse_world_update`]): the planner
+    /// keeps no roadmap, callers build a new one.
+    fn update_world(&mut self, ctx: &BuildContext, changed: &[ChangedDisc]) -> Result<()> {
+        let _ = (ctx, changed);
+        Err(refuse_world_update())
+    }
+}
+
+/// The planner keeps no roadmap to carry on with after a world change; callers build
+/// a new planner instead.
+pub fn refuse_world_update() -> crate::error::Error {
+    crate::error::Error::stage("planner", NoRoadmap)
 }
 
 /// The planner keeps no roadmap to save or load.

@@ -747,6 +747,14 @@ impl PointToPointPlanner for LazyPrmStar {
         self.load(snapshot, changed)
     }
 
+    fn update_world(
+        &mut self,
+        ctx: &BuildContext,
+        changed: &[smug_core::ChangedDisc],
+    ) -> Result<()> {
+        self.carry_on(ctx, changed)
+    }
+
     fn stats(&self) -> PlannerStats {
         let c = &self.counts;
         let mut counters = BTreeMap::from([

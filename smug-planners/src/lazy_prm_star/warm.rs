@@ -4,10 +4,11 @@
 use super::LazyPrmStar;
 use crate::roadmap::Validity;
 use smug_core::{
-    ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2, PoseBits, Result,
-    RoadmapSnapshot, SavedAnswer, StateSpace,
+    Bounds2, BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2,
+    PoseBits, Result, RoadmapSnapshot, SavedAnswer, StateSpace,
 };
 use std::collections::{BTreeMap, HashMap, VecDeque};
+use std::time::Instant;
 
 /// The planner's name in saved snapshots.
 pub(super) const PLANNER_NAME: &str = "lazy-prm-star";
@@ -124,6 +125,34 @@ impl LazyPrmStar {
             edges: snapshot.edges.len() as u64,
             ..LoadCounts::default()
         };
+        self.invalidate(changed, &mut counts);
+        for answer in snapshot.answers {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
+                counts.answers_dropped += 1;
+                continue;
+            }
+            counts.answers_reused += 1;
+            let path = Path {
+                states,
+                cost: f64::from_bits(answer.cost),
+            };
+            let key = (answer.start, answer.goal);
+            self.warm.given.entry(key).or_default().push(answer.clone());
+            self.warm.reusable.entry(key).or_default().push_back(path);
+        }
+        self.grown = true;
+        self.fresh_from = self.roadmap.vertex_count() as u32;
+        self.warm.loaded = Some(counts);
+        Ok(())
+    }
+
+    /// Checks again the vertices in `changed` (kept if valid, dropped if not) and marks
+    /// the valid edges whose motion may pass there unchecked.
+    fn invalidate(&mut self, changed: &[ChangedDisc], counts: &mut LoadCounts) {
+        if changed.is_empty() {
+            return;
+        }
         for v in 0..self.roadmap.vertex_count() as u32 {
             let pose = *self.roadmap.pose(v);
             if self.roadmap.vertex_validity(v) == Validity::Invalid
@@ -151,13 +180,71 @@ impl LazyPrmStar {
             }
         }
         self.roadmap.refresh_components();
-        for answer in snapshot.answers {
-            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
-            let touched = states
+    }
+
+    /// Draws `n` samples (spread over the discs) into the squares around `changed`
+    /// (within the bounds), so that the roadmap keeps its density where the vertices
+    /// the obstacles took were: the ways around them are in the roadmap.
+    fn resample(&mut self, changed: &[ChangedDisc], n: u64) {
+        let finite: Vec<&ChangedDisc> = changed.iter().filter(|d| d.radius.is_finite()).collect();
+        if finite.is_empty() || n == 0 {
+            return;
+        }
+        let per_disc = n.div_ceil(finite.len() as u64);
+        for disc in finite {
+            let [x, y] = disc.center;
+            let square = Bounds2 {
+                min: [
+                    (x - disc.radius).max(self.bounds.min[0]),
+                    (y - disc.radius).max(self.bounds.min[1]),
+                ],
+                max: [
+                    (x + disc.radius).min(self.bounds.max[0]),
+                    (y + disc.radius).min(self.bounds.max[1]),
+                ],
+            };
+            if square.min[0] > square.max[0] || square.min[1] > square.max[1] {
+                continue;
+            }
+            for _ in 0..per_disc {
+                let started = Instant::now();
+                let sample = self.sampler.sample(&square, None);
+                self.counts.samples += 1;
+                self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+                if let Some(sample) = sample {
+                    self.insert_sample(sample);
+                }
+            }
+        }
+    }
+
+    /// True when no state of `states` lies in `changed` and no motion between them may
+    /// pass there (an empty path counts as touched).
+    fn untouched(&self, states: &[Pose2], changed: &[ChangedDisc]) -> bool {
+        !states.is_empty()
+            && !states
                 .windows(2)
                 .any(|w| touches(self.space.as_ref(), changed, &w[0], &w[1]))
-                || states.iter().any(|s| changed.iter().any(|d| d.contains(s)));
-            if touched || answer.goal_distance.is_some() || states.is_empty() {
+            && !states.iter().any(|s| changed.iter().any(|d| d.contains(s)))
+    }
+
+    /// Carries on with the stages of `ctx` (rebuilt for a world with obstacles added in
+    /// `changed`): checks again what reaches into `changed`, and keeps every answer given
+    /// so far that no change touches for serving again (the sampler is kept: its
+    /// stream goes on).
+    pub(super) fn carry_on(&mut self, ctx: &BuildContext, changed: &[ChangedDisc]) -> Result<()> {
+        self.states = ctx.state_validity()?;
+        self.motions = ctx.motion_validator()?;
+        self.objective = ctx.objective();
+        let mut counts = self.warm.loaded.unwrap_or_default();
+        let dropped_before = counts.vertices_dropped;
+        self.invalidate(changed, &mut counts);
+        self.resample(changed, 2 * (counts.vertices_dropped - dropped_before));
+        let given = std::mem::take(&mut self.warm.given);
+        self.warm.reusable.clear();
+        for answer in given.into_values().flatten() {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
                 counts.answers_dropped += 1;
                 continue;
             }
@@ -167,10 +254,9 @@ impl LazyPrmStar {
                 cost: f64::from_bits(answer.cost),
             };
             let key = (answer.start, answer.goal);
-            self.warm.given.entry(key).or_default().push(answer.clone());
+            self.warm.given.entry(key).or_default().push(answer);
             self.warm.reusable.entry(key).or_default().push_back(path);
         }
-        self.grown = true;
         self.fresh_from = self.roadmap.vertex_count() as u32;
         self.warm.loaded = Some(counts);
         Ok(())

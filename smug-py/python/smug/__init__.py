@@ -32,6 +32,7 @@ __all__ = [
     "InputError",
     "NoSolution",
     "Plan",
+    "Session",
     "SmugError",
     "World",
     "load_world",
@@ -258,6 +259,7 @@ def plan(
     seed: Optional[int] = None,
     world: Optional[World] = None,
     traversability: Optional[Traversability] = None,
+    save_roadmap: Optional[PathLike] = None,
 ) -> Plan:
     """Plans the mission of ``config`` (a pipeline TOML), as ``smug plan`` does.
 
@@ -266,7 +268,10 @@ def plan(
     config's ``[world]``; ``traversability``: a callable ``(elevation, resolution) ->
     array`` used instead of the config's ``[traversability]`` estimator. It gets the
     elevation as float64 ``(ny, nx)`` (NaN = no data) and must return a float32/float64
-    array of the same shape with values in [0, 1] (NaN = unknown).
+    array of the same shape with values in [0, 1] (NaN = unknown). ``save_roadmap``: a
+    file to save the planner's roadmap to after the mission (``smug plan
+    --save-roadmap``), for :func:`replan`'s ``roadmap``; a planner that keeps none
+    raises :class:`InputError`.
 
     Raises :class:`ConfigError` (bad config, key, plugin or parameter), :class:`InputError`
     (unusable map, mission or traversability) or :class:`NoSolution` (unreachable targets);
@@ -274,7 +279,12 @@ def plan(
     """
     native_world = world._native if world is not None else None
     text, waypoints, planned_world = _smug.plan(
-        os.fspath(config), _overrides(set), seed, native_world, traversability
+        os.fspath(config),
+        _overrides(set),
+        seed,
+        native_world,
+        traversability,
+        None if save_roadmap is None else os.fspath(save_roadmap),
     )
     return Plan(text, waypoints, World(planned_world))
 
@@ -285,19 +295,98 @@ def replan(
     state: PathLike,
     set: Overrides = None,
     seed: Optional[int] = None,
+    roadmap: Optional[PathLike] = None,
 ) -> Plan:
     """Replans the rest of the mission of ``config`` from the mission state file ``state``
     (TOML: ``pose = [x, y, yaw]``, ``visited``, ``failed_pois``, ``[[obstacles]]``; see
     ``docs/replanning.md``), as ``smug replan`` does. The plan's ``to_dict()["replan"]``
-    holds the state it started from and the skipped targets.
+    holds the state it started from and the skipped targets. ``roadmap``: a roadmap file
+    saved by :func:`plan` (``save_roadmap``) to start from (``smug replan --roadmap``).
 
     Raises :class:`ConfigError` (bad config), :class:`InputError` (bad state: the message
-    names the file and the key) or :class:`NoSolution` (no reachable target left).
+    names the file and the key; a roadmap file for another world, robot or config, or a
+    damaged one: the message names the file and why) or :class:`NoSolution` (no
+    reachable target left).
     """
     text, waypoints, planned_world = _smug.replan(
-        os.fspath(config), os.fspath(state), _overrides(set), seed
+        os.fspath(config),
+        os.fspath(state),
+        _overrides(set),
+        seed,
+        None if roadmap is None else os.fspath(roadmap),
     )
     return Plan(text, waypoints, World(planned_world))
+
+
+State = Union[PathLike, Mapping[str, Any]]
+
+
+def _state_toml(state: Mapping[str, Any]) -> str:
+    """A mission state given as Python data (the keys of the state file) as TOML."""
+    lines = []
+    for key in ("pose", "visited", "failed_pois"):
+        if key in state:
+            lines.append(f"{key} = {_toml_value(list(state[key]))}")
+    for key in state:
+        if key not in ("pose", "visited", "failed_pois", "obstacles"):
+            lines.append(f"{key} = {_toml_value(state[key])}")
+    for obstacle in state.get("obstacles", []):
+        lines.append("[[obstacles]]")
+        lines.extend(f"{k} = {_toml_value(v)}" for k, v in obstacle.items())
+    return "\n".join(lines) + "\n"
+
+
+class Session:
+    """A mission session kept in memory: the pipeline of ``config`` (world, checkers,
+    planner with its roadmap, the paths planned) assembled once, the mission planned
+    with :meth:`plan`, then replanned in place with :meth:`replan` for each mission state
+    (new obstacles applied only where they reach, paths they do not touch reused; see
+    ``docs/replanning.md``). What a robot runs onboard: replans take a fraction of a
+    replan from scratch.
+
+    >>> session = smug.Session("configs/lunar.toml", seed=1)   # doctest: +SKIP
+    >>> plan = session.plan()                                   # = smug.plan(...)
+    >>> later = session.replan({"pose": (3.0, 4.0, 0.0), "visited": ["stone-1"]})
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, config: PathLike, set: Overrides = None, seed: Optional[int] = None) -> None:
+        self._native = _smug.Session(os.fspath(config), _overrides(set), seed)
+
+    def plan(self) -> Plan:
+        """Plans the whole mission, as :func:`plan` does (the same plan)."""
+        text, waypoints, world = self._native.plan()
+        return Plan(text, waypoints, World(world))
+
+    def replan(self, state: State) -> Plan:
+        """Replans the rest of the mission from ``state``: a state file, or a dict with its
+        keys (``pose``, ``visited``, ``failed_pois``, ``obstacles`` as a list of
+        ``{"center": (x, y), "radius": r, "height": h}``). Obstacles accumulate: a state
+        lists every obstacle the session applied before first, in the same order, then
+        the new ones.
+
+        Raises :class:`InputError` (bad state, naming the key; an applied obstacle
+        missing) or :class:`NoSolution` (no reachable target left); the session stays
+        usable after an error.
+        """
+        if isinstance(state, Mapping):
+            text, name = _state_toml(state), "mission state"
+        else:
+            with open(os.fspath(state), encoding="utf-8") as f:
+                text, name = f.read(), os.fspath(state)
+        text, waypoints, world = self._native.replan(text, name)
+        return Plan(text, waypoints, World(world))
+
+    @property
+    def obstacles(self) -> List[Tuple[float, float, float, float]]:
+        """The obstacles applied so far, as ``(x, y, radius, height)``."""
+        return self._native.obstacles()
+
+    @property
+    def known_paths(self) -> int:
+        """How many paths the session keeps from earlier plans (each direction counts)."""
+        return self._native.known_paths()
 
 def load_world(config: PathLike, set: Overrides = None, seed: Optional[int] = None) -> World:
     """The world of ``config`` with its traversability layer, without planning."""
