@@ -126,21 +126,7 @@ impl LazyPrmStar {
             ..LoadCounts::default()
         };
         self.invalidate(changed, &mut counts);
-        for answer in snapshot.answers {
-            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
-            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
-                counts.answers_dropped += 1;
-                continue;
-            }
-            counts.answers_reused += 1;
-            let path = Path {
-                states,
-                cost: f64::from_bits(answer.cost),
-            };
-            let key = (answer.start, answer.goal);
-            self.warm.given.entry(key).or_default().push(answer.clone());
-            self.warm.reusable.entry(key).or_default().push_back(path);
-        }
+        self.keep_untouched_answers(snapshot.answers, changed, &mut counts);
         self.grown = true;
         self.fresh_from = self.roadmap.vertex_count() as u32;
         self.warm.loaded = Some(counts);
@@ -218,6 +204,31 @@ impl LazyPrmStar {
         }
     }
 
+    /// Keeps (to serve again, in their order, and to save) the exact `answers` no
+    /// change touches; counts the kept and the dropped.
+    fn keep_untouched_answers(
+        &mut self,
+        answers: impl IntoIterator<Item = SavedAnswer>,
+        changed: &[ChangedDisc],
+        counts: &mut LoadCounts,
+    ) {
+        for answer in answers {
+            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
+            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
+                counts.answers_dropped += 1;
+                continue;
+            }
+            counts.answers_reused += 1;
+            let path = Path {
+                states,
+                cost: f64::from_bits(answer.cost),
+            };
+            let key = (answer.start, answer.goal);
+            self.warm.given.entry(key).or_default().push(answer);
+            self.warm.reusable.entry(key).or_default().push_back(path);
+        }
+    }
+
     /// True when no state of `states` lies in `changed` and no motion between them may
     /// pass there (an empty path counts as touched).
     fn untouched(&self, states: &[Pose2], changed: &[ChangedDisc]) -> bool {
@@ -242,21 +253,7 @@ impl LazyPrmStar {
         self.resample(changed, 2 * (counts.vertices_dropped - dropped_before));
         let given = std::mem::take(&mut self.warm.given);
         self.warm.reusable.clear();
-        for answer in given.into_values().flatten() {
-            let states: Vec<Pose2> = answer.states.iter().map(|&s| s.into()).collect();
-            if answer.goal_distance.is_some() || !self.untouched(&states, changed) {
-                counts.answers_dropped += 1;
-                continue;
-            }
-            counts.answers_reused += 1;
-            let path = Path {
-                states,
-                cost: f64::from_bits(answer.cost),
-            };
-            let key = (answer.start, answer.goal);
-            self.warm.given.entry(key).or_default().push(answer);
-            self.warm.reusable.entry(key).or_default().push_back(path);
-        }
+        self.keep_untouched_answers(given.into_values().flatten(), changed, &mut counts);
         self.fresh_from = self.roadmap.vertex_count() as u32;
         self.warm.loaded = Some(counts);
         Ok(())
