@@ -111,17 +111,12 @@ impl Auto {
         })
     }
 
-    /// Whether the clustered problem is small enough for `gtsp-exact`.
+    /// Whether the clustered problem goes to `gtsp-exact`: it fits that solver's limits
+    /// and needs at most `exact_cluster_work` DP steps.
     fn clusters_exactly(&self, costs: &CostMatrix, clusters: &Clusters) -> bool {
-        let m = clusters.len();
-        let limits = GtspExactParams::default();
-        if m > limits.max_clusters
-            || GtspExact::table_bytes(m, costs.len()) > u128::from(limits.max_memory_mib) << 20
-        {
-            return false;
-        }
-        let n = costs.len() as f64;
-        2f64.powi(m.saturating_sub(1) as i32) * n * n <= self.exact_cluster_work
+        let (m, n) = (clusters.len(), costs.len());
+        let work = 2f64.powi(m.saturating_sub(1) as i32) * (n as f64).powi(2);
+        self.clusters_exact.fits(m, n) && work <= self.exact_cluster_work
     }
 }
 
@@ -156,6 +151,7 @@ impl Sequencer for Auto {
         initial: &Tour,
     ) -> smug_core::Result<Tour> {
         if self.clusters_exactly(costs, clusters) {
+            // The exact solver needs no start tour.
             self.clusters_exact.solve_clusters(costs, clusters, kind)
         } else {
             self.clusters_heuristic

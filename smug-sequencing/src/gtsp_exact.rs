@@ -60,6 +60,11 @@ impl GtspExact {
         sets * n as u128 * std::mem::size_of::<f64>() as u128
     }
 
+    /// Whether `m` clusters over `n` nodes are within this solver's limits.
+    pub fn fits(&self, m: usize, n: usize) -> bool {
+        self.check_size(m, n).is_ok()
+    }
+
     fn check_size(&self, m: usize, n: usize) -> Result<(), SequencingError> {
         if m > self.params.max_clusters {
             return Err(SequencingError::TooManyNodes {
