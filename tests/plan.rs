@@ -4,6 +4,8 @@
 use smug_core::{plan_mission, LoadedConfig, Pipeline, PlanOptions};
 use std::path::Path;
 
+mod support;
+
 use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
@@ -127,17 +129,15 @@ fn refining_the_legs_keeps_the_route_and_never_makes_a_leg_dearer() {
         ("flat-demo.toml", "sequential"),
     ] {
         for seed in 1..=3 {
-            let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("../configs")
-                .join(config);
             let plan = |refine: bool| {
-                let set = vec![
+                let set = [
                     format!("seed={seed}"),
                     format!("plan.mode={mode}"),
                     format!("plan.refine_legs={refine}"),
                     "sequencer.type=auto".to_string(),
                 ];
-                let loaded = LoadedConfig::from_file(&path, &set).unwrap();
+                let set: Vec<&str> = set.iter().map(String::as_str).collect();
+                let loaded = support::shipped_config(config, &set);
                 let mut pipeline = Pipeline::assemble(&loaded).unwrap();
                 let plan = plan_mission(&mut pipeline, loaded.config.plan).unwrap();
                 (plan, pipeline)

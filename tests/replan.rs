@@ -12,7 +12,6 @@ use smug_core::mission::{
     assemble_replan, replan_mission, DiscObstacle, MissionState, NoTargetLeft, Unreachable,
 };
 use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan};
-use std::path::Path;
 
 use smug_objectives as _;
 use smug_planners as _;
@@ -23,13 +22,8 @@ use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
 
-fn config(name: &str, set: &[&str]) -> LoadedConfig {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../configs")
-        .join(name);
-    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
-    LoadedConfig::from_file(&path, &set).unwrap()
-}
+mod support;
+use support::shipped_config as config;
 
 fn original(loaded: &LoadedConfig) -> (Plan, Pipeline) {
     let mut pipeline = Pipeline::assemble(loaded).unwrap();

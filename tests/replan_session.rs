@@ -15,7 +15,6 @@ use smug_core::mission::{
     StateError, Unreachable,
 };
 use smug_core::{plan_mission, Error, GridLayer, LoadedConfig, Pipeline, Plan, Pose2, World};
-use std::path::Path;
 
 use smug_objectives as _;
 use smug_planners as _;
@@ -26,13 +25,8 @@ use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
 
-fn config(name: &str, set: &[&str]) -> LoadedConfig {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../configs")
-        .join(name);
-    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
-    LoadedConfig::from_file(&path, &set).unwrap()
-}
+mod support;
+use support::shipped_config as config;
 
 /// The replan from scratch and its pipeline (none when the state is refused).
 fn scratch(loaded: &LoadedConfig, state: &MissionState) -> (Result<Plan, Error>, Option<Pipeline>) {
