@@ -64,7 +64,8 @@ pub(crate) fn trivial_tour(costs: &CostMatrix, kind: TourKind) -> Option<Tour> {
 pub(crate) struct Dist {
     n: usize,
     data: Vec<f64>,
-    /// `data` transposed: the costs into node `j` are row `j`.
+    /// `data` transposed (the costs into node `j` are row `j`), or empty when `data`
+    /// is exactly symmetric: then its own row `j` holds them.
     into: Vec<f64>,
     symmetric: bool,
     eps: f64,
@@ -92,7 +93,13 @@ impl Dist {
             })
             .collect();
         let eps = (max_finite * 1e-10).max(f64::MIN_POSITIVE);
-        let into = (0..n * n).map(|k| data[(k % n) * n + k / n]).collect();
+        let transposed = |k: usize| data[(k % n) * n + k / n];
+        let exactly_symmetric = (0..n * n).all(|k| data[k].to_bits() == transposed(k).to_bits());
+        let into = if exactly_symmetric {
+            Vec::new()
+        } else {
+            (0..n * n).map(transposed).collect()
+        };
         let mut dist = Self {
             n,
             data,
@@ -124,7 +131,11 @@ impl Dist {
     /// `j` lie side by side: cheap when `i` runs over nearby nodes, e.g. a cluster.
     #[inline]
     pub(crate) fn d_into(&self, i: usize, j: usize) -> f64 {
-        self.into[j * self.n + i]
+        if self.into.is_empty() {
+            self.data[j * self.n + i]
+        } else {
+            self.into[j * self.n + i]
+        }
     }
 
     /// True when `d(i, j) == d(j, i)` for every pair (within `eps`).
@@ -154,17 +165,20 @@ mod tests {
 
     #[test]
     fn costs_into_a_node_read_the_same_as_costs_from_it() {
-        let costs =
+        let asymmetric =
             CostMatrix::from_fn(7, |i, j| (i * 31 + j * 17 % 5) as f64 + 0.25 * j as f64).unwrap();
-        let dist = Dist::new(&costs);
-        assert!(!dist.is_symmetric());
-        for i in 0..7 {
-            for j in 0..7 {
-                assert_eq!(
-                    dist.d(i, j).to_bits(),
-                    dist.d_into(i, j).to_bits(),
-                    "{i} → {j}"
-                );
+        let symmetric = CostMatrix::from_fn(7, |i, j| (i * j + i + j) as f64 * 0.1).unwrap();
+        for (costs, is_symmetric) in [(asymmetric, false), (symmetric, true)] {
+            let dist = Dist::new(&costs);
+            assert_eq!(dist.is_symmetric(), is_symmetric);
+            for i in 0..7 {
+                for j in 0..7 {
+                    assert_eq!(
+                        dist.d(i, j).to_bits(),
+                        dist.d_into(i, j).to_bits(),
+                        "{i} → {j}"
+                    );
+                }
             }
         }
     }
