@@ -10,6 +10,8 @@ use smug_core::{
 };
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
+mod segment;
+
 /// Parameters of the disc checker.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -38,6 +40,7 @@ pub struct Clearance2dChecker {
     radius: f64,
     checks: AtomicU64,
     exact_checks: AtomicU64,
+    segment_checks: AtomicU64,
 }
 
 impl Clearance2dChecker {
@@ -73,6 +76,7 @@ impl Clearance2dChecker {
             radius: params.radius,
             checks: AtomicU64::new(0),
             exact_checks: AtomicU64::new(0),
+            segment_checks: AtomicU64::new(0),
         })
     }
 
@@ -175,6 +179,11 @@ impl StateValidityChecker for Clearance2dChecker {
         Some(border.min(obstacle) - r)
     }
 
+    fn segment_valid(&self, a: &Pose2, b: &Pose2) -> Option<bool> {
+        self.segment_checks.fetch_add(1, Relaxed);
+        Some(self.segment_clear(a, b))
+    }
+
     fn disc_on_grid(&self) -> Option<DiscOnGrid> {
         Some(DiscOnGrid {
             radius: self.radius,
@@ -187,6 +196,10 @@ impl StateValidityChecker for Clearance2dChecker {
         Counters::from([
             ("checks".to_string(), self.checks.load(Relaxed)),
             ("exact_checks".to_string(), self.exact_checks.load(Relaxed)),
+            (
+                "segment_checks".to_string(),
+                self.segment_checks.load(Relaxed),
+            ),
         ])
     }
 }
@@ -241,6 +254,36 @@ mod tests {
                 dx.hypot(dy) >= r && !(dx == 0.0 && dy == 0.0)
             });
             prop_assert_eq!(checker.is_valid(&Pose2::new(x, y, 0.0)), inside && clear);
+        }
+
+        #[test]
+        fn the_segment_test_is_exact(
+            a in (0.0f64..10.0, 0.0f64..10.0), b in (0.0f64..10.0, 0.0f64..10.0),
+            r in 0.0f64..1.5,
+        ) {
+            let w = world();
+            let checker = Clearance2dChecker::new(&w, Clearance2dParams { radius: r, obstacle_height: 1.0 }).unwrap();
+            let (a, b) = (Pose2::new(a.0, a.1, 0.0), Pose2::new(b.0, b.1, 1.0));
+            let verdict = checker.segment_valid(&a, &b).unwrap();
+            prop_assert_eq!(verdict, checker.segment_valid(&b, &a).unwrap());
+            // Dense points, `step` apart: all valid when the segment is; when it is not,
+            // one of them comes within half a step of contact.
+            let steps = 4000;
+            let step = a.xy_distance(&b) / steps as f64;
+            let points = (0..=steps).map(|k| {
+                let t = k as f64 / steps as f64;
+                Pose2::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), 0.0)
+            });
+            if verdict {
+                for p in points {
+                    prop_assert!(checker.is_valid(&p), "{:?} on a clear segment", p);
+                }
+            } else {
+                let nearest = points
+                    .map(|p| checker.clearance(&p).unwrap())
+                    .fold(f64::INFINITY, f64::min);
+                prop_assert!(nearest <= 0.5 * step + 1e-9, "blocked, yet {} clear", nearest);
+            }
         }
 
         #[test]

@@ -20,7 +20,8 @@ pub struct DiscreteMotionParams {
     /// `longest_valid_segment_length`; reference: 0.5).
     pub resolution: f64,
     /// Largest terrain slope |Δz| / horizontal distance between consecutive states
-    /// (reference: 0.58); needs the world's elevation. Absent: no limit.
+    /// (reference: 0.58); needs the world's elevation. `inf`: no limit (flat maps:
+    /// no height is looked up).
     pub max_inclination: Option<f64>,
 }
 
@@ -181,6 +182,30 @@ impl DiscreteMotionValidator {
         }
     }
 
+    /// The checker's exact verdict on a straight motion (a disc on a grid), when the
+    /// model's motions are straight in the plane and the checker has one.
+    fn exact_segment(&self, a: &Pose2, b: &Pose2) -> Option<bool> {
+        if !self.space.is_holonomic() {
+            return None;
+        }
+        self.states.segment_valid(a, b)
+    }
+
+    /// True when every position of the `n`-segment motion `a → b` is valid: traced
+    /// through the checker's clearance when it has one, else its states at the
+    /// resolution, the ends first, then in bisection order.
+    fn states_valid(&self, a: &Pose2, b: &Pose2, n: usize) -> bool {
+        match self.swept_either_way(a, b) {
+            Some(swept) => swept == Swept::Clear,
+            None => {
+                self.is_valid_state(b)
+                    && self.is_valid_state(a)
+                    && Self::bisection_order(n)
+                        .all(|k| self.is_valid_state(&self.state_at(a, b, k, n)))
+            }
+        }
+    }
+
     /// Interior state indices `1..n` in bisection order (midpoints first).
     fn bisection_order(n: usize) -> impl Iterator<Item = usize> {
         let mut queue = VecDeque::from([(0usize, n)]);
@@ -214,19 +239,20 @@ impl MotionValidator for DiscreteMotionValidator {
     fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
         self.motions_checked.fetch_add(1, Relaxed);
         let n = self.segment_count(a, b);
-        if !self.slopes_ok(a, b, n) {
-            return false;
-        }
-        if let Some(swept) = self.swept_either_way(a, b) {
-            return swept == Swept::Clear;
-        }
-        self.is_valid_state(b)
-            && self.is_valid_state(a)
-            && Self::bisection_order(n).all(|k| self.is_valid_state(&self.state_at(a, b, k, n)))
+        // The states first: a blocked motion usually ends within a few of them, where
+        // the slopes look up every state's height.
+        let states_valid = match self.exact_segment(a, b) {
+            Some(valid) => valid,
+            None => self.states_valid(a, b, n),
+        };
+        states_valid && self.slopes_ok(a, b, n)
     }
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
         self.motions_checked.fetch_add(1, Relaxed);
+        if self.terrain.is_none() && self.exact_segment(a, b) == Some(true) {
+            return MotionCheck::Valid;
+        }
         let n = self.segment_count(a, b);
         // With a continuous trace, states at the resolution only check the slopes, up
         // to the contact the trace found.
@@ -291,8 +317,8 @@ fn build_validator(
     ctx: &BuildContext,
 ) -> Result<DiscreteMotionValidator, Error> {
     let terrain = match params.max_inclination {
-        Some(limit) => Some((ctx.world()?, limit)),
-        None => None,
+        Some(limit) if limit != f64::INFINITY => Some((ctx.world()?, limit)),
+        _ => None,
     };
     DiscreteMotionValidator::new(
         ctx.state_validity()?,

@@ -21,6 +21,16 @@ pub trait StateValidityChecker: Send + Sync {
         None
     }
 
+    /// Whether the robot is valid at every point of the straight x–y segment from `a`
+    /// to `b` (any yaw), decided exactly, when the checker can (a disc on a grid: the
+    /// segment keeps the radius from every blocked cell); `None` (the default) when it
+    /// cannot, and motion validators check states along the motion instead. The
+    /// verdict for `b → a` is the same.
+    fn segment_valid(&self, a: &Pose2, b: &Pose2) -> Option<bool> {
+        let _ = (a, b);
+        None
+    }
+
     /// Counters accumulated so far (e.g. `"checks"`, `"esdf_queries"`).
     fn counters(&self) -> Counters {
         Counters::new()
@@ -81,6 +91,82 @@ impl DiscOnGrid {
             return true;
         }
         self.blocked[self.geometry.index(i as usize, j as usize)]
+    }
+
+    /// Waypoints where shortest paths bend: one point beside each convex corner of the
+    /// blocked cells (a grid vertex with exactly one blocked cell among its four),
+    /// on the corner's outward diagonal, `radius · (1 + 1e-3)` plus a hundredth of a cell
+    /// out along each axis. From there, every straight motion that turns the corner by
+    /// up to 90° keeps the disc clear of the corner's rounded, inflated edge, so a
+    /// roadmap through these points holds paths that bend where the optimum bends.
+    /// Points off the grid are left out; the others may still be invalid (near other
+    /// obstacles): check them before use.
+    pub fn corner_waypoints(&self) -> Vec<[f64; 2]> {
+        let g = &self.geometry;
+        let [nx, ny] = g.size;
+        let offset = self.radius * (1.0 + 1e-3) + 0.01 * g.resolution;
+        let bounds = g.bounds();
+        let mut out = Vec::new();
+        for y in 0..=ny as i64 {
+            for x in 0..=nx as i64 {
+                let Some([sx, sy]) = self.convex_corner_outward(x, y) else {
+                    continue;
+                };
+                let p = [
+                    g.origin[0] + x as f64 * g.resolution + sx * offset,
+                    g.origin[1] + y as f64 * g.resolution + sy * offset,
+                ];
+                if (0..2).all(|k| p[k] > bounds.min[k] && p[k] < bounds.max[k]) {
+                    out.push(p);
+                }
+            }
+        }
+        out
+    }
+
+    /// Waypoints along one-cell corridors: the centre of every third free cell of a
+    /// run of free cells whose neighbours across the run are both blocked (a corridor
+    /// or a door one cell wide), and of each run's last cell. A corridor longer than a
+    /// roadmap vertex's reach then holds a chain of vertices in a line, where the
+    /// corners of [`corner_waypoints`](Self::corner_waypoints) lie only at its ends.
+    pub fn corridor_waypoints(&self) -> Vec<[f64; 2]> {
+        const EVERY: i64 = 3;
+        let g = &self.geometry;
+        let [nx, ny] = g.size;
+        let free = |i: i64, j: i64| !self.blocked_at(i, j);
+        // Across a vertical run the neighbours are left and right, and the reverse.
+        let vertical = |i: i64, j: i64| free(i, j) && !free(i - 1, j) && !free(i + 1, j);
+        let horizontal = |i: i64, j: i64| free(i, j) && !free(i, j - 1) && !free(i, j + 1);
+        let mut out = Vec::new();
+        for j in 0..ny as i64 {
+            for i in 0..nx as i64 {
+                let keep_vertical = vertical(i, j) && (j % EVERY == 0 || !vertical(i, j + 1));
+                let keep_horizontal =
+                    horizontal(i, j) && (i % EVERY == 0 || !horizontal(i + 1, j));
+                if keep_vertical || keep_horizontal {
+                    out.push(g.center_of(i as usize, j as usize));
+                }
+            }
+        }
+        out
+    }
+
+    /// The outward diagonal `(±1, ±1)` of grid vertex `(x, y)` when it is a convex
+    /// corner of the blocked cells (exactly one of its four cells blocked, cells off
+    /// the grid counting as blocked): the signs point away from the blocked cell.
+    fn convex_corner_outward(&self, x: i64, y: i64) -> Option<[f64; 2]> {
+        let mut blocked = None;
+        for (dx, dy) in [(-1, -1), (0, -1), (-1, 0), (0, 0)] {
+            if self.blocked_at(x + dx, y + dy) {
+                if blocked.is_some() {
+                    return None;
+                }
+                blocked = Some((dx, dy));
+            }
+        }
+        let (dx, dy) = blocked?;
+        let away = |d: i64| if d < 0 { 1.0 } else { -1.0 };
+        Some([away(dx), away(dy)])
     }
 
     /// Why the disc at `pose` is invalid, when it is by this description: off the map
@@ -232,6 +318,48 @@ mod tests {
             geometry,
             blocked,
         }
+    }
+
+    #[test]
+    fn one_blocked_cell_has_four_corner_waypoints_outside_its_inflation() {
+        let geometry = GridGeometry::new([0.0, 0.0], 1.0, [7, 7]).unwrap();
+        let blocked = (0..49).map(|k| k == 3 * 7 + 3).collect();
+        let disc = DiscOnGrid {
+            radius: 0.25,
+            geometry,
+            blocked,
+        };
+        let o = 0.25 * 1.001 + 0.01;
+        let expected = [
+            [3.0 - o, 3.0 - o],
+            [4.0 + o, 3.0 - o],
+            [3.0 - o, 4.0 + o],
+            [4.0 + o, 4.0 + o],
+        ];
+        let found = disc.corner_waypoints();
+        assert_eq!(found.len(), 4, "{found:?}");
+        for (f, e) in found.iter().zip(expected) {
+            assert!((f[0] - e[0]).abs() < 1e-12 && (f[1] - e[1]).abs() < 1e-12);
+            assert!(disc.fault(&Pose2::new(f[0], f[1], 0.0)).is_none());
+        }
+        assert!(disc.corridor_waypoints().is_empty());
+    }
+
+    #[test]
+    fn a_corridor_gets_every_third_cell_and_its_last() {
+        // Rows 0 and 2 blocked: row 1 is a corridor one cell wide.
+        let geometry = GridGeometry::new([0.0, 0.0], 1.0, [6, 3]).unwrap();
+        let blocked = (0..18).map(|k| k / 6 != 1).collect();
+        let disc = DiscOnGrid {
+            radius: 0.25,
+            geometry,
+            blocked,
+        };
+        assert_eq!(
+            disc.corridor_waypoints(),
+            vec![[0.5, 1.5], [3.5, 1.5], [5.5, 1.5]]
+        );
+        assert!(disc.corner_waypoints().is_empty());
     }
 
     #[test]
