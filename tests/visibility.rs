@@ -3,8 +3,9 @@
 //! (`configs/p2p-grid.toml`, a disc of 0.25 cell, yaw weight 0): it solves every
 //! scenario our octile Dijkstra draws, its paths are valid for the disc at every
 //! millimetre under the pipeline's own checker, never longer than LazyPRM*'s and never
-//! above the octile optimum; LazyPRM* never beats it. And the planner refuses, naming
-//! the key, the pipelines it cannot serve.
+//! above the octile optimum; LazyPRM* never beats it, solves every scenario too, and
+//! comes within 2% of it on average (10% on the worst). And the planner refuses,
+//! naming the key, the pipelines it cannot serve.
 
 use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2, StateValidityChecker};
 use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
@@ -108,6 +109,7 @@ fn exact_paths_are_valid_and_never_longer_than_lazy_prm_star_on_every_family() {
             exact.planner.as_mut().unwrap(),
             lazy.planner.as_mut().unwrap(),
         );
+        let mut ratios = Vec::new();
         for (k, (s, g, octile)) in queries.iter().enumerate() {
             let PlannerOutcome::Exact(path) = e.plan(s, g).unwrap() else {
                 panic!("{}: scenario {k} not solved by visibility", params.family);
@@ -124,16 +126,29 @@ fn exact_paths_are_valid_and_never_longer_than_lazy_prm_star_on_every_family() {
                 "{} > octile {octile}",
                 path.cost
             );
-            if let PlannerOutcome::Exact(lazy_path) = l.plan(s, g).unwrap() {
-                assert!(
-                    path.cost <= lazy_path.cost + 1e-9,
-                    "{}: scenario {k}: exact {} longer than LazyPRM* {}",
-                    params.family,
-                    path.cost,
-                    lazy_path.cost
-                );
+            let PlannerOutcome::Exact(lazy_path) = l.plan(s, g).unwrap() else {
+                panic!("{}: scenario {k} not solved by LazyPRM*", params.family);
+            };
+            assert!(
+                path.cost <= lazy_path.cost + 1e-9,
+                "{}: scenario {k}: exact {} longer than LazyPRM* {}",
+                params.family,
+                path.cost,
+                lazy_path.cost
+            );
+            if path.cost > 0.0 {
+                ratios.push(lazy_path.cost / path.cost);
             }
         }
+        // LazyPRM* with the shipped config converges on every family (issue 21's
+        // goals: within 2% of the optimum on average, 10% on the worst query).
+        let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+        let worst = ratios.iter().copied().fold(1.0, f64::max);
+        assert!(
+            mean <= 1.02 && worst <= 1.10,
+            "{}: LazyPRM* / exact: mean {mean:.4}, worst {worst:.4}",
+            params.family
+        );
     }
 }
 

@@ -571,11 +571,31 @@ impl LazyPrmStar {
         proved
     }
 
-    /// Grows the initial roadmap before the first query.
+    /// Grows the initial roadmap before the first query: corner vertices, then
+    /// `initial_samples`.
     fn ensure_grown(&mut self) {
         if !self.grown {
             self.grown = true;
+            self.add_corner_vertices();
             self.grow(self.params.initial_samples);
+        }
+    }
+
+    /// For a disc on a grid and straight motions, a valid vertex at each of the grid's
+    /// corner and corridor waypoints inside the bounds (see
+    /// [`LazyPrmStarParams::corner_vertices`]).
+    fn add_corner_vertices(&mut self) {
+        if !self.params.corner_vertices || !self.space.is_holonomic() {
+            return;
+        }
+        let Some(disc) = self.states.disc_on_grid() else {
+            return;
+        };
+        let corridors = disc.corridor_waypoints();
+        for [x, y] in disc.corner_waypoints().into_iter().chain(corridors) {
+            if self.bounds.contains(x, y) {
+                self.insert_sample(Pose2::new(x, y, 0.0));
+            }
         }
     }
 

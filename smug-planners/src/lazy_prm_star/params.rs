@@ -103,6 +103,13 @@ pub struct LazyPrmStarParams {
     /// many goals without the improvement rounds that densify a query's roadmap, so
     /// the roadmap it searches is made dense first (uniform samples).
     pub one_to_many_density: f64,
+    /// For a disc on a grid (a checker that says so), the roadmap starts with one
+    /// vertex beside each convex corner of the blocked cells
+    /// ([`DiscOnGrid::corner_waypoints`](smug_core::DiscOnGrid::corner_waypoints)):
+    /// shortest paths bend there, so the roadmap holds every door and every side of
+    /// every obstacle before the first sample. Other checkers, and curved motion
+    /// models (a car's heading at a corner matters as much as its place): no effect.
+    pub corner_vertices: bool,
 }
 
 impl Default for LazyPrmStarParams {
@@ -128,6 +135,7 @@ impl Default for LazyPrmStarParams {
             retry_cut_off: false,
             one_to_many: true,
             one_to_many_density: 4.0,
+            corner_vertices: true,
         }
     }
 }
