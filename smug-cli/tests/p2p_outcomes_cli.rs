@@ -120,16 +120,17 @@ fn lazy_prm_star_proves_an_unreachable_goal_without_spending_its_budget() {
 #[test]
 fn lazy_prm_star_says_when_its_budget_ran_out() {
     let dir = scratch_dir("p2p-outcomes", "budget");
-    // Through the door with a budget of 3 samples and no corner vertices (they alone
-    // would join start and goal): a path exists, none is found.
+    // Across the wall with a budget of 1 sample and no corner vertices (they alone
+    // would join start and goal; 3 samples can, over the wall's end): a path exists,
+    // none is found.
     let (out, json) = p2p(
         &dir,
         "1.5,1.5,0,6.5,6.5,0\n",
         &[
             "--set",
-            "planner.params.max_samples=3",
+            "planner.params.max_samples=1",
             "--set",
-            "planner.params.initial_samples=3",
+            "planner.params.initial_samples=0",
             "--set",
             "planner.params.corner_vertices=false",
         ],

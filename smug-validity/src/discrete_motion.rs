@@ -250,13 +250,20 @@ impl MotionValidator for DiscreteMotionValidator {
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
         self.motions_checked.fetch_add(1, Relaxed);
-        if self.terrain.is_none() && self.exact_segment(a, b) == Some(true) {
+        let clear = self.exact_segment(a, b) == Some(true);
+        if clear && self.terrain.is_none() {
             return MotionCheck::Valid;
         }
         let n = self.segment_count(a, b);
-        // With a continuous trace, states at the resolution only check the slopes, up
-        // to the contact the trace found.
-        let (contact, states_decide) = match self.swept_either_way(a, b) {
+        // With a continuous trace (or an exact verdict that the motion is clear),
+        // states at the resolution only check the slopes, up to the contact the trace
+        // found.
+        let traced = if clear {
+            Some(Swept::Clear)
+        } else {
+            self.swept_either_way(a, b)
+        };
+        let (contact, states_decide) = match traced {
             Some(Swept::Clear) => (None, false),
             // Where the contact is, seen from `a` (at `a` itself when only the trace
             // from the other end meets a grazing point).
