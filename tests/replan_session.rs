@@ -297,3 +297,86 @@ proptest! {
         }
     }
 }
+
+/// The three events of `smug bench replan` on lunar (`sequencing_costs = "full"`): a
+/// failed pose at the first target, a new obstacle across the first leg, the robot
+/// halfway through.
+fn lunar_events(plan: &Plan, start: Pose2) -> Vec<(&'static str, MissionState)> {
+    let here = |k: usize| {
+        let p = plan.pois[k].pose;
+        [p.x, p.y, p.yaw]
+    };
+    let leg = &plan.segments[0].path.states;
+    let mid = leg[leg.len() / 2];
+    let half = plan.sequence.len() / 2;
+    vec![
+        (
+            "failed pose",
+            MissionState {
+                pose: here(0),
+                failed_pois: vec![(plan.pois[0].target.clone(), plan.pois[0].index)],
+                ..MissionState::default()
+            },
+        ),
+        (
+            "new obstacle",
+            MissionState {
+                pose: [start.x, start.y, start.yaw],
+                obstacles: vec![DiscObstacle {
+                    center: [mid.x, mid.y],
+                    radius: 0.6,
+                    height: 1.0,
+                }],
+                ..MissionState::default()
+            },
+        ),
+        (
+            "halfway",
+            MissionState {
+                pose: here(half - 1),
+                visited: plan.sequence[..half].to_vec(),
+                ..MissionState::default()
+            },
+        ),
+    ]
+}
+
+/// With the full cost matrix, a session's replan plans only the pairs its tour uses
+/// among those it kept no path for: after each event it is valid on the updated
+/// world, plans fewer paths than the row from the robot's pose alone would need, and
+/// costs at most 3% more than the replan from scratch (two sampling planners: the
+/// session's roadmap, grown over the whole mission, is often the cheaper); with an
+/// empty state it is the session's plan, bit for bit.
+#[test]
+fn a_session_replan_with_the_full_matrix_plans_few_paths_at_the_scratch_cost() {
+    let loaded = config("lunar.toml", &[]);
+    let (mut session, plan) = session(&loaded);
+    let start = session.world().unwrap().mission.start;
+    let again = session
+        .replan(&MissionState::at_start(&session.world().unwrap().mission))
+        .unwrap();
+    assert_eq!(again.sequence, plan.sequence);
+    assert_eq!(again.pois, plan.pois);
+    assert_eq!(again.segments, plan.segments);
+    assert_eq!(again.cost.to_bits(), plan.cost.to_bits());
+    assert_eq!(again.stats.paths_planned, 0, "every pair is kept");
+    for (event, state) in lunar_events(&plan, start) {
+        let (mut session, _) = self::session(&loaded);
+        let in_memory = session.replan(&state).unwrap();
+        check_replan(&in_memory, session.pipeline(), &state);
+        let (from_scratch, _) = scratch(&loaded, &state);
+        let from_scratch = from_scratch.unwrap();
+        let row = in_memory.sequence.len() as u64;
+        assert!(
+            in_memory.stats.paths_planned < row,
+            "{event}: {} paths planned, the row alone has {row}",
+            in_memory.stats.paths_planned
+        );
+        assert!(
+            in_memory.cost <= from_scratch.cost * 1.03,
+            "{event}: {} in memory vs {} from scratch",
+            in_memory.cost,
+            from_scratch.cost
+        );
+    }
+}

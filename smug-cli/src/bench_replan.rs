@@ -4,7 +4,8 @@
 //! planner built from scratch) against the full plan's, and its cost against the rest
 //! of the original plan; and the same replan on the warm roadmap the plan left
 //! (`--save-roadmap`/`--roadmap`, here in memory): its time and its cost against the
-//! replan from scratch.
+//! replan from scratch; and in memory, in a [`MissionSession`], against the replan from
+//! scratch and against the replan from scratch with lazy sequencing costs.
 
 use crate::bench_output::write_report;
 use crate::Outcome;
@@ -67,7 +68,25 @@ struct Run {
     session_s: f64,
     session_cost: f64,
     session_paths_planned: u64,
+    /// The replan from scratch with `plan.sequencing_costs = "lazy"` (what a session
+    /// does with the pairs it keeps no path for): time and cost.
+    scratch_lazy_s: f64,
+    scratch_lazy_cost: f64,
     error: Option<String>,
+}
+
+/// The from-scratch replan of `state` on `loaded`: its time and its plan.
+fn replan_from_scratch(
+    loaded: &LoadedConfig,
+    state: &MissionState,
+    event: &str,
+) -> (f64, smug_core::Result<Plan>) {
+    let started = Instant::now();
+    let replanned = assemble_replan(loaded, state, event).and_then(|mut p| {
+        let options = p.config.plan;
+        replan_mission(&mut p, options, state)
+    });
+    (started.elapsed().as_secs_f64(), replanned)
 }
 
 /// The state after `event` on the original `plan` (whose mission starts at `start`).
@@ -125,6 +144,8 @@ fn measure(
     let mut set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
     set.push(format!("seed={seed}"));
     let loaded = LoadedConfig::from_file(config, &set)?;
+    set.push("plan.sequencing_costs=\"lazy\"".into());
+    let lazy = LoadedConfig::from_file(config, &set)?;
     let started = Instant::now();
     let mut pipeline = Pipeline::assemble(&loaded)?;
     let options = pipeline.config.plan;
@@ -143,12 +164,8 @@ fn measure(
     let mut runs = Vec::new();
     for event in EVENTS {
         let state = event_state(event, &plan, [s.x, s.y, s.yaw]);
-        let started = Instant::now();
-        let replanned = assemble_replan(&loaded, &state, event).and_then(|mut p| {
-            let options = p.config.plan;
-            replan_mission(&mut p, options, &state)
-        });
-        let replan_s = started.elapsed().as_secs_f64();
+        let (replan_s, replanned) = replan_from_scratch(&loaded, &state, event);
+        let (scratch_lazy_s, scratch_lazy) = replan_from_scratch(&lazy, &state, event);
         let warm_snapshot = snapshot.clone();
         let changed = changed_discs(&state, &loaded.config.robot);
         let started = Instant::now();
@@ -173,6 +190,10 @@ fn measure(
             Ok(p) => (p.cost, p.stats.paths_planned, error),
             Err(e) => (f64::NAN, 0, error.or(Some(format!("in memory: {e}")))),
         };
+        let (scratch_lazy_cost, error) = match scratch_lazy {
+            Ok(p) => (p.cost, error),
+            Err(e) => (f64::NAN, error.or(Some(format!("lazy from scratch: {e}")))),
+        };
         runs.push(Run {
             size: size.into(),
             event: event.into(),
@@ -187,6 +208,8 @@ fn measure(
             session_s,
             session_cost,
             session_paths_planned,
+            scratch_lazy_s,
+            scratch_lazy_cost,
             error,
         });
     }
@@ -212,7 +235,9 @@ fn report(runs: &[Run], seeds: u64) -> String {
          warm, and its cost / the from-scratch replan's. In memory = the same replan in a \
          `MissionSession` that planned the mission and kept its pipeline (world, checkers, \
          planner with its roadmap, planned paths): the new obstacle applied locally, \
-         kept paths it does not touch served again: its time, the speed-up of from \
+         kept paths it does not touch served again, the pairs it keeps no path for (from \
+         the robot's new pose, or blocked by the obstacle) planned only where the tour \
+         uses them (the cost matrix filled lazily): its time, the speed-up of from \
          scratch over it, its cost / the from-scratch replan's, and the paths it planned \
          (mean).\n\n\
          | mission | event | ok | plan (s) | replan (s) | replan / plan time | replan cost | original rest | cost ratio | warm (s) | scratch / warm time | warm / scratch cost | in memory (s) | scratch / in-memory time | in-memory / scratch cost | in-memory paths planned |\n\
@@ -246,6 +271,7 @@ fn report(runs: &[Run], seeds: u64) -> String {
             );
         }
     }
+    md.push_str(&lazy_table(runs));
     for r in runs.iter().filter(|r| r.error.is_some()) {
         let _ = writeln!(
             md,
@@ -255,6 +281,37 @@ fn report(runs: &[Run], seeds: u64) -> String {
             r.seed,
             r.error.as_deref().unwrap_or_default()
         );
+    }
+    md
+}
+
+/// The in-memory replan against the replan from scratch with lazy sequencing costs
+/// (the session fills the pairs it keeps no path for lazily: this compares it with a
+/// replan that does the same for every pair).
+fn lazy_table(runs: &[Run]) -> String {
+    let mut md = String::from(
+        "\nAgainst lazy sequencing costs from scratch too: the same replan from scratch \
+         with `plan.sequencing_costs = \"lazy\"` (every pair planned only where the tour \
+         uses it, as the session does for the pairs it keeps no path for): its time, the \
+         speed-up of it over in memory, and the in-memory cost / its cost.\n\n\
+         | mission | event | lazy from scratch (s) | lazy scratch / in-memory time | in-memory / lazy scratch cost |\n\
+         |---|---|---|---|---|\n",
+    );
+    for (size, _) in SIZES {
+        for event in EVENTS {
+            let ok: Vec<&Run> = runs
+                .iter()
+                .filter(|r| r.size == size && r.event == event && r.error.is_none())
+                .collect();
+            let lazy = mean(ok.iter().map(|r| r.scratch_lazy_s));
+            let memory = mean(ok.iter().map(|r| r.session_s));
+            let cost = mean(ok.iter().map(|r| r.session_cost / r.scratch_lazy_cost));
+            let _ = writeln!(
+                md,
+                "| {size} | {event} | {lazy:.3} | {:.1} | {cost:.4} |",
+                lazy / memory
+            );
+        }
     }
     md
 }

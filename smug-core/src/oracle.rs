@@ -200,6 +200,12 @@ impl PathOracle {
         true
     }
 
+    /// True when the oracle serves answers kept from earlier missions
+    /// ([`with_known`](Self::with_known)): a [`crate::mission::MissionSession`]'s replans.
+    pub fn has_known_answers(&self) -> bool {
+        !self.known.is_empty()
+    }
+
     /// Whether a path i→j reversed may serve j→i (true for undirected roadmaps,
     /// symmetric spaces and symmetric objectives; default: the objective's symmetry).
     pub fn with_symmetry(mut self, symmetric: bool) -> Self {

@@ -114,59 +114,81 @@ fn bits(mut mask: usize) -> impl Iterator<Item = usize> {
     })
 }
 
-/// The filled DP table. Node `k + 1` of the matrix is bit `k` of a subset.
+/// The filled DP table over the nodes between the start and the end: every node but
+/// the start, and but the end of an open path (appended last, outside the DP, so the
+/// table holds `2^(n−2)` subsets for an open path instead of `2^(n−1)`). Bit `k` of a
+/// subset is node `nodes[k]` of the matrix (in increasing order, so ties break as
+/// over the matrix's own numbering).
 struct Table {
-    /// Number of non-start nodes.
+    /// Number of nodes in the DP.
     m: usize,
-    /// `best[S * m + j]`: cheapest path 0 → … → node j+1 through exactly `S`.
+    /// The matrix node of each bit.
+    nodes: Vec<usize>,
+    /// `best[S * m + j]`: cheapest path 0 → … → node of bit j through exactly `S`.
     best: Vec<f64>,
-    /// `into[j * m + k]` = cost from node k+1 to node j+1 (rows read contiguously).
+    /// `into[j * m + k]` = cost from the node of bit k to that of bit j (rows read
+    /// contiguously).
     into: Vec<f64>,
-    /// Cost from node k+1 back to the start (closed) or to the end node (open).
+    /// Cost from the node of bit k back to the start (closed) or to the end (open).
     finish: Vec<f64>,
-    /// Bit of the open path's end node: excluded from the DP, appended last.
-    end_bit: Option<usize>,
+    /// The open path's end node.
+    end: Option<usize>,
 }
 
 impl Table {
     fn fill(dist: &Dist, kind: TourKind) -> Self {
-        let m = dist.len() - 1;
-        let end_bit = match kind {
+        let end = match kind {
             TourKind::Closed => None,
-            TourKind::OpenTo(end) => Some(end - 1),
+            TourKind::OpenTo(end) => Some(end),
         };
-        let target = end_bit.map_or(0, |bit| bit + 1);
+        let nodes: Vec<usize> = (1..dist.len()).filter(|&v| Some(v) != end).collect();
+        let m = nodes.len();
+        let target = end.unwrap_or(0);
         let mut table = Self {
             m,
             best: vec![f64::INFINITY; (1usize << m) * m],
-            into: (0..m * m).map(|k| dist.d(k % m + 1, k / m + 1)).collect(),
-            finish: (0..m).map(|k| dist.d(k + 1, target)).collect(),
-            end_bit,
+            into: (0..m * m)
+                .map(|k| dist.d(nodes[k % m], nodes[k / m]))
+                .collect(),
+            finish: nodes.iter().map(|&v| dist.d(v, target)).collect(),
+            nodes,
+            end,
         };
         for j in 0..m {
-            table.best[(1 << j) * m + j] = dist.d(0, j + 1);
+            table.best[(1 << j) * m + j] = dist.d(0, table.nodes[j]);
         }
         table.relax_all();
         table
     }
 
-    fn skip_mask(&self) -> usize {
-        self.end_bit.map_or(0, |bit| 1 << bit)
-    }
-
     /// Fills every subset in increasing order, so each `S \ {j}` is final before `S`.
     fn relax_all(&mut self) {
         let m = self.m;
-        let skip = self.skip_mask();
         for set in 1usize..(1 << m) {
-            if set & skip != 0 || set.count_ones() < 2 {
+            if set.count_ones() < 2 {
                 continue;
             }
             for j in bits(set) {
-                let (_, value) = self.cheapest_step(set, j);
-                self.best[set * m + j] = value;
+                self.best[set * m + j] = self.cheapest_value(set, j);
             }
         }
+    }
+
+    /// The cost of [`cheapest_step`](Self::cheapest_step) without its predecessor (the
+    /// same minimum: a value does not depend on which of equal candidates is kept).
+    fn cheapest_value(&self, set: usize, j: usize) -> f64 {
+        let m = self.m;
+        let rest = set & !(1 << j);
+        let row = &self.into[j * m..(j + 1) * m];
+        let previous = &self.best[rest * m..(rest + 1) * m];
+        let mut value = f64::INFINITY;
+        for k in bits(rest) {
+            let candidate = previous[k] + row[k];
+            if candidate < value {
+                value = candidate;
+            }
+        }
+        value
     }
 
     /// The predecessor of `j` on the best path through `set`, and that path's cost.
@@ -183,11 +205,9 @@ impl Table {
     /// The optimal visiting order, start first (and end last for an open path).
     fn best_order(&self) -> Vec<usize> {
         let m = self.m;
-        let full = ((1usize << m) - 1) & !self.skip_mask();
-        let mut order = Vec::with_capacity(m + 1);
-        if let Some(bit) = self.end_bit {
-            order.push(bit + 1);
-        }
+        let full = (1usize << m) - 1;
+        let mut order = Vec::with_capacity(m + 2);
+        order.extend(self.end);
         if full != 0 {
             let mut last = bits(full)
                 .map(|j| (j, self.best[full * m + j] + self.finish[j]))
@@ -195,12 +215,12 @@ impl Table {
                 .0;
             let mut set = full;
             while set.count_ones() > 1 {
-                order.push(last + 1);
+                order.push(self.nodes[last]);
                 let (previous, _) = self.cheapest_step(set, last);
                 set &= !(1 << last);
                 last = previous;
             }
-            order.push(last + 1);
+            order.push(self.nodes[last]);
         }
         order.push(0);
         order.reverse();
@@ -237,6 +257,29 @@ mod tests {
         assert_eq!(solve(&two, TourKind::OpenTo(1)).cost, 3.0);
         let three = CostMatrix::from_fn(3, |i, j| (10 * i + j) as f64).unwrap();
         assert_eq!(solve(&three, TourKind::OpenTo(1)).order, vec![0, 2, 1]);
+    }
+
+    /// Open paths to any end (the end left out of the table) and closed tours cost
+    /// what trying every order costs, on asymmetric matrices with ties.
+    #[test]
+    fn every_end_and_closed_tours_match_brute_force() {
+        let mut state = 7u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) % 7
+        };
+        for n in 3..=8 {
+            let m = CostMatrix::from_rows(n, (0..n * n).map(|_| next() as f64).collect()).unwrap();
+            let kinds = (1..n).map(TourKind::OpenTo).chain([TourKind::Closed]);
+            for kind in kinds {
+                let exact = crate::BruteForce.solve(&m, kind).unwrap().cost;
+                let tour = solve(&m, kind);
+                assert!(tour.is_valid_for(n, kind), "{n} {kind:?}");
+                assert_eq!(tour.cost, exact, "{n} {kind:?}");
+            }
+        }
     }
 
     #[test]

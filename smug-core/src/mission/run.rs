@@ -42,7 +42,9 @@ pub enum SequencingCosts {
     /// applied to sequencing).
     #[default]
     Lazy,
-    /// Plan a path between every pair of representatives (the paper's way).
+    /// Plan a path between every pair of representatives (the paper's way). A
+    /// [`MissionSession`](super::MissionSession)'s replans serve the pairs it kept paths
+    /// for and fill the others lazily (only the pairs the tour uses are planned).
     Full,
 }
 

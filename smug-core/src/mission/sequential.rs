@@ -57,9 +57,10 @@ pub(super) fn sequence(
     } else {
         TourKind::Closed
     };
-    let tour = match costs {
-        SequencingCosts::Full => sequencer.solve(&full_matrix(oracle, &nodes)?, kind)?,
-        SequencingCosts::Lazy => lazy_tour(sequencer.as_ref(), oracle, &nodes, kind)?,
+    let tour = if fills_lazily(oracle, costs) {
+        lazy_tour(sequencer.as_ref(), oracle, &nodes, kind)?
+    } else {
+        sequencer.solve(&full_matrix(oracle, &nodes)?, kind)?
     };
     Ok(tour
         .order
@@ -67,6 +68,19 @@ pub(super) fn sequence(
         .filter(|&&v| v != 0 && !(open && v == n - 1))
         .map(|&v| targets[v - 1])
         .collect())
+}
+
+/// Whether the matrix is filled lazily ([`lazy_tour`]): with `"lazy"` costs, and with
+/// `"full"` costs on an oracle that serves answers kept from earlier missions (a
+/// [`MissionSession`](super::MissionSession)'s replan). There the paths between the
+/// targets are known already, and the pairs it does not know (from the robot's new
+/// pose, or whose kept path a new obstacle blocked) are planned only where the tour
+/// uses them, on lower bounds elsewhere: with an exact solver the order is optimal for
+/// the full matrix of planned costs as well (a tour optimal on costs that are planned
+/// or lower bounds, whose own legs are all planned, is optimal on the planned costs),
+/// from a few paths instead of one per target.
+fn fills_lazily(oracle: &PathOracle, costs: SequencingCosts) -> bool {
+    costs == SequencingCosts::Lazy || oracle.has_known_answers()
 }
 
 /// Path costs between every pair of `nodes` (each pair planned once when the oracle is
@@ -332,6 +346,35 @@ mod tests {
             prop_assert!((true_cost - full.cost).abs() < 1e-9, "lazy {true_cost} vs full {}", full.cost);
             prop_assert!((lazy.cost - true_cost).abs() < 1e-9, "the lazy tour's legs are all planned");
             prop_assert!(lazy_oracle.stats().paths_planned <= full_oracle.stats().paths_planned);
+        }
+
+        /// A session's replan: an oracle that knows every pair of the targets from an
+        /// earlier mission fills the full matrix lazily, and with an exact solver its
+        /// tour costs what the full matrix's tour costs, from no more paths than the
+        /// new start's row (a cold oracle plans the full matrix).
+        #[test]
+        fn a_warm_full_matrix_is_filled_lazily_at_the_full_matrix_cost(
+            points in prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), 4..8),
+            detours in prop::collection::vec(1.0..2.0f64, 64),
+            open in any::<bool>(),
+        ) {
+            let poses: Vec<Pose2> = points.iter().map(|&(x, y, yaw)| Pose2::new(x, y, yaw)).collect();
+            let n = poses.len();
+            let kind = if open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
+            let (mut full_oracle, nodes) = oracle(&poses, detours.clone());
+            prop_assert!(!fills_lazily(&full_oracle, SequencingCosts::Full));
+            let full = Exhaustive.solve(&full_matrix(&mut full_oracle, &nodes).unwrap(), kind).unwrap();
+            // The earlier mission planned every pair but those of the new start (node 0).
+            let (mut earlier, _) = oracle(&poses, detours.clone());
+            full_matrix(&mut earlier, &nodes[1..]).unwrap();
+            let (warm, nodes) = oracle(&poses, detours);
+            let mut warm = warm.with_known(earlier.take_known_answers());
+            prop_assert!(fills_lazily(&warm, SequencingCosts::Full));
+            let tour = lazy_tour(&Exhaustive, &mut warm, &nodes, kind).unwrap();
+            let true_cost = full_matrix(&mut full_oracle, &nodes).unwrap().tour_cost(&tour.order, kind);
+            prop_assert!((true_cost - full.cost).abs() < 1e-9, "warm {true_cost} vs full {}", full.cost);
+            let row = n as u64 - 1;
+            prop_assert!(warm.stats().paths_planned <= row, "at most the start's row");
         }
 
         /// Joint mode with an exact GTSP solver on a fixed roadmap: never more than the

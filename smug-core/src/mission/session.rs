@@ -5,7 +5,9 @@
 //! state's new obstacles are applied to the world's layers only where they can reach,
 //! the checkers are rebuilt on the updated layers, the planner checks again only what
 //! the obstacles touch, and paths no obstacle touches are served again without
-//! planning.
+//! planning. With `sequencing_costs = "full"`, the pairs of targets whose paths are
+//! not kept (from the robot's new pose, or blocked by a new obstacle) are planned only
+//! where the tour uses them (the matrix filled lazily, with lower bounds elsewhere).
 //!
 //! **Obstacles accumulate.** A state lists every obstacle seen so far: the session
 //! applied the first `n` of them already (the states it replanned for before), so a
@@ -96,7 +98,9 @@ impl MissionSession {
     /// Replans the rest of the mission from `state` (checked against the mission and the
     /// map, its obstacles as the [module](self) documentation says) on the session's
     /// world with the state's new obstacles applied; the same plan as [`replan_mission`]
-    /// on a pipeline assembled from scratch for the state, up to the paths reused.
+    /// on a pipeline assembled from scratch for the state, up to the paths reused (and,
+    /// with `"full"` sequencing costs, the matrix filled lazily: see the
+    /// [module](self) documentation).
     pub fn replan(&mut self, state: &MissionState) -> Result<Plan> {
         let world = self.world()?.clone();
         state
