@@ -141,8 +141,7 @@ impl DiscOnGrid {
         for j in 0..ny as i64 {
             for i in 0..nx as i64 {
                 let keep_vertical = vertical(i, j) && (j % EVERY == 0 || !vertical(i, j + 1));
-                let keep_horizontal =
-                    horizontal(i, j) && (i % EVERY == 0 || !horizontal(i + 1, j));
+                let keep_horizontal = horizontal(i, j) && (i % EVERY == 0 || !horizontal(i + 1, j));
                 if keep_vertical || keep_horizontal {
                     out.push(g.center_of(i as usize, j as usize));
                 }

@@ -157,7 +157,10 @@ mod tests {
     fn distances_of_a_segment_to_a_unit_square() {
         let square = ([0.0, 0.0], [1.0, 1.0]);
         // Through it, beside it, past a corner.
-        assert_eq!(segment_square_distance2([-1.0, 0.5], [2.0, 0.5], square), 0.0);
+        assert_eq!(
+            segment_square_distance2([-1.0, 0.5], [2.0, 0.5], square),
+            0.0
+        );
         let beside = segment_square_distance2([-1.0, 1.5], [2.0, 1.5], square);
         assert!((beside - 0.25).abs() < 1e-12);
         let corner = segment_square_distance2([1.5, 2.0], [2.0, 1.5], square);
