@@ -120,11 +120,38 @@ impl LazyPrmStar {
         let Some(disc) = self.states.disc_on_grid() else {
             return;
         };
-        let corridors = disc.corridor_waypoints();
-        for [x, y] in disc.corner_waypoints().into_iter().chain(corridors) {
-            if self.bounds.contains(x, y) {
-                self.insert_sample(Pose2::new(x, y, 0.0));
-            }
+        let mut waypoints = disc.corner_waypoints();
+        waypoints.extend(disc.corridor_waypoints());
+        waypoints.retain(|&[x, y]| self.bounds.contains(x, y));
+        for [x, y] in evenly_spaced(waypoints, self.params.max_samples) {
+            self.insert_sample(Pose2::new(x, y, 0.0));
         }
+    }
+}
+
+/// At most `limit` of `items`, evenly spaced through them (all when they fit): a map
+/// with more corners than the sample budget keeps a roadmap the size the budget
+/// allows (the memory check of `max_samples` holds), its corners thinned evenly.
+fn evenly_spaced<T: Copy>(items: Vec<T>, limit: u64) -> Vec<T> {
+    let n = items.len() as u64;
+    if n <= limit {
+        return items;
+    }
+    (0..limit)
+        .map(|k| items[(k as u128 * n as u128 / limit as u128) as usize])
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::evenly_spaced;
+
+    #[test]
+    fn thinning_keeps_everything_that_fits_and_spreads_the_rest() {
+        let items: Vec<u32> = (0..10).collect();
+        assert_eq!(evenly_spaced(items.clone(), 10), items);
+        assert_eq!(evenly_spaced(items.clone(), 5), vec![0, 2, 4, 6, 8]);
+        assert_eq!(evenly_spaced(items.clone(), 3), vec![0, 3, 6]);
+        assert!(evenly_spaced(items, 0).is_empty());
     }
 }

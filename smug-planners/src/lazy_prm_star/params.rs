@@ -107,8 +107,9 @@ pub struct LazyPrmStarParams {
     /// vertex beside each convex corner of the blocked cells
     /// ([`DiscOnGrid::corner_waypoints`](smug_core::DiscOnGrid::corner_waypoints)):
     /// shortest paths bend there, so the roadmap holds every door and every side of
-    /// every obstacle before the first sample. Other checkers, and curved motion
-    /// models (a car's heading at a corner matters as much as its place): no effect.
+    /// every obstacle before the first sample. At most `max_samples` of them (evenly
+    /// thinned on bigger maps). Other checkers, and curved motion models (a car's
+    /// heading at a corner matters as much as its place): no effect.
     pub corner_vertices: bool,
 }
 
