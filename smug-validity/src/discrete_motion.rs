@@ -146,7 +146,15 @@ impl DiscreteMotionValidator {
     /// rejected, conservatively, in a bounded number of steps). `None` when the checker
     /// has no clearance.
     fn swept(&self, a: &Pose2, b: &Pose2) -> Option<Swept> {
-        let length = a.xy_distance(b);
+        // Straight motions are traced on their segment; a curved model's along its own
+        // curve, whose fractions are fractions of its planar length (a step of the
+        // clearance along the curve moves the disc at most that far).
+        let straight = self.space.is_holonomic();
+        let length = if straight {
+            a.xy_distance(b)
+        } else {
+            self.space.motion_extent(a, b).length
+        };
         let min_step = MIN_STEP_SHARE * self.resolution;
         let (mut travelled, mut last_clear) = (0.0, None);
         loop {
@@ -155,7 +163,11 @@ impl DiscreteMotionValidator {
             } else {
                 0.0
             };
-            let point = Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.yaw);
+            let point = if straight {
+                Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.yaw)
+            } else {
+                self.space.interpolate(a, b, t)
+            };
             self.states_checked.fetch_add(1, Relaxed);
             let clearance = self.states.clearance(&point)?;
             if clearance.is_nan() || clearance < min_step {
@@ -174,7 +186,9 @@ impl DiscreteMotionValidator {
     /// where the trace lands, and so which grazing points it meets, depends on where it
     /// starts.
     fn swept_either_way(&self, a: &Pose2, b: &Pose2) -> Option<Swept> {
-        let forward = a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)).is_le();
+        // A model whose motion `b → a` is not `a → b` reversed is traced as asked.
+        let forward =
+            !self.space.is_symmetric() || a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)).is_le();
         if forward {
             self.swept(a, b)
         } else {
@@ -367,6 +381,71 @@ mod tests {
             resolution,
         )
         .unwrap()
+    }
+
+    /// The disc obstacle of [`DiscObstacle`] with its clearance (a point robot).
+    struct ClearDisc;
+
+    impl StateValidityChecker for ClearDisc {
+        fn is_valid(&self, s: &Pose2) -> bool {
+            DiscObstacle.is_valid(s)
+        }
+
+        fn clearance(&self, s: &Pose2) -> Option<f64> {
+            Some((s.x - 5.0).hypot(s.y - 5.0) - 1.0)
+        }
+    }
+
+    /// A curved, one-way model: `a → b` drives the half circle on the left of the
+    /// segment `a b` (its planar length `π/2 · |ab|`).
+    #[derive(Debug)]
+    struct HalfCircle;
+
+    impl StateSpace for HalfCircle {
+        fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+            std::f64::consts::FRAC_PI_2 * a.xy_distance(b)
+        }
+
+        fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
+            let (cx, cy) = (0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
+            let r = 0.5 * a.xy_distance(b);
+            let start = (a.y - cy).atan2(a.x - cx);
+            let angle = start - std::f64::consts::PI * t;
+            Pose2::new(cx + r * angle.cos(), cy + r * angle.sin(), 0.0)
+        }
+
+        fn lower_bound_weights(&self) -> (f64, f64) {
+            (1.0, 0.0)
+        }
+
+        fn is_symmetric(&self) -> bool {
+            false
+        }
+
+        fn motion_extent(&self, a: &Pose2, b: &Pose2) -> smug_core::MotionExtent {
+            smug_core::MotionExtent {
+                length: self.distance(a, b),
+                turning: std::f64::consts::PI,
+            }
+        }
+
+        fn is_holonomic(&self) -> bool {
+            false
+        }
+    }
+
+    #[test]
+    fn a_curved_motion_is_traced_along_its_curve_not_its_chord() {
+        let v = DiscreteMotionValidator::new(Arc::new(ClearDisc), Arc::new(HalfCircle), None, 0.05)
+            .unwrap();
+        // The chord y = 8 is clear of the disc around (5, 5); the half circle from
+        // (9, 8) to (1, 8) bulges down through it (lowest point (5, 4)).
+        let (a, b) = (Pose2::new(9.0, 8.0, 0.0), Pose2::new(1.0, 8.0, 0.0));
+        assert!(!v.is_valid_motion(&a, &b));
+        assert!(!v.check_motion(&a, &b).is_valid());
+        // The other way, the half circle bulges up, away from the disc.
+        assert!(v.is_valid_motion(&b, &a));
+        assert!(v.check_motion(&b, &a).is_valid());
     }
 
     #[test]
