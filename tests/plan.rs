@@ -166,3 +166,19 @@ fn refining_the_legs_keeps_the_route_and_never_makes_a_leg_dearer() {
     }
     assert!(lowered > 0, "no plan got cheaper by refining its legs");
 }
+
+#[test]
+fn a_car_on_an_occupancy_map_keeps_its_disc_clear_all_along_its_curves() {
+    // A disc robot (`clearance-2d`) driving Reeds–Shepp curves: the motion checks follow
+    // the curves themselves (they once followed the chords, and plans crossed walls).
+    let loaded = support::shipped_config("imported-map.toml", &["space.type=reeds-shepp"]);
+    let mut pipeline = Pipeline::assemble(&loaded).unwrap();
+    let plan = plan_mission(&mut pipeline, PlanOptions::default()).unwrap();
+    let states = pipeline.state_validity.clone().unwrap();
+    // A car's plan is its curves sampled densely (about every 0.1 m): every sample
+    // keeps the disc clear.
+    assert!(plan.waypoints.len() > 100);
+    for w in &plan.waypoints {
+        assert!(states.is_valid(&w.pose()), "{w:?} inside an obstacle");
+    }
+}
