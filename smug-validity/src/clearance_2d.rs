@@ -133,21 +133,32 @@ impl Clearance2dChecker {
     /// True when the disc at `(x, y)` touches an obstacle cell (checks the cells around it).
     fn touches_obstacle(&self, x: f64, y: f64) -> bool {
         let r = self.radius;
-        // Squared distances decide all but near-ties, which `hypot` decides as before.
+        self.obstacle_gaps(x, y, r)
+            .any(|(dx, dy)| self.within_radius(dx * dx + dy * dy, || dx.hypot(dy)))
+    }
+
+    /// True when an obstacle square at squared distance `d2` touches the disc: squared
+    /// distances decide all but near-ties, which the distance itself (`exact`) decides;
+    /// a point robot touches what it lies on. The rule of every state and motion check.
+    fn within_radius(&self, d2: f64, exact: impl Fn() -> f64) -> bool {
+        let r = self.radius;
         let (low, high) = (r * r * (1.0 - 1e-9), r * r * (1.0 + 1e-9));
-        self.obstacle_gaps(x, y, r).any(|(dx, dy)| {
-            let d2 = dx * dx + dy * dy;
-            (d2 < low || (d2 <= high && dx.hypot(dy) < r)) || r == 0.0 && dx == 0.0 && dy == 0.0
-        })
+        d2 < low || (d2 <= high && exact() < r) || (r == 0.0 && exact() == 0.0)
+    }
+
+    /// True when the disc centred at `(x, y)` lies inside the map.
+    fn inside_border(&self, [x, y]: [f64; 2]) -> bool {
+        let b = self.geometry.bounds();
+        let r = self.radius;
+        x - r >= b.min[0] && x + r <= b.max[0] && y - r >= b.min[1] && y + r <= b.max[1]
     }
 }
 
 impl StateValidityChecker for Clearance2dChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
         self.checks.fetch_add(1, Relaxed);
-        let b = self.geometry.bounds();
         let (x, y, r) = (state.x, state.y, self.radius);
-        if !(x - r >= b.min[0] && x + r <= b.max[0] && y - r >= b.min[1] && y + r <= b.max[1]) {
+        if !self.inside_border([x, y]) {
             return false;
         }
         let Some(bound) = self.obstacle_distance_bound(x, y) else {

@@ -19,13 +19,6 @@ impl Clearance2dChecker {
         self.inside_border(p) && self.inside_border(q) && !self.segment_touches_obstacle(p, q)
     }
 
-    /// True when the disc at `p` lies inside the map.
-    fn inside_border(&self, [x, y]: Pt) -> bool {
-        let b = self.geometry.bounds();
-        let r = self.radius;
-        x - r >= b.min[0] && x + r <= b.max[0] && y - r >= b.min[1] && y + r <= b.max[1]
-    }
-
     /// True when a blocked cell's square lies within the radius of the segment `p → q`
     /// (`p.x ≤ q.x`): the columns the widened segment spans, and in each the rows of
     /// its part there, widened by the radius.
@@ -46,22 +39,14 @@ impl Clearance2dChecker {
                 if self.obstacles[g.index(i, j)] {
                     let y0 = g.origin[1] + j as f64 * res;
                     let square = ([x0, y0], [x0 + res, y0 + res]);
-                    if self.touches(segment_square_distance2(p, q, square)) {
+                    let d2 = segment_square_distance2(p, q, square);
+                    if self.within_radius(d2, || d2.sqrt()) {
                         return true;
                     }
                 }
             }
         }
         false
-    }
-
-    /// True when a squared distance is within the radius, with the tie rule of
-    /// [`Clearance2dChecker::is_valid`] (a distance of exactly the radius is clear; a
-    /// point robot touches what it lies on).
-    fn touches(&self, d2: f64) -> bool {
-        let r = self.radius;
-        let (low, high) = (r * r * (1.0 - 1e-9), r * r * (1.0 + 1e-9));
-        d2 < low || (d2 <= high && d2.sqrt() < r) || (r == 0.0 && d2 == 0.0)
     }
 }
 
