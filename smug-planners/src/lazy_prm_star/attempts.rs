@@ -42,6 +42,18 @@ impl LazyPrmStar {
     /// One Lazy Weighted A* search within `bound`; its checking time is booked as
     /// checking, not search.
     pub(super) fn lazy_weighted_search(&mut self, s: u32, g: u32, bound: f64) -> Option<GraphPath> {
+        self.timed_lazy_search(|astar, roadmap, objective, checks| {
+            astar.search_lazy(roadmap, s, g, objective, checks, bound)
+        })
+    }
+
+    /// Runs `search`, which checks lazily through the planner's counted checks, as one
+    /// search: its time less the checking it did is booked as A*, the checking as
+    /// checking.
+    pub(super) fn timed_lazy_search<T>(
+        &mut self,
+        search: impl FnOnce(&mut AStar, &mut Roadmap, &dyn Objective, &mut Checks<'_>) -> T,
+    ) -> T {
         let started = Instant::now();
         let checking_before =
             self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
@@ -50,13 +62,11 @@ impl LazyPrmStar {
             motions: self.motions.as_ref(),
             counts: &mut self.counts,
         };
-        let found = self.astar.search_lazy(
+        let found = search(
+            &mut self.astar,
             &mut self.roadmap,
-            s,
-            g,
             self.objective.as_ref(),
             &mut checks,
-            bound,
         );
         self.counts.searches += 1;
         let checking = self.counts.breakdown.edge_checking_s

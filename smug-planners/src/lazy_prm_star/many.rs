@@ -2,7 +2,6 @@
 //! answered by one lazy Dijkstra search on the shared roadmap (each settled vertex's
 //! edge checked as it is settled), instead of one query per goal.
 
-use super::checks::Checks;
 use super::LazyPrmStar;
 use crate::roadmap::GraphPath;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
@@ -128,22 +127,9 @@ impl LazyPrmStar {
     /// where none is left), by one lazy Dijkstra search (see
     /// [`crate::roadmap::AStar::search_many_lazy`]); its checking time is booked as checking.
     fn lazy_search_many(&mut self, s: u32, goals: &[u32]) -> Vec<Option<GraphPath>> {
-        let started = Instant::now();
-        let checking_before =
-            self.counts.breakdown.edge_checking_s + self.counts.breakdown.vertex_checking_s;
-        let mut checks = Checks {
-            states: self.states.as_ref(),
-            motions: self.motions.as_ref(),
-            counts: &mut self.counts,
-        };
-        let found = self
-            .astar
-            .search_many_lazy(&mut self.roadmap, s, goals, &mut checks);
-        self.counts.searches += 1;
-        let checking = self.counts.breakdown.edge_checking_s
-            + self.counts.breakdown.vertex_checking_s
-            - checking_before;
-        self.counts.breakdown.astar_s += (started.elapsed().as_secs_f64() - checking).max(0.0);
+        let found = self.timed_lazy_search(|astar, roadmap, _, checks| {
+            astar.search_many_lazy(roadmap, s, goals, checks)
+        });
         if found.iter().any(Option::is_none) {
             self.roadmap.refresh_components();
         }
@@ -153,11 +139,10 @@ impl LazyPrmStar {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{Discs, Lcg};
+    use super::super::test_support::{planner_on, Discs};
     use super::super::{LazyPrmStar, LazyPrmStarParams};
     use proptest::prelude::*;
-    use smug_core::{Bounds2, PathLength, PlannerOutcome, PointToPointPlanner, Pose2, Se2Space};
-    use std::sync::Arc;
+    use smug_core::{PlannerOutcome, PointToPointPlanner, Pose2};
 
     /// A planner on a fixed roadmap of 150 samples (queries draw none).
     fn fixed_roadmap_planner(
@@ -175,22 +160,7 @@ mod tests {
             retry_cut_off: true,
             ..LazyPrmStarParams::default()
         };
-        let checker = Arc::new(Discs(discs.to_vec()));
-        LazyPrmStar::new(
-            params,
-            Box::new(Lcg(seed)),
-            checker.clone(),
-            checker,
-            (
-                Arc::new(Se2Space::default()),
-                Arc::new(PathLength::default()),
-            ),
-            Bounds2 {
-                min: [0.0, 0.0],
-                max: [10.0, 10.0],
-            },
-        )
-        .unwrap()
+        planner_on(params, seed, Discs(discs.to_vec())).unwrap()
     }
 
     fn pose((x, y): (f64, f64)) -> Pose2 {

@@ -1,8 +1,34 @@
 //! Validity checkers and a sampler for the planner's tests.
 
+use super::{LazyPrmStar, LazyPrmStarParams};
 use smug_core::{
-    Bounds2, InformedSet, MotionCheck, MotionValidator, Pose2, Sampler, StateValidityChecker,
+    Bounds2, InformedSet, MotionCheck, MotionValidator, PathLength, Pose2, Result, Sampler,
+    Se2Space, StateValidityChecker,
 };
+use std::sync::Arc;
+
+/// A planner on the bounds `[0, 10]²` with the default SE(2) space and path length,
+/// drawing from `Lcg(seed)`, `checker` deciding both states and motions.
+pub(super) fn planner_on<C>(params: LazyPrmStarParams, seed: u64, checker: C) -> Result<LazyPrmStar>
+where
+    C: StateValidityChecker + MotionValidator + 'static,
+{
+    let checker = Arc::new(checker);
+    LazyPrmStar::new(
+        params,
+        Box::new(Lcg(seed)),
+        checker.clone(),
+        checker,
+        (
+            Arc::new(Se2Space::default()),
+            Arc::new(PathLength::default()),
+        ),
+        Bounds2 {
+            min: [0.0, 0.0],
+            max: [10.0, 10.0],
+        },
+    )
+}
 
 /// Everything is valid.
 pub(super) struct Free;

@@ -1,25 +1,11 @@
 //! Unit tests of LazyPRM*.
 
 use super::query::improvement_interval;
-use super::test_support::{Free, Lcg, Ring};
+use super::test_support::{planner_on, Free, Ring};
 use super::*;
-use smug_core::{PathLength, Se2Space};
 
 fn planner(params: LazyPrmStarParams) -> Result<LazyPrmStar> {
-    LazyPrmStar::new(
-        params,
-        Box::new(Lcg(7)),
-        Arc::new(Free),
-        Arc::new(Free),
-        (
-            Arc::new(Se2Space::default()),
-            Arc::new(PathLength::default()),
-        ),
-        Bounds2 {
-            min: [0.0, 0.0],
-            max: [10.0, 10.0],
-        },
-    )
+    planner_on(params, 7, Free)
 }
 
 #[test]
@@ -109,21 +95,7 @@ fn ring_planner(retry_cut_off: bool) -> LazyPrmStar {
         retry_cut_off,
         ..LazyPrmStarParams::default()
     };
-    LazyPrmStar::new(
-        params,
-        Box::new(Lcg(7)),
-        Arc::new(Ring),
-        Arc::new(Ring),
-        (
-            Arc::new(Se2Space::default()),
-            Arc::new(PathLength::default()),
-        ),
-        Bounds2 {
-            min: [0.0, 0.0],
-            max: [10.0, 10.0],
-        },
-    )
-    .unwrap()
+    planner_on(params, 7, Ring).unwrap()
 }
 
 #[test]
