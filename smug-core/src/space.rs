@@ -79,6 +79,18 @@ pub trait StateSpace: Send + Sync + Debug {
     fn is_holonomic(&self) -> bool {
         true
     }
+
+    /// The minimum turning radius of a curvature-limited model (metres), `None` for
+    /// models that turn on the spot (the default).
+    fn turning_radius(&self) -> Option<f64> {
+        None
+    }
+
+    /// True when the model may drive backwards (Reeds–Shepp); forward-only models and
+    /// holonomic ones (the default) say false.
+    fn has_reverse_gear(&self) -> bool {
+        false
+    }
 }
 
 /// How long a local motion is in the plane, and how far its heading turns.

@@ -116,6 +116,15 @@ impl<S: Solver> StateSpace for CurvatureSpace<S> {
     fn is_holonomic(&self) -> bool {
         false
     }
+
+    fn turning_radius(&self) -> Option<f64> {
+        Some(self.radius)
+    }
+
+    fn has_reverse_gear(&self) -> bool {
+        // The symmetric solver is Reeds–Shepp's (both gears); Dubins' is forward only.
+        S::SYMMETRIC
+    }
 }
 
 /// Offsets (in turning radii) beyond which the solvers' squares and sums would overflow.

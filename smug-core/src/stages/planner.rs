@@ -74,6 +74,10 @@ pub enum Proof {
     /// the free space: an exact search covered everything the start reaches, or a
     /// flood fill of the free cells does not join them).
     Disconnected,
+    /// A search of the planner's discretisation (a lattice of poses and motion
+    /// primitives) reached everything the start reaches, the goal not among it: no path
+    /// exists at the planner's resolution.
+    Exhausted,
 }
 
 /// Which budget ran out.
@@ -88,6 +92,8 @@ pub enum Budget {
     /// An endpoint was cut off after an earlier query between the same regions spent
     /// its budget (LazyPRM*'s pocket rule, see `retry_cut_off`).
     EarlierQuery,
+    /// The search's expansion budget, e.g. the lattice planner's `max_expansions`.
+    Expansions,
     /// The planner does not say which.
     Unspecified,
 }
@@ -106,15 +112,17 @@ impl NoPathReason {
         }
     }
 
-    /// Short machine-readable cause: `disconnected`, `samples`, `time`, `deadline`,
-    /// `earlier_query`, `unspecified`.
+    /// Short machine-readable cause: `disconnected`, `exhausted`, `samples`, `time`, `deadline`,
+    /// `expansions`, `earlier_query`, `unspecified`.
     pub fn why(&self) -> &'static str {
         match self {
             NoPathReason::Proved(Proof::Disconnected) => "disconnected",
+            NoPathReason::Proved(Proof::Exhausted) => "exhausted",
             NoPathReason::BudgetSpent(Budget::Samples) => "samples",
             NoPathReason::BudgetSpent(Budget::Time) => "time",
             NoPathReason::BudgetSpent(Budget::Deadline) => "deadline",
             NoPathReason::BudgetSpent(Budget::EarlierQuery) => "earlier_query",
+            NoPathReason::BudgetSpent(Budget::Expansions) => "expansions",
             NoPathReason::BudgetSpent(Budget::Unspecified) => "unspecified",
         }
     }
@@ -125,6 +133,9 @@ impl std::fmt::Display for NoPathReason {
         f.write_str(match self {
             NoPathReason::Proved(Proof::Disconnected) => {
                 "no path exists: the goal lies outside the start's free region"
+            }
+            NoPathReason::Proved(Proof::Exhausted) => {
+                "no path exists at the planner's resolution: its search reached everything the start reaches"
             }
             NoPathReason::BudgetSpent(Budget::Samples) => {
                 "no path found before the sample budget ran out (max_samples); one may exist"
@@ -137,6 +148,9 @@ impl std::fmt::Display for NoPathReason {
             }
             NoPathReason::BudgetSpent(Budget::EarlierQuery) => {
                 "no path searched: an endpoint was cut off after an earlier query spent its budget; one may exist"
+            }
+            NoPathReason::BudgetSpent(Budget::Expansions) => {
+                "no path found before the expansion budget ran out (max_expansions); one may exist"
             }
             NoPathReason::BudgetSpent(Budget::Unspecified) => {
                 "no path found within the planner's budget; one may exist"

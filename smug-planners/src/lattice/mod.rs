@@ -1,0 +1,376 @@
+//! `lattice`: a state-lattice planner for curvature-limited motion models (Dubins,
+//! Reeds–Shepp), after Hybrid A* (Dolgov et al. 2008) and SBPL's / Nav2's lattice
+//! planners.
+//!
+//! The search runs over lattice poses (points `resolution` apart, `headings` evenly
+//! spaced headings) joined by motion primitives: per heading, straight and full-lock
+//! motions of two lengths, forward (and reverse where the model has a reverse gear),
+//! each the model's own shortest curve between two lattice poses. The start joins the
+//! lattice poses around it by the model's curves; every goal is reached by an
+//! analytic shot, the model's curve from a lattice pose within `shot_radius` of it,
+//! checked only when it would be the cheapest way on (lazily). Costs are the
+//! pipeline's objective, validity its state checker and motion validator (any robot:
+//! boxes on terrain as well as discs on grids). The heuristic is the larger of the
+//! objective's bound (the model's obstacle-free curve) and a 2D obstacle-aware
+//! distance ([`heuristic`]); both are admissible, so the search is optimal for its
+//! lattice, and a search that runs out of lattice poses proves that no path exists at
+//! this resolution ([`smug_core::Proof::Exhausted`]).
+//!
+//! One search from a start answers every goal of a cost-matrix row or a DP layer
+//! (one-to-many), and what a search learns (which lattice poses are valid, what every
+//! primitive it tried costs and whether it is valid) is kept for the mission's later
+//! queries: after the first few, searches are pure graph searches.
+
+mod heuristic;
+mod primitives;
+mod search;
+#[cfg(test)]
+mod tests;
+
+pub use primitives::{Lattice, Primitive, Primitives, StateId};
+
+use serde::{Deserialize, Serialize};
+use smug_core::{
+    BuildContext, Error, MotionValidator, Objective, PlannerOutcome, PlannerStats,
+    PointToPointPlanner, Pose2, Result, StateSpace, StateValidityChecker, TimeBreakdown,
+};
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
+
+/// Parameters of the `lattice` planner.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LatticeParams {
+    /// Headings per lattice point (a multiple of 8, at least 16).
+    pub headings: usize,
+    /// Spacing of the lattice points, metres (default: a sixth of the turning radius).
+    pub resolution: Option<f64>,
+    /// Shots to a goal start within this distance of it, metres (default: three
+    /// turning radii).
+    pub shot_radius: Option<f64>,
+    /// The search's cost of a reverse motion is its objective cost times this (≥ 1).
+    pub reverse_penalty: f64,
+    /// Added to the search's cost at each change of gear (≥ 0).
+    pub gear_change_cost: f64,
+    /// Lattice poses one query may expand (0: as many as the lattice has).
+    pub max_expansions: u64,
+    /// Seconds one query may take (`inf`: no limit).
+    pub time_limit: f64,
+    /// Use the 2D obstacle-aware heuristic (else only the objective's bound).
+    pub obstacle_heuristic: bool,
+    /// Shortcut every path found with the model's curves (the cost never rises).
+    pub shortcut: bool,
+}
+
+impl Default for LatticeParams {
+    fn default() -> Self {
+        Self {
+            headings: 64,
+            resolution: None,
+            shot_radius: None,
+            reverse_penalty: 1.0,
+            gear_change_cost: 0.0,
+            max_expansions: 0,
+            time_limit: 30.0,
+            obstacle_heuristic: true,
+            shortcut: true,
+        }
+    }
+}
+
+/// What the planner has learnt of the lattice so far, kept across queries.
+pub(crate) struct Caches {
+    /// Per lattice pose: 0 unknown, 1 valid, 2 invalid.
+    state: Vec<u8>,
+    /// Per lattice pose and primitive (stride: the most primitives of a heading): 0.0
+    /// unknown, infinity invalid, else the objective's cost of the motion.
+    edge: Vec<f32>,
+    /// Obstacle-aware heuristics of recent goal sets: (key, distances per point).
+    heuristics: Vec<(Vec<u64>, Arc<Vec<f32>>)>,
+    /// Shots checked from lattice poses: (pose, goal bits) → valid.
+    shots: HashMap<(StateId, [u64; 3]), bool>,
+}
+
+/// Counters of the planner's work.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Counts {
+    queries: u64,
+    searches: u64,
+    expansions: u64,
+    state_checks: u64,
+    edge_checks: u64,
+    shot_checks: u64,
+    breakdown: TimeBreakdown,
+}
+
+/// The lattice planner.
+pub struct LatticePlanner {
+    params: LatticeParams,
+    lattice: Lattice,
+    primitives: Primitives,
+    /// Distinct displacements of the primitives with their straight length, metres.
+    displacements: Vec<(i32, i32, f64)>,
+    /// Per heading and primitive, the objective's contract bound of its cost
+    /// (`w_t·‖Δxy‖ + w_r·d(Δyaw)`, penalties aside): what an unchecked primitive is
+    /// queued at.
+    primitive_bounds: Vec<Vec<f64>>,
+    space: Arc<dyn StateSpace>,
+    objective: Arc<dyn Objective>,
+    states: Arc<dyn StateValidityChecker>,
+    motions: Arc<dyn MotionValidator>,
+    radius: f64,
+    shot_radius: f64,
+    caches: Caches,
+    buffers: search::Buffers,
+    counts: Counts,
+    last_costs: Vec<Option<f64>>,
+}
+
+/// Lattice poses at most (memory: about 50 bytes per pose and primitive).
+const MAX_STATES: usize = 60_000_000;
+
+fn invalid(key: &str, message: impl std::fmt::Display) -> Error {
+    Error::invalid_param("planner", format!("`{key}`: {message}"))
+}
+
+impl LatticePlanner {
+    /// The planner on `bounds` for the model `space` (which must be curvature-limited),
+    /// costs by `objective`, validity by `states` and `motions`.
+    pub fn new(
+        params: LatticeParams,
+        bounds: smug_core::Bounds2,
+        space: Arc<dyn StateSpace>,
+        objective: Arc<dyn Objective>,
+        states: Arc<dyn StateValidityChecker>,
+        motions: Arc<dyn MotionValidator>,
+    ) -> Result<Self> {
+        let Some(radius) = space.turning_radius() else {
+            return Err(invalid(
+                "space.type",
+                "`lattice` plans for curvature-limited models (dubins, reeds-shepp); use `lazy-prm-star` or `visibility` for holonomic ones",
+            ));
+        };
+        let side = (bounds.max[0] - bounds.min[0]).min(bounds.max[1] - bounds.min[1]);
+        if !(radius.is_finite() && radius > 0.0) || 2.0 * radius > side {
+            return Err(invalid(
+                "space.params.turning_radius",
+                format!("a turning radius of {radius} m does not fit a map {side:.3} m across (a U-turn needs twice the radius)"),
+            ));
+        }
+        check_params(&params)?;
+        let cell = params.resolution.unwrap_or(radius / 6.0);
+        let shot_radius = params.shot_radius.unwrap_or(3.0 * radius).max(2.0 * cell);
+        let lattice = Lattice::new(bounds, cell, params.headings);
+        if lattice.nx < 2 || lattice.ny < 2 {
+            return Err(invalid(
+                "planner.params.resolution",
+                format!("{cell} m leaves fewer than 2 × 2 lattice points on the map"),
+            ));
+        }
+        if lattice.len() > MAX_STATES {
+            return Err(invalid(
+                "planner.params.resolution",
+                format!(
+                    "{cell} m gives {} lattice poses on this map, more than {MAX_STATES}: choose a coarser resolution or fewer headings",
+                    lattice.len()
+                ),
+            ));
+        }
+        let layout = primitives::Layout {
+            space: space.as_ref(),
+            radius,
+            reverse: space.has_reverse_gear(),
+        };
+        let primitives = layout.primitives(&lattice);
+        if primitives.by_heading.iter().any(Vec::is_empty) {
+            return Err(invalid(
+                "planner.params.resolution",
+                format!("{cell} m is too coarse for a turning radius of {radius} m: some heading has no motion primitive"),
+            ));
+        }
+        let displacements = distinct_displacements(&primitives, cell);
+        let (w_t, w_r) = objective.bound_weights();
+        let primitive_bounds = primitives
+            .by_heading
+            .iter()
+            .enumerate()
+            .map(|(k, list)| {
+                list.iter()
+                    .map(|p| {
+                        let turn = smug_core::pose::angle_distance(
+                            lattice.heading(k),
+                            lattice.heading(p.to_heading),
+                        );
+                        w_t * cell * (p.di as f64).hypot(p.dj as f64) + w_r * turn
+                    })
+                    .collect()
+            })
+            .collect();
+        let n = lattice.len();
+        Ok(Self {
+            caches: Caches {
+                state: vec![0; n],
+                edge: vec![0.0; n * primitives.stride],
+                heuristics: Vec::new(),
+                shots: HashMap::new(),
+            },
+            buffers: search::Buffers::new(n),
+            params,
+            lattice,
+            primitives,
+            displacements,
+            primitive_bounds,
+            space,
+            objective,
+            states,
+            motions,
+            radius,
+            shot_radius,
+            counts: Counts::default(),
+            last_costs: Vec::new(),
+        })
+    }
+
+    /// The lattice searched.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// The motion primitives per heading.
+    pub fn primitives(&self) -> &Primitives {
+        &self.primitives
+    }
+
+    /// The search's costs of the last query's paths before shortcutting, one per goal
+    /// (`None`: no path); with the default penalties, the objective's cost of the
+    /// lattice path.
+    pub fn last_costs(&self) -> &[Option<f64>] {
+        &self.last_costs
+    }
+}
+
+/// Checks the parameters, naming the key at fault.
+fn check_params(p: &LatticeParams) -> Result<()> {
+    if p.headings < 16 || p.headings % 8 != 0 || p.headings > 1024 {
+        return Err(invalid(
+            "planner.params.headings",
+            format!(
+                "must be a multiple of 8 from 16 to 1024, got {}",
+                p.headings
+            ),
+        ));
+    }
+    if let Some(r) = p.resolution {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(invalid(
+                "planner.params.resolution",
+                format!("must be finite and > 0, got {r}"),
+            ));
+        }
+    }
+    if let Some(r) = p.shot_radius {
+        if !(r.is_finite() && r >= 0.0) {
+            return Err(invalid(
+                "planner.params.shot_radius",
+                format!("must be finite and ≥ 0, got {r}"),
+            ));
+        }
+    }
+    if !(p.reverse_penalty.is_finite() && p.reverse_penalty >= 1.0) {
+        return Err(invalid(
+            "planner.params.reverse_penalty",
+            format!("must be finite and ≥ 1, got {}", p.reverse_penalty),
+        ));
+    }
+    if !(p.gear_change_cost.is_finite() && p.gear_change_cost >= 0.0) {
+        return Err(invalid(
+            "planner.params.gear_change_cost",
+            format!("must be finite and ≥ 0, got {}", p.gear_change_cost),
+        ));
+    }
+    if p.time_limit.is_nan() || p.time_limit <= 0.0 {
+        return Err(invalid(
+            "planner.params.time_limit",
+            format!("must be > 0 (inf: no limit), got {}", p.time_limit),
+        ));
+    }
+    Ok(())
+}
+
+/// The distinct `(di, dj)` of all primitives with their straight length in metres.
+fn distinct_displacements(primitives: &Primitives, cell: f64) -> Vec<(i32, i32, f64)> {
+    let mut all: Vec<(i32, i32)> = primitives
+        .by_heading
+        .iter()
+        .flatten()
+        .map(|p| (p.di, p.dj))
+        .collect();
+    all.sort_unstable();
+    all.dedup();
+    all.into_iter()
+        .map(|(di, dj)| (di, dj, cell * (di as f64).hypot(dj as f64)))
+        .collect()
+}
+
+impl PointToPointPlanner for LatticePlanner {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        let mut outcomes = self.plan_many(start, std::slice::from_ref(goal))?;
+        Ok(outcomes.pop().expect("one outcome per goal"))
+    }
+
+    fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
+        self.counts.queries += goals.len() as u64;
+        Ok(self.search(start, goals))
+    }
+
+    fn answers_many(&self) -> bool {
+        true
+    }
+
+    fn stats(&self) -> PlannerStats {
+        let c = &self.counts;
+        let known = self.caches.state.iter().filter(|&&s| s != 0).count() as u64;
+        PlannerStats {
+            queries: c.queries,
+            vertices: known,
+            edges: c.edge_checks,
+            breakdown: c.breakdown,
+            counters: BTreeMap::from([
+                ("lattice_poses".to_string(), self.lattice.len() as u64),
+                ("searches".to_string(), c.searches),
+                ("expansions".to_string(), c.expansions),
+                ("state_checks".to_string(), c.state_checks),
+                ("edge_checks".to_string(), c.edge_checks),
+                ("shot_checks".to_string(), c.shot_checks),
+                (
+                    "primitives".to_string(),
+                    self.primitives
+                        .by_heading
+                        .iter()
+                        .map(Vec::len)
+                        .sum::<usize>() as u64,
+                ),
+            ]),
+        }
+    }
+}
+
+fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
+    let world = ctx.world()?;
+    LatticePlanner::new(
+        params,
+        world.bounds(),
+        ctx.space(),
+        ctx.objective(),
+        ctx.state_validity()?,
+        ctx.motion_validator()?,
+    )
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::PlannerStage,
+    name = "lattice",
+    summary = "car-like robots (dubins, reeds-shepp): A* on a lattice of poses and the model's curves, one-to-many, proves dead ends",
+    params = LatticeParams,
+    build = |params, ctx| Ok(Box::new(build_planner(params, ctx)?)),
+);

@@ -1,0 +1,264 @@
+//! The `lattice` planner end to end on a flat world with obstacles, for a Dubins and a
+//! Reeds–Shepp car: valid curves for the model and the checker, costs no lower than the
+//! model's analytic distance, one-to-many equal to per-pair, closed pockets proved,
+//! leavable poses never proved dead ends, bad input named, and paths no costlier than
+//! LazyPRM*'s with a large budget.
+
+use smug_core::{LoadedConfig, NoPathReason, Pipeline, PlannerOutcome, Pose2, Proof};
+use std::path::Path;
+
+use smug_objectives as _;
+use smug_planners as _;
+use smug_samplers as _;
+use smug_spaces as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+/// A 16 × 12 m flat world: two walls and a closed box around (13.5, 2.5); a disc robot
+/// of radius 0.3, a car of turning radius 1 m.
+const CONFIG: &str = r#"
+seed = 3
+[world]
+type = "flat"
+[world.params]
+size = [16.0, 12.0]
+obstacles = [
+    { min = [5.0, 0.0], max = [5.4, 7.0] },
+    { min = [10.0, 5.0], max = [10.4, 12.0] },
+    { min = [12.0, 1.0], max = [15.0, 1.2] },
+    { min = [12.0, 3.8], max = [15.0, 4.0] },
+    { min = [12.0, 1.0], max = [12.2, 4.0] },
+    { min = [14.8, 1.0], max = [15.0, 4.0] },
+]
+mission = { start = { x = 1.5, y = 1.5 } }
+[space]
+type = "dubins"
+params = { turning_radius = 1.0 }
+[validity]
+type = "clearance-2d"
+params = { radius = 0.3 }
+[motion]
+type = "discrete"
+params = { resolution = 0.05, max_inclination = inf }
+[sampler]
+type = "informed"
+[planner]
+type = "lattice"
+"#;
+
+fn pipeline(overrides: &[&str]) -> Pipeline {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let loaded =
+        LoadedConfig::from_text(CONFIG, "lattice.toml", Path::new("."), &overrides).unwrap();
+    Pipeline::assemble(&loaded).unwrap()
+}
+
+fn assembly_error(overrides: &[&str]) -> String {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    let loaded =
+        LoadedConfig::from_text(CONFIG, "lattice.toml", Path::new("."), &overrides).unwrap();
+    match Pipeline::assemble(&loaded) {
+        Ok(_) => panic!("assembled with {overrides:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// Start and goal pairs across the walls, all valid for the disc.
+fn queries() -> Vec<(Pose2, Pose2)> {
+    vec![
+        (Pose2::new(1.5, 1.5, 0.0), Pose2::new(8.0, 2.0, -1.5)),
+        (Pose2::new(2.0, 10.0, 0.0), Pose2::new(13.5, 10.0, 3.0)),
+        (Pose2::new(13.0, 7.0, 1.5), Pose2::new(2.0, 3.0, 3.1)),
+        (Pose2::new(7.5, 9.0, -1.5), Pose2::new(8.0, 9.0, 1.5)),
+    ]
+}
+
+const SPACES: [&str; 2] = ["space.type=dubins", "space.type=reeds-shepp"];
+
+/// Every motion of the path is valid (validator, and states at the validator's
+/// resolution along the model's curve), the curve is the model's (forward only for
+/// Dubins), and the cost is no lower than the model's analytic distance.
+fn check_path(p: &Pipeline, start: &Pose2, goal: &Pose2, states: &[Pose2], cost: f64) {
+    let motions = p.motion_validator.as_ref().unwrap();
+    let checker = p.state_validity.as_ref().unwrap();
+    let space = p.space.as_ref();
+    assert_eq!(states.first(), Some(start));
+    assert_eq!(states.last(), Some(goal));
+    for w in states.windows(2) {
+        assert!(
+            motions.is_valid_motion(&w[0], &w[1]),
+            "invalid motion {w:?}"
+        );
+        let length = space.motion_extent(&w[0], &w[1]).length;
+        let pieces = (length / 0.05).ceil().max(1.0) as usize;
+        for i in 0..=pieces {
+            let t = i as f64 / pieces as f64;
+            let s = space.interpolate(&w[0], &w[1], t);
+            assert!(checker.is_valid(&s), "invalid state {s:?} on {w:?}");
+            if !space.has_reverse_gear() {
+                assert!(
+                    !space.is_reversing(&w[0], &w[1], t),
+                    "a Dubins car reversed"
+                );
+            }
+        }
+    }
+    let analytic = space.distance(start, goal);
+    assert!(
+        cost >= analytic - 1e-9,
+        "cost {cost} below the analytic {analytic}"
+    );
+}
+
+#[test]
+fn paths_are_the_models_curves_valid_and_no_cheaper_than_the_analytic_distance() {
+    for space in SPACES {
+        let mut p = pipeline(&[space]);
+        for (start, goal) in queries() {
+            let outcome = p.planner.as_mut().unwrap().plan(&start, &goal).unwrap();
+            let path = outcome
+                .exact_path()
+                .unwrap_or_else(|| panic!("{space}: {outcome:?}"));
+            check_path(&p, &start, &goal, &path.states, path.cost);
+        }
+    }
+}
+
+#[test]
+fn one_to_many_equals_per_pair() {
+    for space in SPACES {
+        let settings = [space, "planner.params.shortcut=false"];
+        let (start, _) = queries()[0];
+        let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
+        let mut many = pipeline(&settings);
+        let together = many
+            .planner
+            .as_mut()
+            .unwrap()
+            .plan_many(&start, &goals)
+            .unwrap();
+        let mut single = pipeline(&settings);
+        for (goal, outcome) in goals.iter().zip(&together) {
+            let alone = single.planner.as_mut().unwrap().plan(&start, goal).unwrap();
+            let (a, b) = (alone.exact_path().unwrap(), outcome.exact_path().unwrap());
+            assert!(
+                (a.cost - b.cost).abs() <= 1e-6 * a.cost,
+                "{space}: {} alone, {} together",
+                a.cost,
+                b.cost
+            );
+        }
+    }
+}
+
+#[test]
+fn a_goal_in_a_closed_box_is_proved_unreachable() {
+    for space in SPACES {
+        let mut p = pipeline(&[space]);
+        let outcome = p
+            .planner
+            .as_mut()
+            .unwrap()
+            .plan(&Pose2::new(1.5, 1.5, 0.0), &Pose2::new(13.5, 2.5, 0.0))
+            .unwrap();
+        assert_eq!(
+            outcome,
+            PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Exhausted)),
+            "{space}"
+        );
+    }
+}
+
+#[test]
+fn a_pose_a_car_can_leave_is_never_proved_a_dead_end() {
+    // Open poses (at least two turning radii from every wall and the border) on a
+    // pseudo-random sequence: every pair is joined, none proved unreachable.
+    let mut state = 7u64;
+    let mut unit = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let open = [(2.5, 2.5), (2.5, 9.5), (7.7, 3.0), (7.7, 9.0), (13.5, 7.5)];
+    for space in SPACES {
+        let mut p = pipeline(&[space]);
+        for k in 0..6 {
+            let (a, b) = (open[k % open.len()], open[(k + 2) % open.len()]);
+            let start = Pose2::new(a.0, a.1, (unit() - 0.5) * std::f64::consts::TAU);
+            let goal = Pose2::new(b.0, b.1, (unit() - 0.5) * std::f64::consts::TAU);
+            let outcome = p.planner.as_mut().unwrap().plan(&start, &goal).unwrap();
+            assert!(
+                outcome.exact_path().is_some(),
+                "{space} {start:?} → {goal:?}: {outcome:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn runs_are_reproducible() {
+    let costs = || {
+        let mut p = pipeline(&["space.type=reeds-shepp"]);
+        queries()
+            .iter()
+            .map(|(s, g)| {
+                p.planner
+                    .as_mut()
+                    .unwrap()
+                    .plan(s, g)
+                    .unwrap()
+                    .exact_path()
+                    .unwrap()
+                    .states
+                    .clone()
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(costs(), costs());
+}
+
+#[test]
+fn no_costlier_than_lazy_prm_star_with_a_large_budget() {
+    for space in SPACES {
+        let mut lattice = pipeline(&[space]);
+        let mut prm = pipeline(&[
+            space,
+            "planner.type=lazy-prm-star",
+            "planner.params.max_samples=40000",
+            "planner.params.shortcut=true",
+        ]);
+        for (start, goal) in queries() {
+            let ours = lattice
+                .planner
+                .as_mut()
+                .unwrap()
+                .plan(&start, &goal)
+                .unwrap();
+            let theirs = prm.planner.as_mut().unwrap().plan(&start, &goal).unwrap();
+            let ours = ours.exact_path().unwrap().cost;
+            if let Some(theirs) = theirs.exact_path() {
+                assert!(
+                    ours <= theirs.cost * 1.02,
+                    "{space} {start:?} → {goal:?}: lattice {ours}, LazyPRM* {}",
+                    theirs.cost
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_input_names_the_key() {
+    let radius = assembly_error(&["space.params.turning_radius=7.0"]);
+    assert!(radius.contains("space.params.turning_radius"), "{radius}");
+    let holonomic = assembly_error(&["space.type=se2", "space.params={}"]);
+    assert!(holonomic.contains("space.type"), "{holonomic}");
+    let headings = assembly_error(&["planner.params.headings=12"]);
+    assert!(headings.contains("planner.params.headings"), "{headings}");
+    let resolution = assembly_error(&["planner.params.resolution=-1.0"]);
+    assert!(
+        resolution.contains("planner.params.resolution"),
+        "{resolution}"
+    );
+}
