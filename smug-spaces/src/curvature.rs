@@ -4,7 +4,8 @@
 use crate::curve::{relative, Curve};
 use smug_core::pose::{angle_distance, Pose2};
 use smug_core::space::{MotionExtent, StateSpace};
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
@@ -55,7 +56,7 @@ impl<S: Solver> CurvatureSpace<S> {
             if !solvable(x, y, phi) {
                 return endless();
             }
-            S::shortest(x, y, phi)
+            memo_relative(S::KIND, [x, y, phi], || S::shortest(x, y, phi))
         })
     }
 }
@@ -151,6 +152,33 @@ thread_local! {
     /// The last curve computed on this thread: a motion validator, a smoother or an
     /// objective samples one motion many times in a row.
     static LAST_CURVE: Cell<Option<(CurveKey, Curve)>> = const { Cell::new(None) };
+}
+
+/// Most relative motions remembered per thread (then forgotten all at once).
+const RELATIVE_KEPT: usize = 1 << 16;
+
+thread_local! {
+    /// Curves by the goal's pose relative to the start (unit radius): a lattice's
+    /// motions repeat the same few relative poses all over the map.
+    static BY_RELATIVE: RefCell<HashMap<(u8, [u64; 3]), Curve>> = RefCell::new(HashMap::new());
+}
+
+/// The curve of solver `kind` to the relative pose `rel`: remembered on this thread
+/// (the same bits give the same curve), else `compute()`.
+fn memo_relative(kind: u8, rel: [f64; 3], compute: impl FnOnce() -> Curve) -> Curve {
+    let key = (kind, rel.map(f64::to_bits));
+    if let Some(curve) = BY_RELATIVE.with(|m| m.borrow().get(&key).copied()) {
+        return curve;
+    }
+    let curve = compute();
+    BY_RELATIVE.with(|m| {
+        let mut m = m.borrow_mut();
+        if m.len() >= RELATIVE_KEPT {
+            m.clear();
+        }
+        m.insert(key, curve);
+    });
+    curve
 }
 
 /// The curve of solver `kind` with `radius` from `a` to `b`: the last one computed on

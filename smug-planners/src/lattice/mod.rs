@@ -21,6 +21,7 @@
 //! primitive it tried costs and whether it is valid) is kept for the mission's later
 //! queries: after the first few, searches are pure graph searches.
 
+mod edges;
 mod heuristic;
 mod primitives;
 mod search;
@@ -43,7 +44,8 @@ use std::sync::Arc;
 pub struct LatticeParams {
     /// Headings per lattice point (a multiple of 8, at least 16).
     pub headings: usize,
-    /// Spacing of the lattice points, metres (default: a sixth of the turning radius).
+    /// Spacing of the lattice points, metres (default: a sixth of the turning radius,
+    /// rounded down to a multiple of 1/64 m).
     pub resolution: Option<f64>,
     /// Shots to a goal start within this distance of it, metres (default: three
     /// turning radii).
@@ -58,6 +60,10 @@ pub struct LatticeParams {
     pub time_limit: f64,
     /// Use the 2D obstacle-aware heuristic (else only the objective's bound).
     pub obstacle_heuristic: bool,
+    /// The heuristic is multiplied by this (≥ 1; 1: optimal on the lattice, above:
+    /// weighted A*, paths at most this factor dearer than the lattice's optimum, found
+    /// with fewer expansions).
+    pub heuristic_weight: f64,
     /// Shortcut every path found with the model's curves (the cost never rises).
     pub shortcut: bool,
 }
@@ -73,6 +79,7 @@ impl Default for LatticeParams {
             max_expansions: 0,
             time_limit: 30.0,
             obstacle_heuristic: true,
+            heuristic_weight: 1.0,
             shortcut: true,
         }
     }
@@ -83,7 +90,8 @@ pub(crate) struct Caches {
     /// Per lattice pose: 0 unknown, 1 valid, 2 invalid.
     state: Vec<u8>,
     /// Per lattice pose and primitive (stride: the most primitives of a heading): 0.0
-    /// unknown, infinity invalid, else the objective's cost of the motion.
+    /// unknown, infinity invalid, else the objective's cost of the motion, negative
+    /// while its validity is not known.
     edge: Vec<f32>,
     /// Obstacle-aware heuristics of recent goal sets: (key, distances per point).
     heuristics: Vec<(Vec<u64>, Arc<Vec<f32>>)>,
@@ -110,10 +118,6 @@ pub struct LatticePlanner {
     primitives: Primitives,
     /// Distinct displacements of the primitives with their straight length, metres.
     displacements: Vec<(i32, i32, f64)>,
-    /// Per heading and primitive, the objective's contract bound of its cost
-    /// (`w_t·‖Δxy‖ + w_r·d(Δyaw)`, penalties aside): what an unchecked primitive is
-    /// queued at.
-    primitive_bounds: Vec<Vec<f64>>,
     space: Arc<dyn StateSpace>,
     objective: Arc<dyn Objective>,
     states: Arc<dyn StateValidityChecker>,
@@ -158,7 +162,9 @@ impl LatticePlanner {
             ));
         }
         check_params(&params)?;
-        let cell = params.resolution.unwrap_or(radius / 6.0);
+        let cell = params
+            .resolution
+            .unwrap_or_else(|| default_resolution(radius));
         let shot_radius = params.shot_radius.unwrap_or(3.0 * radius).max(2.0 * cell);
         let lattice = Lattice::new(bounds, cell, params.headings);
         if lattice.nx < 2 || lattice.ny < 2 {
@@ -189,23 +195,6 @@ impl LatticePlanner {
             ));
         }
         let displacements = distinct_displacements(&primitives, cell);
-        let (w_t, w_r) = objective.bound_weights();
-        let primitive_bounds = primitives
-            .by_heading
-            .iter()
-            .enumerate()
-            .map(|(k, list)| {
-                list.iter()
-                    .map(|p| {
-                        let turn = smug_core::pose::angle_distance(
-                            lattice.heading(k),
-                            lattice.heading(p.to_heading),
-                        );
-                        w_t * cell * (p.di as f64).hypot(p.dj as f64) + w_r * turn
-                    })
-                    .collect()
-            })
-            .collect();
         let n = lattice.len();
         Ok(Self {
             caches: Caches {
@@ -219,7 +208,6 @@ impl LatticePlanner {
             lattice,
             primitives,
             displacements,
-            primitive_bounds,
             space,
             objective,
             states,
@@ -247,6 +235,14 @@ impl LatticePlanner {
     pub fn last_costs(&self) -> &[Option<f64>] {
         &self.last_costs
     }
+}
+
+/// A sixth of the turning radius rounded down to a multiple of 1/64 m (at least
+/// 1/64 m): lattice positions and their differences are then exact in binary, so the
+/// same primitive gives the same relative pose everywhere and the model solves its
+/// curve once.
+fn default_resolution(radius: f64) -> f64 {
+    ((radius / 6.0 * 64.0).floor() / 64.0).max(1.0 / 64.0)
 }
 
 /// Checks the parameters, naming the key at fault.
@@ -286,6 +282,12 @@ fn check_params(p: &LatticeParams) -> Result<()> {
         return Err(invalid(
             "planner.params.gear_change_cost",
             format!("must be finite and ≥ 0, got {}", p.gear_change_cost),
+        ));
+    }
+    if !(p.heuristic_weight.is_finite() && p.heuristic_weight >= 1.0) {
+        return Err(invalid(
+            "planner.params.heuristic_weight",
+            format!("must be finite and ≥ 1, got {}", p.heuristic_weight),
         ));
     }
     if p.time_limit.is_nan() || p.time_limit <= 0.0 {

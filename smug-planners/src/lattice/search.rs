@@ -2,8 +2,7 @@
 //! start joined to the lattice by the model's curves, goals reached by lazily checked
 //! analytic shots, caches of state and primitive validity kept across queries.
 
-use super::primitives::{Layout, StateId};
-use super::{heuristic, LatticePlanner};
+use super::LatticePlanner;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -11,9 +10,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 /// The start's node id (lattice poses are `0..len`).
-const START: u32 = u32::MAX;
-/// How many obstacle-aware heuristics of goal sets are kept.
-const HEURISTICS_KEPT: usize = 32;
+pub(super) const START: u32 = u32::MAX;
 
 /// Per-search arrays over the lattice, reused across searches (generation stamps
 /// instead of clearing).
@@ -52,9 +49,9 @@ impl Buffers {
 /// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Item {
-    /// A lattice pose (or the start) reached from `parent` at cost `g`; unless
-    /// `verified`, by primitive `prim` of the parent's heading, not yet checked, `g`
-    /// from the primitive's contract bound.
+    /// A lattice pose (or the start) reached from `parent` at cost `g` by primitive
+    /// `prim` of the parent's heading, whose validity is checked when popped unless
+    /// `verified`.
     Node {
         id: u32,
         parent: u32,
@@ -73,7 +70,6 @@ enum Item {
 #[derive(Clone, Copy, Debug)]
 struct Entry {
     key: f64,
-    seq: u64,
     item: Item,
 }
 
@@ -89,30 +85,19 @@ impl PartialOrd for Entry {
     }
 }
 impl Ord for Entry {
-    // A min-heap on the key, ties to the earlier push (deterministic).
+    // A min-heap on the key (ties as the heap leaves them: the same pushes and pops
+    // give the same order, so runs are reproducible).
     fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .key
-            .total_cmp(&self.key)
-            .then_with(|| other.seq.cmp(&self.seq))
+        other.key.total_cmp(&self.key)
     }
 }
 
 /// One goal of a search.
-struct Goal {
-    pose: Pose2,
+pub(super) struct Goal {
+    /// Where it is.
+    pub(super) pose: Pose2,
     /// Settled: the search's cost and the lattice pose (or start) its shot leaves from.
-    reached: Option<(f64, u32)>,
-}
-
-/// What checking a queued primitive gave.
-enum Verified {
-    /// Valid, at no more than its queued cost: the search's cost now.
-    Now(f64),
-    /// Valid but dearer than queued: (key, cost) to queue it at.
-    Later(f64, f64),
-    /// Invalid, or beaten by a cheaper way.
-    Invalid,
+    pub(super) reached: Option<(f64, u32)>,
 }
 
 /// How a search ended.
@@ -125,7 +110,6 @@ enum End {
 /// A search in progress.
 struct Run {
     heap: BinaryHeap<Entry>,
-    seq: u64,
     goals: Vec<Goal>,
     open_goals: usize,
     h2d: Option<Arc<Vec<f32>>>,
@@ -133,12 +117,7 @@ struct Run {
 
 impl Run {
     fn push(&mut self, key: f64, item: Item) {
-        self.seq += 1;
-        self.heap.push(Entry {
-            key,
-            seq: self.seq,
-            item,
-        });
+        self.heap.push(Entry { key, item });
     }
 }
 
@@ -223,7 +202,6 @@ impl LatticePlanner {
         let open_goals = goals.len();
         let mut run = Run {
             heap: BinaryHeap::new(),
-            seq: 0,
             goals,
             open_goals,
             h2d: None,
@@ -269,28 +247,9 @@ impl LatticePlanner {
                     reverse,
                     verified,
                 } => {
-                    let g = if verified {
-                        g
-                    } else {
-                        match self.verify(id, parent, prim, g, reverse, &run) {
-                            Verified::Now(g) => g,
-                            Verified::Later(key, g) => {
-                                run.push(
-                                    key,
-                                    Item::Node {
-                                        id,
-                                        parent,
-                                        g,
-                                        prim,
-                                        reverse,
-                                        verified: true,
-                                    },
-                                );
-                                continue;
-                            }
-                            Verified::Invalid => continue,
-                        }
-                    };
+                    if !verified && !self.verify(id, parent, prim) {
+                        continue;
+                    }
                     if self.close(id, parent, g, reverse) {
                         expansions += 1;
                         self.counts.expansions += 1;
@@ -327,44 +286,20 @@ impl LatticePlanner {
         true
     }
 
-    /// Checks the primitive that reached `id` from `parent` (cached): its true cost now
-    /// when it is no more than the bound it was queued with, else later at its true key.
-    fn verify(
-        &mut self,
-        id: u32,
-        parent: u32,
-        prim: u16,
-        g: f64,
-        reverse: bool,
-        run: &Run,
-    ) -> Verified {
+    /// Checks the primitive that reached `id` from `parent` (validity cached; its cost
+    /// was known when it was queued): false when it is invalid or `id` is closed.
+    fn verify(&mut self, id: u32, parent: u32, prim: u16) -> bool {
         let b = &self.buffers;
         if b.closed[id as usize] == b.generation {
-            return Verified::Invalid;
+            return false;
         }
         let slot = parent as usize * self.primitives.stride + prim as usize;
-        let mut cost = self.caches.edge[slot];
-        if cost == 0.0 {
-            cost = self.edge_cost(parent, id);
-            self.caches.edge[slot] = cost;
+        let cached = self.caches.edge[slot];
+        if cached < 0.0 {
+            let valid = self.edge_valid(parent, id);
+            self.caches.edge[slot] = if valid { -cached } else { f32::INFINITY };
         }
-        if !cost.is_finite() {
-            return Verified::Invalid;
-        }
-        let parent_g = self.buffers.g[parent as usize];
-        let true_g = parent_g + self.step_cost(parent, cost as f64, reverse);
-        if true_g <= g * (1.0 + 1e-9) {
-            return Verified::Now(true_g);
-        }
-        let b = &mut self.buffers;
-        let i = id as usize;
-        if b.stamp[i] == b.generation && true_g >= b.g[i] {
-            return Verified::Invalid; // a verified way at least as cheap is queued
-        }
-        b.stamp[i] = b.generation;
-        b.g[i] = true_g;
-        let h = self.heuristic(id, &run.goals, run.h2d.as_deref());
-        Verified::Later(true_g + h, true_g)
+        self.caches.edge[slot].is_finite()
     }
 
     /// The search's cost of a motion of objective cost `cost` from `parent`: reverse
@@ -391,7 +326,8 @@ impl LatticePlanner {
     /// Pushes the shots from `id` to the goals near it and relaxes its successors.
     fn expand(&mut self, start: &Pose2, id: u32, g: f64, run: &mut Run) {
         let pose = self.pose_of(start, id);
-        for (j, goal) in run.goals.iter().enumerate() {
+        for j in 0..run.goals.len() {
+            let goal = &run.goals[j];
             if goal.reached.is_none() && pose.xy_distance(&goal.pose) <= self.shot_radius {
                 let bound = self.cheap_bound(&pose, &goal.pose);
                 if bound.is_finite() {
@@ -400,12 +336,7 @@ impl LatticePlanner {
                         goal: j as u32,
                         costed: false,
                     };
-                    run.seq += 1;
-                    run.heap.push(Entry {
-                        key: g + bound,
-                        seq: run.seq,
-                        item,
-                    });
+                    run.push(g + bound, item);
                 }
             }
         }
@@ -424,15 +355,17 @@ impl LatticePlanner {
                 continue;
             };
             let to = self.lattice.id(jx, jy, prim.to_heading);
-            let cached = self.caches.edge[id as usize * stride + p];
+            let slot = id as usize * stride + p;
+            let mut cached = self.caches.edge[slot];
             if cached.is_infinite() {
                 continue;
             }
-            let (cost, verified) = if cached == 0.0 {
-                (self.primitive_bounds[k][p], false)
-            } else {
-                (cached as f64, true)
-            };
+            if cached == 0.0 {
+                cached = -self.edge_cost(id, to);
+                self.caches.edge[slot] = cached;
+            }
+            // Negative: the cost is known, the validity not yet (checked when popped).
+            let (cost, verified) = (cached.abs() as f64, cached > 0.0);
             let ng = g + self.step_cost(id, cost, prim.reverse);
             self.queue(run, to, id, ng, p as u16, prim.reverse, verified);
         }
@@ -467,7 +400,7 @@ impl LatticePlanner {
             b.g[i] = g;
         }
         run.push(
-            g + h,
+            g + self.params.heuristic_weight * h,
             Item::Node {
                 id: to,
                 parent,
@@ -520,172 +453,5 @@ impl LatticePlanner {
             run.goals[goal].reached = Some((cost, from));
             run.open_goals -= 1;
         }
-    }
-
-    /// Whether the shot from `from` (at `pose`) to `target` is valid: cached for lattice
-    /// poses (the same goals come back in a mission's later searches).
-    fn shot_valid(&mut self, from: u32, pose: &Pose2, target: &Pose2) -> bool {
-        let key = (
-            from,
-            [target.x.to_bits(), target.y.to_bits(), target.yaw.to_bits()],
-        );
-        if from != START {
-            if let Some(&valid) = self.caches.shots.get(&key) {
-                return valid;
-            }
-        }
-        self.counts.shot_checks += 1;
-        let valid = self.motions.is_valid_motion(pose, target);
-        if from != START {
-            self.caches.shots.insert(key, valid);
-        }
-        valid
-    }
-
-    /// The objective's bound as its contract gives it without solving for a curve:
-    /// `w_t·‖Δxy‖ + w_r·d(yaw)`.
-    fn cheap_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        let (w_t, w_r) = self.objective.bound_weights();
-        w_t * a.xy_distance(b) + w_r * smug_core::pose::angle_distance(a.yaw, b.yaw)
-    }
-
-    /// The heuristic at a lattice pose: the obstacle-aware distance and, for one goal,
-    /// the objective's contract bound to it (`w_t·‖Δxy‖ + w_r·d(yaw)`), the larger.
-    /// (The model's curve bound, solved per queued pose, cost a tenth more time on
-    /// lunar for the same plans.)
-    fn heuristic(&self, id: u32, goals: &[Goal], h2d: Option<&Vec<f32>>) -> f64 {
-        let mut h = 0.0;
-        if let Some(d) = h2d {
-            h = d[id as usize / self.lattice.headings] as f64;
-            if h.is_infinite() {
-                return h;
-            }
-            // f32 rounding: stay below the exact distance.
-            h *= 1.0 - 1e-6;
-        }
-        if let [goal] = goals {
-            h = h.max(self.cheap_bound(&self.lattice.pose(id), &goal.pose));
-        }
-        h
-    }
-
-    /// The lattice poses the start joins with the model's curves (one gear, no loops),
-    /// valid, with their costs.
-    fn start_successors(&mut self, start: &Pose2) -> Vec<(u32, f64, bool)> {
-        let cell = self.lattice.cell;
-        let reach = 2.0 * std::f64::consts::SQRT_2 * cell * 1.5;
-        let space = self.space.clone();
-        let layout = Layout {
-            space: space.as_ref(),
-            radius: self.radius,
-            reverse: space.has_reverse_gear(),
-        };
-        let h = self.lattice.headings as i64;
-        let k0 = self.lattice.heading_bin(start.yaw) as i64;
-        let spread =
-            (reach / (self.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
-        let mut out = Vec::new();
-        for (ix, iy) in self.lattice.points_near(start.x, start.y, reach) {
-            for dk in -spread..=spread {
-                let k = (k0 + dk).rem_euclid(h) as usize;
-                let id = self.lattice.id(ix, iy, k);
-                let to = self.lattice.pose(id);
-                let direct = start.xy_distance(&to);
-                if direct < 1e-9 && dk == 0 {
-                    continue;
-                }
-                let extent = self.space.motion_extent(start, &to);
-                if extent.length > 1.3 * direct + cell
-                    || extent.turning > self.space_turn(start, &to) + 0.6
-                {
-                    continue;
-                }
-                let reverse = self.space.is_reversing(start, &to, 0.5);
-                if !layout.one_gear(start, &to, reverse) || !self.state_valid(id) {
-                    continue;
-                }
-                self.counts.edge_checks += 1;
-                if self.motions.is_valid_motion(start, &to) {
-                    out.push((id, self.objective.motion_cost(start, &to), reverse));
-                }
-            }
-        }
-        out
-    }
-
-    fn space_turn(&self, a: &Pose2, b: &Pose2) -> f64 {
-        smug_core::pose::angle_distance(a.yaw, b.yaw)
-    }
-
-    /// The objective's cost of the motion between two lattice poses, infinity when it
-    /// is invalid (never 0: 0 marks an unknown edge).
-    fn edge_cost(&mut self, from: StateId, to: StateId) -> f32 {
-        if !self.state_valid(to) {
-            return f32::INFINITY;
-        }
-        let (a, b) = (self.lattice.pose(from), self.lattice.pose(to));
-        self.counts.edge_checks += 1;
-        if !self.motions.is_valid_motion(&a, &b) {
-            return f32::INFINITY;
-        }
-        (self.objective.motion_cost(&a, &b) as f32).max(f32::MIN_POSITIVE)
-    }
-
-    /// Whether a lattice pose is valid (cached).
-    pub(super) fn state_valid(&mut self, id: StateId) -> bool {
-        let i = id as usize;
-        if self.caches.state[i] == 0 {
-            self.counts.state_checks += 1;
-            let valid = self.states.is_valid(&self.lattice.pose(id));
-            self.caches.state[i] = if valid { 1 } else { 2 };
-        }
-        self.caches.state[i] == 1
-    }
-
-    /// Whether some heading is valid at a lattice point (the 2D relaxation's nodes).
-    fn point_open(&mut self, ix: usize, iy: usize) -> bool {
-        (0..self.lattice.headings).any(|k| {
-            let id = self.lattice.id(ix, iy, k);
-            self.state_valid(id)
-        })
-    }
-
-    /// The obstacle-aware distances to a goal set, from the cache or computed.
-    fn goal_heuristic(&mut self, goals: &[Goal]) -> Arc<Vec<f32>> {
-        let key: Vec<u64> = goals
-            .iter()
-            .flat_map(|g| [g.pose.x.to_bits(), g.pose.y.to_bits()])
-            .collect();
-        if let Some(pos) = self.caches.heuristics.iter().position(|(k, _)| *k == key) {
-            let hit = self.caches.heuristics.remove(pos);
-            let values = hit.1.clone();
-            self.caches.heuristics.push(hit);
-            return values;
-        }
-        let (w_t, _) = self.objective.bound_weights();
-        let mut seeds = Vec::new();
-        for goal in goals {
-            for (ix, iy) in self
-                .lattice
-                .points_near(goal.pose.x, goal.pose.y, self.shot_radius)
-            {
-                let [x, y] = self.lattice.position(ix, iy);
-                seeds.push(((ix, iy), w_t * (x - goal.pose.x).hypot(y - goal.pose.y)));
-            }
-        }
-        let weighted: Vec<(i32, i32, f64)> = self
-            .displacements
-            .iter()
-            .map(|&(di, dj, len)| (di, dj, w_t * len))
-            .collect();
-        let (nx, ny) = (self.lattice.nx, self.lattice.ny);
-        let values = Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
-            self.point_open(ix, iy)
-        }));
-        if self.caches.heuristics.len() >= HEURISTICS_KEPT {
-            self.caches.heuristics.remove(0);
-        }
-        self.caches.heuristics.push((key, values.clone()));
-        values
     }
 }
