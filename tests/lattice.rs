@@ -10,6 +10,8 @@ use std::path::Path;
 use smug_objectives as _;
 use smug_planners as _;
 use smug_samplers as _;
+use smug_selection as _;
+use smug_sequencing as _;
 use smug_spaces as _;
 use smug_validity as _;
 use smug_worlds as _;
@@ -44,6 +46,10 @@ params = { resolution = 0.05, max_inclination = inf }
 type = "informed"
 [planner]
 type = "lattice"
+[sequencer]
+type = "auto"
+[selector]
+type = "idp"
 "#;
 
 fn pipeline(overrides: &[&str]) -> Pipeline {
@@ -261,4 +267,59 @@ fn bad_input_names_the_key() {
         resolution.contains("planner.params.resolution"),
         "{resolution}"
     );
+}
+
+/// The test world with a mission for a Dubins car: `stuck` faces the first wall from
+/// 0.6 m (a car of turning radius 1 m cannot leave it), `open` is in the open.
+fn dead_end_mission(pois: &str) -> Pipeline {
+    let config = CONFIG.replace(
+        "mission = { start = { x = 1.5, y = 1.5 } }",
+        &format!(
+            r#"mission = {{ start = {{ x = 2.5, y = 9.5, yaw = 0.0 }}, targets = [
+    {{ id = "wall", position = {{ x = 5.2, y = 3.0 }}, pois = [{pois}] }},
+    {{ id = "far", position = {{ x = 8.0, y = 9.0 }}, pois = [{{ x = 8.0, y = 9.0, yaw = 0.0 }}] }},
+] }}"#
+        ),
+    );
+    let loaded = LoadedConfig::from_text(&config, "dead-end.toml", Path::new("."), &[]).unwrap();
+    Pipeline::assemble(&loaded).unwrap()
+}
+
+const STUCK: &str = "{ x = 4.4, y = 3.0, yaw = 0.0 }";
+const OPEN: &str = "{ x = 2.5, y = 3.0, yaw = 3.1416 }";
+
+#[test]
+fn a_poi_a_forward_only_car_cannot_leave_is_left_out_and_named() {
+    let mut p = dead_end_mission(&format!("{STUCK}, {OPEN}"));
+    let options = p.config.plan;
+    let plan = smug_core::mission::plan_mission(&mut p, options).unwrap();
+    assert_eq!(plan.dead_ends.len(), 1, "{:?}", plan.dead_ends);
+    let dead = &plan.dead_ends[0];
+    assert_eq!((dead.target.as_str(), dead.index), ("wall", 0));
+    assert!(
+        dead.why.contains("the end cannot be reached"),
+        "{}",
+        dead.why
+    );
+    let chosen = plan.pois.iter().find(|c| c.target == "wall").unwrap();
+    assert_eq!(chosen.index, 1);
+}
+
+#[test]
+fn a_target_whose_every_poi_is_a_dead_end_is_named_and_why() {
+    let mut p = dead_end_mission(STUCK);
+    let options = p.config.plan;
+    let err = smug_core::mission::plan_mission(&mut p, options).unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("`wall`"), "{message}");
+    assert!(
+        message.contains("PoI 0: the end cannot be reached from it"),
+        "{message}"
+    );
+    match err {
+        smug_core::Error::Stage { source, .. } => {
+            assert!(source.is::<smug_core::mission::Unreachable>())
+        }
+        other => panic!("{other}"),
+    }
 }

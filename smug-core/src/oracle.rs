@@ -383,6 +383,23 @@ impl PathOracle {
         self.planner.as_ref()
     }
 
+    /// Whether the planner proves dead ends cheaply ([`PointToPointPlanner::proves_dead_ends`]).
+    pub fn proves_dead_ends(&self) -> bool {
+        self.planner.proves_dead_ends()
+    }
+
+    /// Asks the planner to prove, within `effort`, that no path leads from pose `i` to
+    /// pose `j` ([`PointToPointPlanner::prove_unreachable`]); nothing is cached.
+    pub fn prove_unreachable(
+        &mut self,
+        i: usize,
+        j: usize,
+        effort: u64,
+    ) -> Result<Option<NoPathReason>> {
+        let (a, b) = (self.poses[i], self.poses[j]);
+        self.planner.prove_unreachable(&a, &b, effort)
+    }
+
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
         refuse_after_deadline()?;
         self.stats.paths_planned += 1;

@@ -62,6 +62,21 @@ pub struct ChosenPoi {
     pub pose: Pose2,
 }
 
+/// A PoI left out of a plan: the robot cannot get there from the start, or cannot get
+/// from there to the end (proved by the planner, e.g. a forward-only car facing a stone
+/// up close).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DeadEndPoi {
+    /// Target id.
+    pub target: String,
+    /// Index of the PoI in the target's list.
+    pub index: usize,
+    /// The PoI itself.
+    pub pose: Pose2,
+    /// Why: which way is closed and the planner's proof.
+    pub why: String,
+}
+
 /// One collision-free leg of the plan.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Segment {
@@ -96,6 +111,10 @@ pub struct Plan {
     /// Targets left out (unreachable, with `skip_unreachable = true`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub skipped: Vec<String>,
+    /// PoIs left out because the robot cannot reach them from the start or reach the
+    /// end from them (proved), for models whose motions are directed.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dead_ends: Vec<DeadEndPoi>,
     /// True when the run's deadline cut an anytime search short (a planner query, the
     /// sequencer's local search): the plan is complete and valid, the best found by then.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]

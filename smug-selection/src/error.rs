@@ -2,28 +2,7 @@
 
 use smug_core::{Error, PathOracle, Result, SelectionProblem};
 
-/// Why a selector found no route.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum SelectionError {
-    /// No PoI of group `group` (index in visiting order) is reachable from the start
-    /// through the earlier groups, or, for the last group, none of its reachable PoIs has a
-    /// path to the end.
-    #[error("target {group} of the sequence has no reachable PoI")]
-    Unreachable {
-        /// Index of the group in `SelectionProblem::groups`.
-        group: usize,
-    },
-    /// There are no groups and the end cannot be reached from the start.
-    #[error("the end pose cannot be reached from the start")]
-    EndUnreachable,
-}
-
-impl SelectionError {
-    /// The error as a `smug_core::Error` of the `selector` stage.
-    pub fn into_error(self) -> Error {
-        Error::stage("selector", self)
-    }
-}
+pub use smug_core::SelectionError;
 
 /// The first group (in visiting order) with no PoI reachable from the start through the
 /// earlier groups, or the last group when none of its reachable PoIs reaches the end.

@@ -2,6 +2,7 @@
 //! how a mission is planned through a pipeline ([`plan_mission`]).
 
 mod assembly;
+mod dead_ends;
 mod joint;
 mod obstacles;
 mod replan;

@@ -4,7 +4,8 @@
 //! path oracle, so every query shares the planner's roadmap. The joint mode (`joint`)
 //! chooses the order and the PoIs together.
 
-use super::assembly::{assemble_plan, stats};
+use super::assembly::{assemble_plan, register_poses, stats, Layout};
+use super::dead_ends::drop_dead_ends;
 use super::joint::{joint_tour, JointProblem};
 use super::sequential::sequence;
 use super::Mission;
@@ -15,7 +16,7 @@ use crate::oracle::PathOracle;
 use crate::pipeline::Pipeline;
 use crate::plan::Plan;
 use crate::post_process::{concatenate, waypoints};
-use crate::stages::{Selection, SelectionProblem};
+use crate::stages::{Selection, SelectionError, SelectionProblem};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -117,32 +118,28 @@ impl PlanOptions {
 
 /// Targets that cannot be reached: the plan fails and names them.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("no safe path reaches target(s) {}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "))]
+#[error("no safe path reaches target(s) {}{}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "), why_suffix(.why))]
 pub struct Unreachable {
     /// Ids of the unreachable targets.
     pub targets: Vec<String>,
+    /// Why, where known: one line per PoI left out (target, PoI index, reason).
+    pub why: Vec<String>,
 }
 
-/// Where the mission's poses sit in the oracle.
-pub(super) struct Layout {
-    pub(super) start: usize,
-    pub(super) end: usize,
-    /// For each target of the mission, the oracle indices of its PoIs.
-    pub(super) pois: Vec<Vec<usize>>,
+/// The reasons of an [`Unreachable`], on lines of their own.
+fn why_suffix(why: &[String]) -> String {
+    why.iter().map(|w| format!("\n  {w}")).collect()
 }
 
-fn register_poses(oracle: &mut PathOracle, mission: &Mission) -> Layout {
-    let start = oracle.add_pose(mission.start);
-    let end = match mission.end {
-        Some(end) => oracle.add_pose(end),
-        None => start,
+/// The target (mission index) a selector found no route through, from its error.
+fn unroutable_target(selected: &Result<Selection>, order: &[usize]) -> Option<usize> {
+    let Err(Error::Stage { source, .. }) = selected else {
+        return None;
     };
-    let pois = mission
-        .targets
-        .iter()
-        .map(|t| t.pois.iter().map(|p| oracle.add_pose(*p)).collect())
-        .collect();
-    Layout { start, end, pois }
+    match source.downcast_ref::<SelectionError>()? {
+        SelectionError::Unreachable { group } => order.get(*group).copied(),
+        SelectionError::EndUnreachable => None,
+    }
 }
 
 /// Targets none of whose PoIs the start reaches.
@@ -307,10 +304,36 @@ fn plan_on_oracle(
     started: Instant,
 ) -> Result<Plan> {
     check_selection_size(mission)?;
-    let layout = register_poses(oracle, mission);
+    let mut layout = register_poses(oracle, mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
+    let t = Instant::now();
+    let dead_ends = drop_dead_ends(oracle, mission, world, &mut layout, &targets)?;
+    if !dead_ends.is_empty() {
+        times.insert("dead-ends".to_string(), t.elapsed().as_secs_f64());
+        let emptied: Vec<usize> = targets
+            .iter()
+            .copied()
+            .filter(|&t| layout.pois[t].is_empty())
+            .collect();
+        if !emptied.is_empty() {
+            let ids: Vec<String> = emptied
+                .iter()
+                .map(|&t| mission.targets[t].id.clone())
+                .collect();
+            if !options.skip_unreachable {
+                let why = dead_ends
+                    .iter()
+                    .filter(|d| ids.contains(&d.target))
+                    .map(|d| format!("target `{}` PoI {}: {}", d.target, d.index, d.why))
+                    .collect();
+                return Err(Error::stage("smug plan", Unreachable { targets: ids, why }));
+            }
+            skipped.extend(ids);
+            targets.retain(|t| !emptied.contains(t));
+        }
+    }
     let (order, problem, selection) = loop {
         let (order, selected) = match options.mode {
             PlanMode::Sequential => order_then_select(
@@ -343,11 +366,24 @@ fn plan_on_oracle(
             other => {
                 let unreachable = unreachable_targets(oracle, &layout, &targets)?;
                 if unreachable.is_empty() {
+                    if let Some(target) = unroutable_target(&other, &order) {
+                        return Err(Error::stage(
+                            "smug plan",
+                            Unreachable {
+                                targets: vec![mission.targets[target].id.clone()],
+                                why: vec![format!(
+                                    "target `{}`: the start reaches its PoIs, but none of them continues the route in the order chosen (a directed model: a PoI it can enter but not leave, or reach only from some targets)",
+                                    mission.targets[target].id
+                                )],
+                            },
+                        ));
+                    }
                     other?;
                     return Err(Error::stage(
                         "smug plan",
                         Unreachable {
                             targets: vec!["(the end pose)".into()],
+                            why: Vec::new(),
                         },
                     ));
                 }
@@ -356,7 +392,13 @@ fn plan_on_oracle(
                     .map(|&t| mission.targets[t].id.clone())
                     .collect();
                 if !options.skip_unreachable {
-                    return Err(Error::stage("smug plan", Unreachable { targets: ids }));
+                    return Err(Error::stage(
+                        "smug plan",
+                        Unreachable {
+                            targets: ids,
+                            why: Vec::new(),
+                        },
+                    ));
                 }
                 skipped.extend(ids);
                 targets.retain(|t| !unreachable.contains(t));
@@ -385,6 +427,7 @@ fn plan_on_oracle(
     (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, world, options.keep_headings);
     plan.cost = selection.cost;
     plan.skipped = skipped;
+    plan.dead_ends = dead_ends;
     times.insert("post-processing".into(), t.elapsed().as_secs_f64());
     times.insert(
         "total".into(),

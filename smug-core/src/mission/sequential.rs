@@ -1,7 +1,8 @@
 //! The sequential mode's first step: the visiting order of the targets from path
 //! costs between one representative pose per target (full or lazy cost matrix).
 
-use super::run::{Layout, Representative, SequencingCosts};
+use super::assembly::Layout;
+use super::run::{Representative, SequencingCosts};
 use super::Mission;
 use crate::error::{Error, Result};
 use crate::oracle::PathOracle;

@@ -21,7 +21,7 @@ pub use roadmap_file::{
     PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
 };
 pub use sampler::{InformedSet, Sampler};
-pub use selector::{PoiSelector, Selection, SelectionProblem};
+pub use selector::{PoiSelector, Selection, SelectionError, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
 pub use traversability::{CellRect, TraversabilityEstimator};
 pub use validity::{Counters, DiscOnGrid, EndpointFault, FreeRegions, StateValidityChecker};

@@ -197,6 +197,28 @@ pub trait PointToPointPlanner: Send + Sync {
     /// Statistics accumulated over all queries so far.
     fn stats(&self) -> PlannerStats;
 
+    /// True when [`prove_unreachable`](Self::prove_unreachable) can prove anything and
+    /// a proved "no path" is cheap (an exhaustive search of a bounded lattice): the
+    /// mission then drops the PoIs a directed model cannot use before sequencing.
+    /// Default false: nothing is asked, nothing changes.
+    fn proves_dead_ends(&self) -> bool {
+        false
+    }
+
+    /// Tries, within `effort` units of work (a search's expansions), to prove that no
+    /// path leads from `start` to `goal`: `Some(reason)` when proved (a forward-only
+    /// car facing a stone up close exhausts its few reachable poses at once), `None`
+    /// when a path exists or the effort ran out first. The default proves nothing.
+    fn prove_unreachable(
+        &mut self,
+        start: &Pose2,
+        goal: &Pose2,
+        effort: u64,
+    ) -> Result<Option<NoPathReason>> {
+        let _ = (start, goal, effort);
+        Ok(None)
+    }
+
     /// The planner's roadmap and answered queries, to save after a mission (default:
     /// `None`, the planner keeps no roadmap).
     fn save_roadmap(&self) -> Option<RoadmapSnapshot> {

@@ -176,3 +176,26 @@ mod tests {
         assert_eq!(direct.solve_layers(table).unwrap(), (vec![], 9.0));
     }
 }
+
+/// Why a selector found no route.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SelectionError {
+    /// No PoI of group `group` (index in visiting order) is reachable from the start
+    /// through the earlier groups, or, for the last group, none of its reachable PoIs has a
+    /// path to the end.
+    #[error("target {group} of the sequence has no reachable PoI")]
+    Unreachable {
+        /// Index of the group in `SelectionProblem::groups`.
+        group: usize,
+    },
+    /// There are no groups and the end cannot be reached from the start.
+    #[error("the end pose cannot be reached from the start")]
+    EndUnreachable,
+}
+
+impl SelectionError {
+    /// The error as a `smug_core::Error` of the `selector` stage.
+    pub fn into_error(self) -> crate::error::Error {
+        crate::error::Error::stage("selector", self)
+    }
+}

@@ -32,7 +32,7 @@ pub use primitives::{Lattice, Primitive, Primitives, StateId};
 
 use serde::{Deserialize, Serialize};
 use smug_core::{
-    BuildContext, Error, MotionValidator, Objective, PlannerOutcome, PlannerStats,
+    BuildContext, Error, MotionValidator, NoPathReason, Objective, PlannerOutcome, PlannerStats,
     PointToPointPlanner, Pose2, Result, StateSpace, StateValidityChecker, TimeBreakdown,
 };
 use std::collections::{BTreeMap, HashMap};
@@ -327,6 +327,23 @@ impl PointToPointPlanner for LatticePlanner {
 
     fn answers_many(&self) -> bool {
         true
+    }
+
+    fn proves_dead_ends(&self) -> bool {
+        true
+    }
+
+    fn prove_unreachable(
+        &mut self,
+        start: &Pose2,
+        goal: &Pose2,
+        effort: u64,
+    ) -> Result<Option<NoPathReason>> {
+        let budget = self.params.max_expansions;
+        self.params.max_expansions = effort.max(1);
+        let outcome = self.search(start, std::slice::from_ref(goal));
+        self.params.max_expansions = budget;
+        Ok(outcome[0].no_path_reason().filter(NoPathReason::is_proved))
     }
 
     fn stats(&self) -> PlannerStats {
