@@ -383,6 +383,20 @@ impl PathOracle {
         self.planner.as_ref()
     }
 
+    /// Pairs asked so far that have no path, by `kind:why` of the planner's reason
+    /// (`proved:exhausted`, `budget_spent:samples`, …).
+    pub fn no_path_counts(&self) -> std::collections::BTreeMap<String, u64> {
+        let mut counts = std::collections::BTreeMap::new();
+        for planned in self.cache.values() {
+            if let Some(reason) = planned.outcome.no_path_reason() {
+                *counts
+                    .entry(format!("{}:{}", reason.kind(), reason.why()))
+                    .or_insert(0) += 1;
+            }
+        }
+        counts
+    }
+
     /// Whether the planner proves dead ends cheaply ([`PointToPointPlanner::proves_dead_ends`]).
     pub fn proves_dead_ends(&self) -> bool {
         self.planner.proves_dead_ends()

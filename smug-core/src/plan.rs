@@ -49,6 +49,11 @@ pub struct PlanStats {
     pub breakdown: TimeBreakdown,
     /// Any other counters a stage reports.
     pub counters: BTreeMap<String, u64>,
+    /// Pose pairs the planner found no path between, by why (`proved:disconnected`,
+    /// `proved:exhausted`, `budget_spent:samples`, `budget_spent:time`, …): the
+    /// legs the plan could not use, and whether a bigger budget could change that.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub legs_without_path: BTreeMap<String, u64>,
 }
 
 /// The PoI chosen for one target.

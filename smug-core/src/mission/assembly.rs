@@ -128,5 +128,6 @@ pub(super) fn stats(
         stage_times_s: times,
         breakdown: planner.breakdown,
         counters,
+        legs_without_path: oracle.no_path_counts(),
     }
 }
