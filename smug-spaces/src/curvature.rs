@@ -5,7 +5,6 @@ use crate::curve::{relative, Curve};
 use smug_core::pose::{angle_distance, Pose2};
 use smug_core::space::{MotionExtent, StateSpace};
 use std::cell::{Cell, RefCell};
-use std::collections::HashMap;
 use std::fmt::Debug;
 use std::marker::PhantomData;
 
@@ -154,31 +153,51 @@ thread_local! {
     static LAST_CURVE: Cell<Option<(CurveKey, Curve)>> = const { Cell::new(None) };
 }
 
-/// Most relative motions remembered per thread (then forgotten all at once).
-const RELATIVE_KEPT: usize = 1 << 16;
+/// Slots of the per-thread table of curves by relative pose (a power of two).
+const RELATIVE_SLOTS: usize = 4096;
+
+/// A relative pose's solver and bits, its curve, and whether it was asked for again
+/// since it was stored or last spared.
+type RelativeEntry = ((u8, [u64; 3]), Curve, bool);
 
 thread_local! {
-    /// Curves by the goal's pose relative to the start (unit radius): a lattice's
-    /// motions repeat the same few relative poses all over the map.
-    static BY_RELATIVE: RefCell<HashMap<(u8, [u64; 3]), Curve>> = RefCell::new(HashMap::new());
+    /// Curves by the goal's pose relative to the start (unit radius), in a direct-mapped
+    /// table with a second chance: a lattice's motions repeat the same few relative
+    /// poses all over the map and keep their slots; poses asked once (a roadmap's, a
+    /// shot's) take a slot only from an entry not asked for again since it was stored
+    /// (no allocation, no probing).
+    static BY_RELATIVE: RefCell<Vec<Option<RelativeEntry>>> =
+        RefCell::new(vec![None; RELATIVE_SLOTS]);
 }
 
-/// The curve of solver `kind` to the relative pose `rel`: remembered on this thread
-/// (the same bits give the same curve), else `compute()`.
+/// The curve of solver `kind` to the relative pose `rel`: from the table when this
+/// thread solved the same bits last in its slot (the same bits give the same curve),
+/// else `compute()` (then stored).
 fn memo_relative(kind: u8, rel: [f64; 3], compute: impl FnOnce() -> Curve) -> Curve {
     let key = (kind, rel.map(f64::to_bits));
-    if let Some(curve) = BY_RELATIVE.with(|m| m.borrow().get(&key).copied()) {
-        return curve;
+    let mut h = kind as u64;
+    for bits in key.1 {
+        h = (h ^ bits).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     }
-    let curve = compute();
-    BY_RELATIVE.with(|m| {
-        let mut m = m.borrow_mut();
-        if m.len() >= RELATIVE_KEPT {
-            m.clear();
+    let slot = (h >> 40) as usize & (RELATIVE_SLOTS - 1);
+    BY_RELATIVE.with(|table| {
+        let mut table = table.borrow_mut();
+        match &mut table[slot] {
+            Some((k, curve, asked)) if *k == key => {
+                *asked = true;
+                *curve
+            }
+            Some((_, _, asked)) if *asked => {
+                *asked = false; // spared once: replaced at the next miss
+                compute()
+            }
+            entry => {
+                let curve = compute();
+                *entry = Some((key, curve, false));
+                curve
+            }
         }
-        m.insert(key, curve);
-    });
-    curve
+    })
 }
 
 /// The curve of solver `kind` with `radius` from `a` to `b`: the last one computed on
