@@ -2,7 +2,7 @@
 //! user downloads (`--data DIR`, else `$SMUG_DATA/movingai`), and maps of every
 //! generated family with scenarios drawn by our own octile Dijkstra (`--generated`).
 
-use anyhow::{bail, Context};
+use crate::error::{bail, ResultExt as _};
 use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::movingai::{generate_scenarios, write_map, write_scenarios};
 use std::path::{Path, PathBuf};
@@ -43,7 +43,7 @@ pub struct BenchMap {
 
 /// The MovingAI data folder: `--data DIR`, else `$SMUG_DATA/movingai`, else an error
 /// saying what to download and where.
-pub fn movingai_dir(data: Option<&Path>) -> anyhow::Result<PathBuf> {
+pub fn movingai_dir(data: Option<&Path>) -> crate::Result<PathBuf> {
     if let Some(dir) = data {
         return Ok(dir.to_path_buf());
     }
@@ -125,7 +125,7 @@ pub fn generated_maps(
     scratch: &Path,
     scenarios: usize,
     wants: impl Fn(&str) -> bool,
-) -> anyhow::Result<Vec<BenchMap>> {
+) -> crate::Result<Vec<BenchMap>> {
     let mut maps = Vec::new();
     for params in generated_params() {
         let name = generated_name(&params);

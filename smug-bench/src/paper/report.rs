@@ -1,7 +1,7 @@
 //! The Markdown report of `smug bench paper`: Tables I–IV with the paper's numbers
 //! beside ours, and the targets checked.
 
-use crate::bench_paper::{PaperBench, Run, SCALABILITY, SELECTORS, VALIDITY};
+use super::runs::{PaperBench, Run, SCALABILITY, SELECTORS, VALIDITY};
 use serde::Serialize;
 use smug_core::TimeBreakdown;
 use std::fmt::Write;

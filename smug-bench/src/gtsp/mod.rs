@@ -1,11 +1,12 @@
 //! `smug bench gtsp`: gaps of `gtsp-lns` to the best-known values of the GTSP-LIB
 //! suite (from `--data DIR` or `$SMUG_DATA/gtsp`).
 
-use crate::Outcome;
-use smug_sequencing::bench::DATA_ENV;
-use smug_sequencing::bench_gtsp::{
+pub mod suite;
+
+use crate::gtsp::suite::{
     load_gtsp_suite, run_gtsp_instance, GtspBenchInstance, GtspBenchResult, GTSP_SUITE_DESCRIPTION,
 };
+use crate::tsp::suite::DATA_ENV;
 use smug_sequencing::gtsp_lns::GtspLnsParams;
 use smug_sequencing::{read_gtsplib, GtspLns};
 use std::fmt::Write as _;
@@ -38,13 +39,13 @@ pub struct BenchGtspArgs {
 }
 
 /// Runs `smug bench gtsp`.
-pub fn run(args: BenchGtspArgs) -> anyhow::Result<Outcome> {
-    anyhow::ensure!(
+pub fn run(args: BenchGtspArgs) -> crate::Result<()> {
+    crate::error::ensure!(
         !args.budgets.is_empty(),
         "--budgets needs at least one value"
     );
     if let Some(bad) = args.budgets.iter().find(|b| !(b.is_finite() && **b > 0.0)) {
-        anyhow::bail!("--budgets: {bad} is not a positive number of seconds");
+        crate::error::bail!("--budgets: {bad} is not a positive number of seconds");
     }
     let dir = suite_dir(args.data.as_deref())?;
     let suite = select(load_gtsp_suite(&dir)?, &args)?;
@@ -59,7 +60,7 @@ pub fn run(args: BenchGtspArgs) -> anyhow::Result<Outcome> {
             };
             let solver = GtspLns::with_seed(params, args.seed)?;
             let result = run_gtsp_instance(instance, &gtsp, &solver, budget)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", instance.name))?;
+                .map_err(|e| crate::error::invalid!("{}: {e}", instance.name))?;
             eprintln!(
                 "[{}/{}] {} @ {budget} s: {} ({:.2}%) in {:.2} s",
                 k + 1,
@@ -73,22 +74,17 @@ pub fn run(args: BenchGtspArgs) -> anyhow::Result<Outcome> {
         }
     }
     let report = markdown_report(&dir, &args, &results);
-    crate::bench_output::write_report(
-        &report,
-        &results,
-        args.out.as_deref(),
-        args.json.as_deref(),
-    )?;
-    Ok(Outcome::Ok)
+    crate::output::write_report(&report, &results, args.out.as_deref(), args.json.as_deref())?;
+    Ok(())
 }
 
 /// The suite folder from `--data DIR` or `$SMUG_DATA/gtsp`.
-fn suite_dir(data: Option<&Path>) -> anyhow::Result<PathBuf> {
+fn suite_dir(data: Option<&Path>) -> crate::Result<PathBuf> {
     let from_env = std::env::var_os(DATA_ENV)
         .filter(|v| !v.is_empty())
         .map(|v| Path::new(&v).join("gtsp"));
     data.map(Path::to_path_buf).or(from_env).ok_or_else(|| {
-        anyhow::anyhow!(
+        crate::error::invalid!(
             "no GTSP-LIB suite given: pass --data DIR or set {DATA_ENV} (the suite is then \
              ${DATA_ENV}/gtsp); {GTSP_SUITE_DESCRIPTION}"
         )
@@ -100,14 +96,14 @@ fn suite_dir(data: Option<&Path>) -> anyhow::Result<PathBuf> {
 fn select(
     suite: Vec<GtspBenchInstance>,
     args: &BenchGtspArgs,
-) -> anyhow::Result<Vec<GtspBenchInstance>> {
+) -> crate::Result<Vec<GtspBenchInstance>> {
     if let Some(unknown) = args
         .instances
         .iter()
         .find(|n| !suite.iter().any(|i| &i.name == *n))
     {
         let known: Vec<&str> = suite.iter().map(|i| i.name.as_str()).collect();
-        anyhow::bail!("unknown instance `{unknown}`; known: {}", known.join(", "));
+        crate::error::bail!("unknown instance `{unknown}`; known: {}", known.join(", "));
     }
     Ok(suite
         .into_iter()

@@ -1,9 +1,11 @@
 //! `smug bench tsp`: gaps to the proven optima of the TSPLIB suite (from `--data DIR`
-//! or `$SMUG_DATA/tsplib`, see [`crate::tsp`]), with OR-Tools beside them on request.
+//! or `$SMUG_DATA/tsplib`, see [`suite`]), with OR-Tools beside them on request.
 
-use crate::Outcome;
-use smug_sequencing::bench::{load_suite, run_instance, BenchInstance, BenchResult};
-use smug_sequencing::{read_tsplib, solver_by_name, SolverOptions, SOLVER_NAMES};
+pub mod suite;
+
+use crate::solvers::{sequencer, SolverOptions, TSP_SOLVERS};
+use crate::tsp::suite::{load_suite, run_instance, BenchInstance, BenchResult};
+use smug_sequencing::read_tsplib;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -21,7 +23,7 @@ pub struct BenchTspArgs {
     #[arg(long, value_delimiter = ',')]
     pub instances: Vec<String>,
     /// Solver.
-    #[arg(long, default_value = "auto", value_parser = clap::builder::PossibleValuesParser::new(SOLVER_NAMES))]
+    #[arg(long, default_value = "auto", value_parser = clap::builder::PossibleValuesParser::new(TSP_SOLVERS))]
     pub solver: String,
     /// Seed of the local search.
     #[arg(long, default_value_t = 0)]
@@ -42,18 +44,18 @@ pub struct BenchTspArgs {
 const ORTOOLS: &str = "or-tools";
 
 /// Runs `smug bench tsp`.
-pub fn run_bench(args: BenchTspArgs) -> anyhow::Result<Outcome> {
-    anyhow::ensure!(
+pub fn run_bench(args: BenchTspArgs) -> crate::Result<()> {
+    crate::error::ensure!(
         !args.budgets.is_empty(),
         "--budgets needs at least one value"
     );
     if let Some(bad) = args.budgets.iter().find(|b| !(b.is_finite() && **b > 0.0)) {
-        anyhow::bail!("--budgets: {bad} is not a positive number of seconds");
+        crate::error::bail!("--budgets: {bad} is not a positive number of seconds");
     }
     if args.ortools {
         ortools::check_available()?;
     }
-    let dir = crate::tsp::require_suite_dir(args.data.as_deref())?;
+    let dir = suite::require_suite_dir(args.data.as_deref())?;
     let suite = select(load_suite(&dir)?, &args.instances)?;
     let mut results = Vec::new();
     for (k, instance) in suite.iter().enumerate() {
@@ -64,9 +66,9 @@ pub fn run_bench(args: BenchTspArgs) -> anyhow::Result<Outcome> {
                 max_iterations: None,
                 seed: args.seed,
             };
-            let solver = solver_by_name(&args.solver, &options)?;
+            let solver = sequencer(&args.solver, &options)?;
             let result = run_instance(instance, &costs, solver.as_ref(), &args.solver, budget)
-                .map_err(|e| anyhow::anyhow!("{}: {e}", instance.name))?;
+                .map_err(|e| crate::error::invalid!("{}: {e}", instance.name))?;
             progress(k, suite.len(), &result);
             results.push(result);
             if args.ortools {
@@ -77,13 +79,8 @@ pub fn run_bench(args: BenchTspArgs) -> anyhow::Result<Outcome> {
         }
     }
     let report = markdown_report(&dir, &args, &results);
-    crate::bench_output::write_report(
-        &report,
-        &results,
-        args.out.as_deref(),
-        args.json.as_deref(),
-    )?;
-    Ok(Outcome::Ok)
+    crate::output::write_report(&report, &results, args.out.as_deref(), args.json.as_deref())?;
+    Ok(())
 }
 
 fn progress(k: usize, total: usize, r: &BenchResult) {
@@ -100,13 +97,13 @@ fn progress(k: usize, total: usize, r: &BenchResult) {
 }
 
 /// The instances named in `names` (all when empty); unknown names are an error.
-fn select(suite: Vec<BenchInstance>, names: &[String]) -> anyhow::Result<Vec<BenchInstance>> {
+fn select(suite: Vec<BenchInstance>, names: &[String]) -> crate::Result<Vec<BenchInstance>> {
     if names.is_empty() {
         return Ok(suite);
     }
     if let Some(unknown) = names.iter().find(|n| !suite.iter().any(|i| &i.name == *n)) {
         let known: Vec<&str> = suite.iter().map(|i| i.name.as_str()).collect();
-        anyhow::bail!("unknown instance `{unknown}`; known: {}", known.join(", "));
+        crate::error::bail!("unknown instance `{unknown}`; known: {}", known.join(", "));
     }
     Ok(suite
         .into_iter()
@@ -229,9 +226,9 @@ fn table_row(name: &str, budgets: &[f64], solvers: &[&str], results: &[BenchResu
 /// OR-Tools through `python3`, for comparison only.
 mod ortools {
     use super::ORTOOLS;
-    use anyhow::Context;
+    use crate::error::ResultExt as _;
+    use crate::tsp::suite::{BenchInstance, BenchResult};
     use smug_core::CostMatrix;
-    use smug_sequencing::bench::{BenchInstance, BenchResult};
     use std::process::Command;
     use std::time::Instant;
 
@@ -256,12 +253,12 @@ print(json.dumps(order))
 "#;
 
     /// Fails unless `python3 -c "import ortools"` works.
-    pub(super) fn check_available() -> anyhow::Result<()> {
+    pub(super) fn check_available() -> crate::Result<()> {
         let status = Command::new("python3")
             .args(["-c", "import ortools"])
             .status()
             .context("--ortools: cannot run python3")?;
-        anyhow::ensure!(
+        crate::error::ensure!(
             status.success(),
             "--ortools: python3 cannot import ortools (pip install ortools)"
         );
@@ -273,7 +270,7 @@ print(json.dumps(order))
         instance: &BenchInstance,
         costs: &CostMatrix,
         budget: f64,
-    ) -> anyhow::Result<BenchResult> {
+    ) -> crate::Result<BenchResult> {
         let n = costs.len();
         let rows: Vec<Vec<i64>> = (0..n)
             .map(|i| (0..n).map(|j| costs.get(i, j).round() as i64).collect())
@@ -291,7 +288,7 @@ print(json.dumps(order))
             .context("running python3")?;
         let time_s = started.elapsed().as_secs_f64();
         let _ = std::fs::remove_file(&file);
-        anyhow::ensure!(
+        crate::error::ensure!(
             output.status.success(),
             "OR-Tools failed on {}: {}",
             instance.name,
@@ -299,7 +296,7 @@ print(json.dumps(order))
         );
         let order: Vec<usize> = serde_json::from_slice(&output.stdout)
             .with_context(|| format!("reading OR-Tools' tour for {}", instance.name))?;
-        anyhow::ensure!(
+        crate::error::ensure!(
             order.len() == n,
             "OR-Tools returned {} of {n} nodes",
             order.len()

@@ -5,9 +5,9 @@
 //! ships no suite: see [`SUITE_DESCRIPTION`] for where TSPLIB95 is published, and
 //! [`suite_dir`] for how a folder is found.
 
-use crate::tsplib::{ProblemType, TsplibError};
 use serde::Serialize;
 use smug_core::{CostMatrix, Sequencer, TourKind};
+use smug_sequencing::tsplib::{ProblemType, TsplibError};
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -219,6 +219,17 @@ pub fn run_instance(
         tour.order,
         time_s,
     ))
+}
+
+/// The suite folder from `--data DIR`, else `$SMUG_DATA/tsplib`; neither is an error
+/// that says where the suite comes from.
+pub fn require_suite_dir(data: Option<&Path>) -> crate::Result<PathBuf> {
+    suite_dir(data, std::env::var_os(DATA_ENV).as_deref()).ok_or_else(|| {
+        crate::error::invalid!(
+            "no TSPLIB suite given: pass --data DIR or set {DATA_ENV} (the suite is then \
+             ${DATA_ENV}/tsplib); {SUITE_DESCRIPTION}"
+        )
+    })
 }
 
 #[cfg(test)]

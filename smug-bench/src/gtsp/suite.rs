@@ -5,11 +5,11 @@
 //! relative to the folder; anything after its first space is ignored), `n` and
 //! `value`. The project ships no suite: see [`GTSP_SUITE_DESCRIPTION`].
 
-use crate::bench::{csv_rows, gap_percent};
-use crate::gtsplib::GtspInstance;
-use crate::tsplib::TsplibError;
+use crate::tsp::suite::{csv_rows, gap_percent};
 use serde::Serialize;
 use smug_core::{Sequencer, TourKind};
+use smug_sequencing::gtsplib::GtspInstance;
+use smug_sequencing::tsplib::TsplibError;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 

@@ -1,7 +1,7 @@
 //! `smug bench modes`' summaries (per mission and mode; joint minus sequential per
 //! seed) and its Markdown report.
 
-use crate::bench_modes::{Mission, Mode, Run};
+use super::runs::{Mission, Mode, Run};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -267,7 +267,7 @@ fn failures(md: &mut String, runs: &[Run]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench_modes::{MISSIONS, MODES};
+    use crate::modes::runs::{MISSIONS, MODES};
 
     fn run(mode: &str, seed: u64, cost: Option<f64>) -> Run {
         Run {

@@ -3,10 +3,11 @@
 
 mod support;
 
+use smug_bench::solvers::{sequencer, SolverOptions};
+use smug_bench::tsp::suite::{gap_percent, load_suite, run_instance, BenchResult};
 use smug_core::TourKind;
-use smug_sequencing::bench::{gap_percent, load_suite, run_instance, BenchResult};
+use smug_sequencing::read_tsplib;
 use smug_sequencing::tsplib::ProblemType;
-use smug_sequencing::{read_tsplib, solver_by_name, SolverOptions};
 use support::{lattice, planted, with_potentials, Known};
 
 fn generated() -> Vec<Known> {
@@ -30,7 +31,7 @@ fn a_generated_suite_runs_at_zero_gap() {
         max_iterations: Some(300),
         seed: 1,
     };
-    let solver = solver_by_name("auto", &options).unwrap();
+    let solver = sequencer("auto", &options).unwrap();
     for instance in &suite {
         let costs = read_tsplib(&instance.path).unwrap().costs;
         let result = run_instance(instance, &costs, solver.as_ref(), "auto", 0.0).unwrap();

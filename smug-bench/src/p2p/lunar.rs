@@ -34,11 +34,11 @@ pub struct LunarResult {
 }
 
 /// `count` seeded PoI pairs from different targets (PoIs the checkers accept).
-fn poi_pairs(pipeline: &Pipeline, count: usize, seed: u64) -> anyhow::Result<Vec<(Pose2, Pose2)>> {
+fn poi_pairs(pipeline: &Pipeline, count: usize, seed: u64) -> crate::Result<Vec<(Pose2, Pose2)>> {
     let mission = pipeline
         .mission
         .as_ref()
-        .ok_or_else(|| anyhow::anyhow!("the config has no world with a mission"))?;
+        .ok_or_else(|| crate::error::invalid!("the config has no world with a mission"))?;
     let pois: Vec<(usize, Pose2)> = mission
         .targets
         .iter()
@@ -46,7 +46,7 @@ fn poi_pairs(pipeline: &Pipeline, count: usize, seed: u64) -> anyhow::Result<Vec
         .flat_map(|(t, target)| target.pois.iter().map(move |p| (t, *p)))
         .collect();
     if mission.targets.len() < 2 {
-        anyhow::bail!("the lunar benchmark needs at least two targets");
+        crate::error::bail!("the lunar benchmark needs at least two targets");
     }
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut pairs = Vec::with_capacity(count);
@@ -61,7 +61,7 @@ fn poi_pairs(pipeline: &Pipeline, count: usize, seed: u64) -> anyhow::Result<Vec
 }
 
 /// Plans `count` PoI-to-PoI queries on the world of `config`, on one shared roadmap.
-pub fn run(config: &Path, set: &[String], count: usize) -> anyhow::Result<LunarResult> {
+pub fn run(config: &Path, set: &[String], count: usize) -> crate::Result<LunarResult> {
     let loaded = LoadedConfig::from_file(config, set)?;
     let mut pipeline = Pipeline::assemble(&loaded)?;
     let pairs = poi_pairs(&pipeline, count, loaded.config.seed)?;
@@ -69,7 +69,7 @@ pub fn run(config: &Path, set: &[String], count: usize) -> anyhow::Result<LunarR
     let planner = pipeline
         .planner
         .as_mut()
-        .ok_or_else(|| anyhow::anyhow!("{}: no planner", config.display()))?;
+        .ok_or_else(|| crate::error::invalid!("{}: no planner", config.display()))?;
     let (mut times, mut solved, mut cost, mut bound) = (Vec::new(), 0, 0.0, 0.0);
     for (start, goal) in &pairs {
         let t = Instant::now();

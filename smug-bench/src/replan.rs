@@ -7,8 +7,8 @@
 //! replan from scratch; and in memory, in a [`MissionSession`], against the replan from
 //! scratch and against the replan from scratch with lazy sequencing costs.
 
-use crate::bench_output::write_report;
-use crate::Outcome;
+use crate::output::write_report;
+
 use serde::Serialize;
 use smug_core::mission::{
     assemble_replan, changed_discs, replan_mission, DiscObstacle, MissionSession, MissionState,
@@ -140,7 +140,7 @@ fn measure(
     set: &[&str],
     seed: u64,
     config: &std::path::Path,
-) -> anyhow::Result<Vec<Run>> {
+) -> crate::Result<Vec<Run>> {
     let mut set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
     set.push(format!("seed={seed}"));
     let loaded = LoadedConfig::from_file(config, &set)?;
@@ -155,12 +155,14 @@ fn measure(
         .planner
         .as_ref()
         .and_then(|p| p.save_roadmap())
-        .ok_or_else(|| anyhow::anyhow!("{}: the planner keeps no roadmap", config.display()))?;
+        .ok_or_else(|| {
+            crate::error::invalid!("{}: the planner keeps no roadmap", config.display())
+        })?;
     let s = pipeline
         .world
         .as_ref()
         .map(|w| w.mission.start)
-        .ok_or_else(|| anyhow::anyhow!("{}: the config has no world", config.display()))?;
+        .ok_or_else(|| crate::error::invalid!("{}: the config has no world", config.display()))?;
     let mut runs = Vec::new();
     for event in EVENTS {
         let state = event_state(event, &plan, [s.x, s.y, s.yaw]);
@@ -317,7 +319,7 @@ fn lazy_table(runs: &[Run]) -> String {
 }
 
 /// Runs `smug bench replan`.
-pub fn run(args: BenchReplanArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchReplanArgs) -> crate::Result<()> {
     let mut runs = Vec::new();
     for (size, set) in SIZES {
         for seed in 1..=args.runs {
@@ -331,5 +333,5 @@ pub fn run(args: BenchReplanArgs) -> anyhow::Result<Outcome> {
         args.out.as_deref(),
         args.json.as_deref(),
     )?;
-    Ok(Outcome::Ok)
+    Ok(())
 }

@@ -1,10 +1,10 @@
 //! Local search on the TSPLIB suite with its construction and first-descent gaps (a
 //! tuning aid; `smug bench tsp` is the benchmark proper):
-//! `SEED=1 cargo run --release -p smug-sequencing --example tsplib_gaps -- [--data DIR]
+//! `SEED=1 cargo run --release -p smug-bench --example tsplib_gaps -- [--data DIR]
 //! [budget_s] [names…]`. The suite is `--data DIR`, else `$SMUG_DATA/tsplib`.
 
+use smug_bench::tsp::suite::{gap_percent, load_suite, suite_dir, DATA_ENV, SUITE_DESCRIPTION};
 use smug_core::TourKind;
-use smug_sequencing::bench::{gap_percent, load_suite, suite_dir, DATA_ENV, SUITE_DESCRIPTION};
 use smug_sequencing::{read_tsplib, LocalSearch, LocalSearchParams};
 use std::path::PathBuf;
 use std::time::Instant;

@@ -2,8 +2,8 @@
 //! N seeds each; every plan measured under every objective (length, risk, energy,
 //! time) so the trade-offs show side by side.
 
-use crate::bench_output::write_report;
-use crate::Outcome;
+use crate::output::write_report;
+
 use serde::Serialize;
 use smug_core::registry::{ObjectiveStage, Stage};
 use smug_core::{plan_mission, LoadedConfig, Pipeline};
@@ -59,7 +59,7 @@ struct Run {
 }
 
 /// Runs `smug bench objectives`.
-pub fn run(args: BenchObjectivesArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchObjectivesArgs) -> crate::Result<()> {
     let objectives = if args.objectives.is_empty() {
         ObjectiveStage::registry()?
             .names()
@@ -84,7 +84,7 @@ pub fn run(args: BenchObjectivesArgs) -> anyhow::Result<Outcome> {
     }
     let report = report(&args, &objectives, &runs);
     write_report(&report, &runs, args.out.as_deref(), args.json.as_deref())?;
-    Ok(Outcome::Ok)
+    Ok(())
 }
 
 /// Whether the config's world takes a `seed` parameter (procedural worlds): the config
@@ -99,7 +99,7 @@ fn plan_once(
     objective: &str,
     seed: u64,
     set: &[String],
-) -> anyhow::Result<Run> {
+) -> crate::Result<Run> {
     let mut overrides = vec![
         format!("objective.type=\"{objective}\""),
         format!("seed={seed}"),

@@ -4,8 +4,8 @@
 
 mod support;
 
+use smug_bench::tsp::suite::{load_suite, BenchInstance};
 use smug_core::{CostMatrix, Sequencer, TourKind};
-use smug_sequencing::bench::{load_suite, BenchInstance};
 use smug_sequencing::tsplib::ProblemType;
 use smug_sequencing::{
     read_tour, read_tsplib, BruteForce, HeldKarp, HeldKarpParams, LocalSearch, LocalSearchParams,

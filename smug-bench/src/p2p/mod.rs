@@ -1,11 +1,13 @@
 //! `smug bench p2p`: LazyPRM* and the exact `visibility` planner side by side on grid
 //! maps — MovingAI's (`--data DIR` or `$SMUG_DATA/movingai`) or generated ones
-//! (`--generated`, see `bench_p2p_maps`) — scenarios solved, path length against the
+//! (`--generated`, see `maps`) — scenarios solved, path length against the
 //! exact optimum of the disc (from `visibility`, arcs exact) and against the optimal
 //! octile length, time per query — with a disc robot and yaw weight 0; and PoI-to-PoI
-//! queries on the lunar world (`bench_p2p_lunar`).
+//! queries on the lunar world (`lunar`).
 
-use crate::{bench_p2p_maps, Outcome};
+mod lunar;
+pub mod maps;
+
 use serde::Serialize;
 use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, PointToPointPlanner, Pose2};
 use smug_planners::{Visibility, VisibilityParams};
@@ -15,6 +17,9 @@ use smug_worlds::movingai::{
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// The `smug p2p` default config: a disc robot on an occupancy grid.
+const DEFAULT_CONFIG: &str = include_str!("../../../configs/p2p-grid.toml");
 
 /// Arguments of `smug bench p2p`.
 #[derive(clap::Args, Debug)]
@@ -139,7 +144,7 @@ fn load_bench_map(
     map: &Path,
     scen: &Path,
     scratch: &Path,
-) -> anyhow::Result<LoadedMap> {
+) -> crate::Result<LoadedMap> {
     let grid = read_map(map)?;
     let scenarios = read_scenarios(scen)?;
     let stem = smug_worlds::map_file::file_stem(map);
@@ -173,7 +178,7 @@ fn load_bench_map(
 }
 
 /// The bench pipeline: `configs/p2p-grid.toml` with the disc robot, yaw weight 0.
-fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> anyhow::Result<Pipeline> {
+fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> crate::Result<Pipeline> {
     // The `smug p2p` disc robot, without the yaw term (grid paths have no heading).
     let mut set = vec![
         "space.type=se2".to_string(),
@@ -183,24 +188,19 @@ fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> anyhow::Resul
     ];
     set.extend(args.set.iter().cloned());
     set.push(format!("validity.params.radius={}", args.radius));
-    let loaded = LoadedConfig::from_text(
-        crate::p2p::DEFAULT_CONFIG,
-        "<bench p2p>",
-        Path::new("."),
-        &set,
-    )?;
+    let loaded = LoadedConfig::from_text(DEFAULT_CONFIG, "<bench p2p>", Path::new("."), &set)?;
     Ok(Pipeline::assemble_with_world(&loaded, world)?)
 }
 
 /// The exact planner of the bench pipeline, its whole graph built (timed).
-fn exact_planner(pipeline: &Pipeline) -> anyhow::Result<(Visibility, f64)> {
+fn exact_planner(pipeline: &Pipeline) -> crate::Result<(Visibility, f64)> {
     let states = pipeline
         .state_validity
         .clone()
-        .ok_or_else(|| anyhow::anyhow!("no validity checker"))?;
+        .ok_or_else(|| crate::error::invalid!("no validity checker"))?;
     let disc = states
         .disc_on_grid()
-        .ok_or_else(|| anyhow::anyhow!("the bench's checker is not a disc on a grid"))?;
+        .ok_or_else(|| crate::error::invalid!("the bench's checker is not a disc on a grid"))?;
     let started = Instant::now();
     let planner = Visibility::new(
         VisibilityParams { build_all: true },
@@ -218,7 +218,7 @@ fn run_planner(
     planner: &mut dyn PointToPointPlanner,
     optima: &[Option<f64>],
     preprocessing_s: f64,
-) -> anyhow::Result<MapResult> {
+) -> crate::Result<MapResult> {
     let (mut solved, mut planned, mut optimal) = (0, 0.0, 0.0);
     let (mut ratio_sum, mut ratio_worst, mut ratio_count) = (0.0, f64::NAN, 0usize);
     let mut queries = Vec::with_capacity(map.queries.len());
@@ -282,7 +282,7 @@ fn run_map(
     map: &Path,
     scen: &Path,
     scratch: &Path,
-) -> anyhow::Result<Vec<MapResult>> {
+) -> crate::Result<Vec<MapResult>> {
     let map = load_bench_map(args, map, scen, scratch)?;
     let pipeline = bench_pipeline(args, map.world.clone())?;
     let (mut exact, preprocessing_s) = exact_planner(&pipeline)?;
@@ -295,7 +295,7 @@ fn run_map(
             exact.plan(s, g)?;
             Ok(exact.last_optimum()[0])
         })
-        .collect::<anyhow::Result<_>>()?;
+        .collect::<crate::Result<_>>()?;
     let mut results = Vec::new();
     for name in &args.planners {
         results.push(match name.as_str() {
@@ -305,10 +305,10 @@ fn run_map(
                 let planner = pipeline
                     .planner
                     .as_mut()
-                    .ok_or_else(|| anyhow::anyhow!("no planner"))?;
+                    .ok_or_else(|| crate::error::invalid!("no planner"))?;
                 run_planner(name, &map, planner.as_mut(), &optima, 0.0)?
             }
-            other => anyhow::bail!(
+            other => crate::error::bail!(
                 "--planners: unknown planner `{other}`; known: lazy-prm-star, visibility"
             ),
         });
@@ -317,31 +317,23 @@ fn run_map(
 }
 
 /// Runs `smug bench p2p`.
-pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchP2pArgs) -> crate::Result<()> {
     let wants = |name: &str| args.maps.is_empty() || args.maps.iter().any(|m| m == name);
     let movingai = movingai_folder(&args)?;
     let lunar = if wants("lunar") {
         eprintln!("lunar: {} queries", args.lunar_queries);
-        Some(crate::bench_p2p_lunar::run(
-            &args.lunar_config,
-            &[],
-            args.lunar_queries,
-        )?)
+        Some(lunar::run(&args.lunar_config, &[], args.lunar_queries)?)
     } else {
         None
     };
     let scratch = std::env::temp_dir().join(format!("smug-bench-p2p-{}", std::process::id()));
     std::fs::create_dir_all(&scratch)?;
     let mut maps = match &movingai {
-        Some(dir) => bench_p2p_maps::movingai_maps(dir, wants),
+        Some(dir) => maps::movingai_maps(dir, wants),
         None => Vec::new(),
     };
     if args.generated {
-        maps.extend(bench_p2p_maps::generated_maps(
-            &scratch,
-            args.scenarios,
-            wants,
-        )?);
+        maps.extend(maps::generated_maps(&scratch, args.scenarios, wants)?);
     }
     let mut results = Vec::new();
     for map in &maps {
@@ -360,21 +352,21 @@ pub fn run(args: BenchP2pArgs) -> anyhow::Result<Outcome> {
     std::fs::remove_dir_all(&scratch).ok();
     let mut report = String::from("# Point-to-point benchmark\n\n");
     if let Some(lunar) = &lunar {
-        report += &crate::bench_p2p_lunar::markdown(lunar);
+        report += &lunar::markdown(lunar);
     }
     if !results.is_empty() {
         report += &movingai_markdown(&args, &results);
     }
     let raw = serde_json::json!({ "lunar": lunar, "movingai": results });
-    crate::bench_output::write_report(&report, &raw, args.out.as_deref(), args.json.as_deref())?;
-    Ok(Outcome::Ok)
+    crate::output::write_report(&report, &raw, args.out.as_deref(), args.json.as_deref())?;
+    Ok(())
 }
 
 /// The MovingAI data folder when MovingAI maps are to run: named maps need one; with
 /// no `--maps`, one is needed unless `--generated` is given.
-fn movingai_folder(args: &BenchP2pArgs) -> anyhow::Result<Option<PathBuf>> {
-    let named = args.maps.iter().any(|m| bench_p2p_maps::is_movingai(m));
-    match bench_p2p_maps::movingai_dir(args.data.as_deref()) {
+fn movingai_folder(args: &BenchP2pArgs) -> crate::Result<Option<PathBuf>> {
+    let named = args.maps.iter().any(|m| maps::is_movingai(m));
+    match maps::movingai_dir(args.data.as_deref()) {
         Ok(dir) if named || args.maps.is_empty() => Ok(Some(dir)),
         Ok(_) => Ok(None),
         Err(err) if named || (args.maps.is_empty() && !args.generated) => Err(err),

@@ -16,7 +16,7 @@ pub fn write_report(
     raw: &impl Serialize,
     out: Option<&Path>,
     json: Option<&Path>,
-) -> anyhow::Result<()> {
+) -> crate::Result<()> {
     print!("{report}");
     if let Some(path) = out {
         write_file(path, report)?;
@@ -27,11 +27,11 @@ pub fn write_report(
     Ok(())
 }
 
-fn write_file(path: &Path, text: &str) -> anyhow::Result<()> {
+fn write_file(path: &Path, text: &str) -> crate::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
-            .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
+            .map_err(|e| crate::error::invalid!("{}: cannot create: {e}", dir.display()))?;
     }
     smug_core::output::write_atomic(path, text.as_bytes())
-        .map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
+        .map_err(|e| crate::error::invalid!("{}: cannot write: {e}", path.display()))
 }

@@ -1,11 +1,13 @@
 //! `smug bench paper`: the paper's experiments (Tables I–IV) on the procedural worlds,
-//! N seeds each, with the paper's numbers beside ours (report in `bench_paper_report`).
+//! N seeds each, with the paper's numbers beside ours (report in `report`).
 
-use crate::bench_output::write_report;
-use crate::Outcome;
-use serde::Serialize;
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, TimeBreakdown};
-use std::collections::BTreeMap;
+mod report;
+pub mod runs;
+
+use crate::output::write_report;
+pub use runs::{Experiment, PaperBench, Run, SCALABILITY, SELECTORS, VALIDITY};
+
+use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `smug bench paper`.
@@ -34,94 +36,6 @@ pub struct BenchPaperArgs {
     #[arg(long)]
     json: Option<PathBuf>,
 }
-
-/// One experiment: a config, overrides, and where it goes in the report.
-#[derive(Clone, Debug, Serialize)]
-pub struct Experiment {
-    /// Stable key, e.g. `lunar/idp` or `scalability/48/dp`.
-    pub key: String,
-    /// The config file, relative to `--configs`.
-    pub config: String,
-    /// `--set` overrides.
-    pub set: Vec<String>,
-}
-
-/// One planning run's numbers.
-#[derive(Clone, Debug, Serialize)]
-pub struct Run {
-    /// The experiment's key.
-    pub experiment: String,
-    /// The config seed.
-    pub seed: u64,
-    /// Why the run failed, if it did (then the numbers are zero).
-    pub error: Option<String>,
-    /// Plan cost.
-    pub cost: f64,
-    /// Planning time: sequencing + selection + post-processing (what the paper times).
-    pub planning_s: f64,
-    /// End to end, with building the world, traversability and distance field.
-    pub total_s: f64,
-    /// Point-to-point paths planned.
-    pub paths_planned: u64,
-    /// State validity queries.
-    pub validity_queries: u64,
-    /// The planner's time breakdown.
-    pub breakdown: TimeBreakdown,
-    /// Every stage time and counter of the plan.
-    pub stage_times_s: BTreeMap<String, f64>,
-    /// The planner's and checkers' counters.
-    pub counters: BTreeMap<String, u64>,
-}
-
-/// The whole benchmark: settings and raw runs (written as JSON).
-#[derive(Debug, Serialize)]
-pub struct PaperBench {
-    /// Runs per experiment.
-    pub runs: u64,
-    /// Whether every seed had its own world.
-    pub vary_world: bool,
-    /// Whether this was the `--quick` smoke version.
-    pub quick: bool,
-    /// The experiments, in report order.
-    pub experiments: Vec<Experiment>,
-    /// Every run.
-    pub raw: Vec<Run>,
-}
-
-impl PaperBench {
-    /// The successful runs of one experiment.
-    pub fn runs_of<'a>(&'a self, key: &'a str) -> impl Iterator<Item = &'a Run> + 'a {
-        self.raw
-            .iter()
-            .filter(move |r| r.experiment == key && r.error.is_none())
-    }
-}
-
-/// The selectors of Tables I and IV, in the paper's column order.
-pub const SELECTORS: [&str; 3] = ["dp", "idp", "irba"];
-/// The scalability sizes of Table IV (ToIs, 6 PoIs each).
-pub const SCALABILITY: [usize; 4] = [6, 12, 24, 48];
-/// The validity settings of Table II: (key, label, config, overrides).
-pub const VALIDITY: [(&str, &str, &str, &str); 3] = [
-    (
-        "validity/0.3-0.3",
-        "hierarchical 0.3 / 0.3",
-        "lunar.toml",
-        "",
-    ),
-    (
-        "validity/0.3-0.8",
-        "hierarchical 0.3 / 0.8",
-        "lunar.toml",
-        "validity.params.t_high=0.8",
-    ),
-    (
-        "validity/full",
-        "full collision",
-        "lunar-full-collision.toml",
-        "",
-    ),
-];
 
 fn experiment(key: String, config: &str, set: &[&str]) -> Experiment {
     Experiment {
@@ -178,7 +92,7 @@ fn experiments(tables: &[u8], quick: bool) -> Vec<Experiment> {
 }
 
 /// Plans one experiment with one seed; a planning failure is recorded, not raised.
-fn run_once(exp: &Experiment, seed: u64, configs: &Path, vary_world: bool) -> anyhow::Result<Run> {
+fn run_once(exp: &Experiment, seed: u64, configs: &Path, vary_world: bool) -> crate::Result<Run> {
     let mut set = exp.set.clone();
     set.push(format!("seed={seed}"));
     if !vary_world {
@@ -234,7 +148,7 @@ pub fn run_experiments(
     configs: &Path,
     vary_world: bool,
     quick: bool,
-) -> anyhow::Result<PaperBench> {
+) -> crate::Result<PaperBench> {
     let bar = progress_bar(list.len() as u64 * runs);
     let mut raw = Vec::new();
     // Seed by seed through every experiment (not experiment by experiment), so that a
@@ -257,13 +171,13 @@ pub fn run_experiments(
 }
 
 /// Runs `smug bench paper`.
-pub fn run(args: BenchPaperArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchPaperArgs) -> crate::Result<()> {
     let runs = if args.quick { 2 } else { args.runs.max(1) };
     let list = experiments(&args.tables, args.quick);
     let bench = run_experiments(list, runs, &args.configs, args.vary_world, args.quick)?;
-    let checks = crate::bench_paper_report::checks(&bench);
-    let report = crate::bench_paper_report::markdown(&bench, &checks);
+    let checks = report::checks(&bench);
+    let report = report::markdown(&bench, &checks);
     let raw = serde_json::json!({ "bench": bench, "checks": checks });
     write_report(&report, &raw, args.out.as_deref(), args.json.as_deref())?;
-    Ok(Outcome::Ok)
+    Ok(())
 }

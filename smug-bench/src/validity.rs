@@ -1,7 +1,6 @@
 //! `smug bench validity`: state checks per second and distance-field queries of the
 //! volumetric, hierarchical and exact checkers on the same sampled states.
 
-use crate::Outcome;
 use rand::{Rng, SeedableRng};
 use serde::Serialize;
 use smug_core::registry::ValidityStage;
@@ -51,7 +50,7 @@ struct Row {
     traversability_decided: u64,
 }
 
-fn checker_section(kind: &str, params: &str) -> anyhow::Result<PluginSection> {
+fn checker_section(kind: &str, params: &str) -> crate::Result<PluginSection> {
     let mut section = PluginSection::new("validity", kind);
     section.params = params.parse::<toml::Table>()?;
     Ok(section)
@@ -79,13 +78,13 @@ fn measure(name: &str, checker: Arc<dyn StateValidityChecker>, states: &[Pose2])
 }
 
 /// Runs `smug bench validity`.
-pub fn run(args: BenchValidityArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchValidityArgs) -> crate::Result<()> {
     let loaded = LoadedConfig::from_file(&args.config, &args.set)?;
     let pipeline = Pipeline::assemble(&loaded)?;
     let world = pipeline
         .world
         .clone()
-        .ok_or_else(|| anyhow::anyhow!("{}: no [world]", args.config.display()))?;
+        .ok_or_else(|| crate::error::invalid!("{}: no [world]", args.config.display()))?;
     let ctx = pipeline.context();
     let mut rng = StageRng::seed_from_u64(args.seed);
     let b = world.bounds();
@@ -134,8 +133,8 @@ pub fn run(args: BenchValidityArgs) -> anyhow::Result<Outcome> {
     ));
 
     let report = markdown(&args, &world.name, &rows);
-    crate::bench_output::write_report(&report, &rows, args.out.as_deref(), args.json.as_deref())?;
-    Ok(Outcome::Ok)
+    crate::output::write_report(&report, &rows, args.out.as_deref(), args.json.as_deref())?;
+    Ok(())
 }
 
 fn markdown(args: &BenchValidityArgs, world: &str, rows: &[Row]) -> String {

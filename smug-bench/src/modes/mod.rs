@@ -3,10 +3,13 @@
 //! N seeds (issue 17's comparison): cost, paths planned, planning time, failures, and
 //! joint minus sequential per seed.
 
-use crate::bench_modes_report::{report, Summary};
-use crate::bench_output::write_report;
-use crate::Outcome;
-use anyhow::Context as _;
+mod report;
+pub mod runs;
+
+use crate::error::ResultExt as _;
+use crate::output::write_report;
+use report::{report, Summary};
+pub use runs::{Mission, Mode, Run, MISSIONS, MODES};
 use serde::Serialize;
 use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
 use std::path::PathBuf;
@@ -36,114 +39,6 @@ pub struct BenchModesArgs {
     json: Option<PathBuf>,
 }
 
-/// A mission of the benchmark: a config and the overrides that size it.
-#[derive(Debug)]
-pub struct Mission {
-    /// The name `--missions` takes.
-    pub name: &'static str,
-    /// The name in the report.
-    pub label: &'static str,
-    /// The config, relative to the working directory.
-    pub config: &'static str,
-    /// Overrides applied on top of the config.
-    pub set: &'static [&'static str],
-}
-
-/// Every mission `--missions` knows.
-pub const MISSIONS: [Mission; 4] = [
-    Mission {
-        name: "lunar",
-        label: "lunar 13×10",
-        config: "configs/lunar.toml",
-        set: &[],
-    },
-    Mission {
-        name: "indoor",
-        label: "indoor 12×2",
-        config: "configs/indoor.toml",
-        set: &[],
-    },
-    Mission {
-        name: "lunar-48x6",
-        label: "lunar 48×6",
-        config: "configs/lunar.toml",
-        set: &["world.params.targets=48", "world.params.pois_per_target=6"],
-    },
-    Mission {
-        name: "lunar-200x10",
-        label: "lunar 200×10 (100×100 m)",
-        config: "configs/lunar.toml",
-        set: &[
-            "world.params.targets=200",
-            "world.params.pois_per_target=10",
-            "world.params.size=[100.0,100.0]",
-            // One search per source: the paper's one query per pair takes ~330 s here.
-            "planner.params.one_to_many=true",
-        ],
-    },
-];
-
-/// A planning mode: the overrides that select it.
-#[derive(Debug)]
-pub struct Mode {
-    /// The name `--modes` takes.
-    pub name: &'static str,
-    /// The name in the report.
-    pub label: &'static str,
-    /// Overrides applied on top of the mission's.
-    pub set: &'static [&'static str],
-}
-
-/// Every mode `--modes` knows.
-pub const MODES: [Mode; 3] = [
-    Mode {
-        name: "full",
-        label: "sequential, full matrix",
-        set: &[
-            "plan.mode=sequential",
-            "plan.sequencing_costs=full",
-            "plan.refine_legs=true",
-        ],
-    },
-    Mode {
-        name: "lazy",
-        label: "sequential, lazy matrix",
-        set: &[
-            "plan.mode=sequential",
-            "plan.sequencing_costs=lazy",
-            "plan.refine_legs=true",
-        ],
-    },
-    Mode {
-        name: "joint",
-        label: "joint, auto",
-        set: &[
-            "plan.mode=joint",
-            "sequencer.type=auto",
-            "plan.refine_legs=true",
-        ],
-    },
-];
-
-/// One plan's measurements; `error` set (and the numbers `None`) when planning failed.
-#[derive(Debug, Serialize)]
-pub struct Run {
-    /// The mission's name.
-    pub mission: String,
-    /// The mode's name.
-    pub mode: String,
-    /// The seed (world and planner).
-    pub seed: u64,
-    /// The plan's cost.
-    pub cost: Option<f64>,
-    /// Paths the path oracle planned (the plan's `stats.paths_planned`).
-    pub paths_planned: Option<u64>,
-    /// The plan's `total` time minus the pipeline's build times, seconds.
-    pub planning_s: Option<f64>,
-    /// Why planning failed.
-    pub error: Option<String>,
-}
-
 /// The JSON written beside the report.
 #[derive(Debug, Serialize)]
 struct Raw<'a> {
@@ -154,13 +49,13 @@ struct Raw<'a> {
 }
 
 /// Runs `smug bench modes`.
-pub fn run(args: BenchModesArgs) -> anyhow::Result<Outcome> {
+pub fn run(args: BenchModesArgs) -> crate::Result<()> {
     let missions = lookup("--missions", "mission", &args.missions, &MISSIONS, |m| {
         m.name
     })?;
     let modes = lookup("--modes", "mode", &args.modes, &MODES, |m| m.name)?;
     if args.runs == 0 {
-        anyhow::bail!("--runs: must be at least 1");
+        crate::error::bail!("--runs: must be at least 1");
     }
     let mut runs = Vec::new();
     for mission in &missions {
@@ -183,7 +78,7 @@ pub fn run(args: BenchModesArgs) -> anyhow::Result<Outcome> {
         args.out.as_deref(),
         args.json.as_deref(),
     )?;
-    Ok(Outcome::Ok)
+    Ok(())
 }
 
 /// The known items named in `names` (in that order, without repeats); an unknown name
@@ -194,12 +89,12 @@ fn lookup<'a, T>(
     names: &[String],
     known: &'a [T],
     name: impl Fn(&T) -> &'static str,
-) -> anyhow::Result<Vec<&'a T>> {
+) -> crate::Result<Vec<&'a T>> {
     let mut found: Vec<&T> = Vec::new();
     for wanted in names.iter().map(|n| n.trim()) {
         let item = known.iter().find(|k| name(k) == wanted).ok_or_else(|| {
             let all: Vec<&str> = known.iter().map(&name).collect();
-            anyhow::anyhow!(
+            crate::error::invalid!(
                 "{flag}: unknown {what} `{wanted}`; known: {}",
                 all.join(", ")
             )
@@ -213,7 +108,7 @@ fn lookup<'a, T>(
 
 /// Plans `mission` in `mode` with `seed`. A config or pipeline that does not load or
 /// assemble is an error (bad input); a planning failure is a run with `error` set.
-fn plan_once(mission: &Mission, mode: &Mode, seed: u64, set: &[String]) -> anyhow::Result<Run> {
+fn plan_once(mission: &Mission, mode: &Mode, seed: u64, set: &[String]) -> crate::Result<Run> {
     let mut overrides: Vec<String> = mission.set.iter().map(|s| s.to_string()).collect();
     overrides.extend(mode.set.iter().map(|s| s.to_string()));
     overrides.push(format!("seed={seed}"));
