@@ -18,9 +18,6 @@ use smug_worlds::movingai::{
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// The `smug p2p` default config: a disc robot on an occupancy grid.
-const DEFAULT_CONFIG: &str = include_str!("../../../configs/p2p-grid.toml");
-
 /// Arguments of `smug bench p2p`.
 #[derive(clap::Args, Debug)]
 pub struct BenchP2pArgs {
@@ -188,7 +185,12 @@ fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> crate::Result
     ];
     set.extend(args.set.iter().cloned());
     set.push(format!("validity.params.radius={}", args.radius));
-    let loaded = LoadedConfig::from_text(DEFAULT_CONFIG, "<bench p2p>", Path::new("."), &set)?;
+    let loaded = LoadedConfig::from_text(
+        smug_app::p2p::DEFAULT_CONFIG,
+        "<bench p2p>",
+        Path::new("."),
+        &set,
+    )?;
     Ok(Pipeline::assemble_with_world(&loaded, world)?)
 }
 
