@@ -30,7 +30,7 @@ pub mod tsplib;
 
 pub use auto::{Auto, AutoParams};
 pub use brute_force::{BruteForce, BRUTE_FORCE_MAX_NODES};
-pub use error::SequencingError;
+pub use error::{ParamError, SequencingError};
 pub use gtsp_exact::{GtspExact, GtspExactParams};
 pub use gtsp_lns::{GtspLns, GtspLnsParams};
 pub use gtsplib::{read_gtsplib, GtspInstance};

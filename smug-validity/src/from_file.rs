@@ -120,7 +120,7 @@ impl FromFileEstimator {
             .into_iter()
             .map(|v| v.unwrap_or(f32::NAN))
             .collect();
-        GridLayer::from_data(geometry, data).map_err(|m| self.error(m))
+        GridLayer::from_data(geometry, data).map_err(|m| self.error(m.to_string()))
     }
 }
 

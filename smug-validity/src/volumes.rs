@@ -317,7 +317,7 @@ fn occupancy_geometry(world: &World, headroom: f64) -> Result<VoxelGeometry, Val
         )));
     }
     VoxelGeometry::new([g.origin[0], g.origin[1], z0], res, [nx, ny, nz])
-        .map_err(ValidityError::Map)
+        .map_err(|e| ValidityError::Map(e.to_string()))
 }
 
 /// Fills `geometry` (from [`occupancy_geometry`]) with the terrain of `world`.

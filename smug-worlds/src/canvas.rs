@@ -114,4 +114,5 @@ pub(crate) fn geometry(size: [f64; 2], resolution: f64) -> Result<GridGeometry, 
         resolution,
         [cells[0].max(1.0) as usize, cells[1].max(1.0) as usize],
     )
+    .map_err(|e| e.to_string())
 }

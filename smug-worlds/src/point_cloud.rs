@@ -116,7 +116,7 @@ pub fn rasterise(
         cell_size,
         [size[0] as usize, size[1] as usize],
     )
-    .map_err(fail)?;
+    .map_err(|e| fail(e.to_string()))?;
     let mut sum = vec![0.0f64; geometry.len()];
     let mut top = vec![f64::NEG_INFINITY; geometry.len()];
     let mut count = vec![0u32; geometry.len()];

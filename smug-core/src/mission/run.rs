@@ -97,7 +97,7 @@ fn order_then_select(
     *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
     let t = Instant::now();
     let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "selector",
     })?;
     let problem = SelectionProblem {
@@ -155,15 +155,15 @@ fn refine_route(
 fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
     let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "world",
     })?;
     let world = pipeline.world.clone().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "world",
     })?;
     let planner = pipeline.planner.take().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "planner",
     })?;
     let keep_answers = pipeline.answers.is_some();
@@ -202,7 +202,7 @@ fn plan_on_oracle(
             PlanMode::Joint => {
                 let t = Instant::now();
                 let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
-                    stage: "smug plan".into(),
+                    stage: "plan".into(),
                     needed: "sequencer",
                 })?;
                 let joint = JointProblem {
@@ -228,7 +228,7 @@ fn plan_on_oracle(
                 if unreachable.is_empty() {
                     other?;
                     return Err(Error::stage(
-                        "smug plan",
+                        "plan",
                         Unreachable {
                             targets: vec!["(the end pose)".into()],
                         },
@@ -239,7 +239,7 @@ fn plan_on_oracle(
                     .map(|&t| mission.targets[t].id.clone())
                     .collect();
                 if !options.skip_unreachable {
-                    return Err(Error::stage("smug plan", Unreachable { targets: ids }));
+                    return Err(Error::stage("plan", Unreachable { targets: ids }));
                 }
                 skipped.extend(ids);
                 targets.retain(|t| !unreachable.contains(t));

@@ -39,7 +39,7 @@ pub(super) fn sequence(
     costs: SequencingCosts,
 ) -> Result<Vec<usize>> {
     let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "sequencer",
     })?;
     let open = mission.end.is_some();

@@ -37,7 +37,7 @@ impl CostMatrix {
     pub fn from_fn(n: usize, mut cost: impl FnMut(usize, usize) -> f64) -> Result<Self> {
         let entries = (n as u128) * (n as u128);
         crate::limits::check_allocation(&format!("a {n}×{n} cost matrix"), entries, 8)
-            .map_err(Error::InvalidInput)?;
+            .map_err(|e| Error::InvalidInput(e.to_string()))?;
         let data = (0..n * n).map(|k| cost(k / n, k % n)).collect();
         Self::from_rows(n, data)
     }

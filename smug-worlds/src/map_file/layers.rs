@@ -106,9 +106,9 @@ pub fn load_map(yaml_path: &Path, obstacle_height: f64) -> Result<MapLayers, Map
         yaml.resolution,
         [occupancy.width as usize, occupancy.height as usize],
     )
-    .map_err(|message| MapFileError::Invalid {
+    .map_err(|e| MapFileError::Invalid {
         path: yaml_path.to_path_buf(),
-        message,
+        message: e.to_string(),
     })?;
     let class = |k: usize| classify(&yaml, &occupancy, k);
     let ground = |k: usize| match &elevation_image {

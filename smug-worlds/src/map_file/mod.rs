@@ -63,6 +63,6 @@ pub use layers::{check_mission_inside, file_stem, load_map, MapLayers};
 pub use plugin::MapParams;
 pub use terrain::{load_terrain, TerrainError, TerrainKind};
 pub use yaml::{
-    MapMode, MapYaml, DEFAULT_CELL_SIZE, DEFAULT_ELEVATION_SCALE, DEFAULT_FREE_THRESH,
-    DEFAULT_OBSTACLE_HEIGHT, DEFAULT_OCCUPIED_THRESH,
+    MapMode, MapYaml, MapYamlError, DEFAULT_CELL_SIZE, DEFAULT_ELEVATION_SCALE,
+    DEFAULT_FREE_THRESH, DEFAULT_OBSTACLE_HEIGHT, DEFAULT_OCCUPIED_THRESH,
 };

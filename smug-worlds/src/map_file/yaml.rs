@@ -105,14 +105,51 @@ fn negate_flag<'de, D: Deserializer<'de>>(deserializer: D) -> Result<bool, D::Er
     }
 }
 
+/// Why a map description cannot be written or is out of its domain.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MapYamlError {
+    /// A file name is not UTF-8 (YAML holds text).
+    #[error("file name {0} is not UTF-8")]
+    NotUtf8(String),
+    /// The YAML writer failed.
+    #[error("{0}")]
+    Write(String),
+    /// The resolution is not finite and > 0.
+    #[error("`resolution` must be a finite number > 0, got {0}")]
+    Resolution(f64),
+    /// The origin is not finite.
+    #[error("`origin` must be finite, got {0:?}")]
+    Origin([f64; 3]),
+    /// The origin is rotated.
+    #[error("`origin` yaw must be 0 (rotated maps are not supported), got {0}")]
+    Rotated(f64),
+    /// The thresholds are out of order or out of `[0, 1]`.
+    #[error(
+        "thresholds need 0 ≤ free_thresh ≤ occupied_thresh ≤ 1, got free_thresh {free} and \
+         occupied_thresh {occupied}"
+    )]
+    Thresholds {
+        /// `free_thresh`.
+        free: f64,
+        /// `occupied_thresh`.
+        occupied: f64,
+    },
+    /// The elevation scale is zero or not finite.
+    #[error("`elevation_scale` must be finite and non-zero, got {0}")]
+    ElevationScale(f64),
+    /// The elevation offset is not finite.
+    #[error("`elevation_offset` must be finite, got {0}")]
+    ElevationOffset(f64),
+}
+
 /// `path` as a YAML scalar, quoted when needed.
-fn yaml_path(path: &Path) -> Result<String, String> {
+fn yaml_path(path: &Path) -> Result<String, MapYamlError> {
     let text = path
         .to_str()
-        .ok_or_else(|| format!("file name {} is not UTF-8", path.display()))?;
+        .ok_or_else(|| MapYamlError::NotUtf8(path.display().to_string()))?;
     serde_norway::to_string(text)
         .map(|scalar| scalar.trim_end().to_string())
-        .map_err(|e| e.to_string())
+        .map_err(|e| MapYamlError::Write(e.to_string()))
 }
 
 impl MapMode {
@@ -157,16 +194,16 @@ impl MapYaml {
             path: path.to_path_buf(),
             message: one_line(&e.to_string()),
         })?;
-        yaml.check().map_err(|message| MapFileError::Invalid {
+        yaml.check().map_err(|e| MapFileError::Invalid {
             path: path.to_path_buf(),
-            message,
+            message: e.to_string(),
         })?;
         Ok(yaml)
     }
 
     /// The YAML text of this description, with a comment line on top. Keys that hold
     /// their default and do not matter to `map_server` are left out.
-    pub fn to_yaml(&self, comment: &str) -> Result<String, String> {
+    pub fn to_yaml(&self, comment: &str) -> Result<String, MapYamlError> {
         let mut lines = vec![
             format!("# {comment}"),
             format!("image: {}", yaml_path(&self.image)?),
@@ -201,44 +238,32 @@ impl MapYaml {
     }
 
     /// The first value out of its domain, described.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), MapYamlError> {
         if !(self.resolution.is_finite() && self.resolution > 0.0) {
-            return Err(format!(
-                "`resolution` must be a finite number > 0, got {}",
-                self.resolution
-            ));
+            return Err(MapYamlError::Resolution(self.resolution));
         }
         let [x, y, yaw] = self.origin;
         if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
-            return Err(format!("`origin` must be finite, got {:?}", self.origin));
+            return Err(MapYamlError::Origin(self.origin));
         }
         if yaw != 0.0 {
-            return Err(format!(
-                "`origin` yaw must be 0 (rotated maps are not supported), got {yaw}"
-            ));
+            return Err(MapYamlError::Rotated(yaw));
         }
         let in_unit = |v: f64| (0.0..=1.0).contains(&v);
         if !(in_unit(self.free_thresh)
             && in_unit(self.occupied_thresh)
             && self.free_thresh <= self.occupied_thresh)
         {
-            return Err(format!(
-                "thresholds need 0 ≤ free_thresh ≤ occupied_thresh ≤ 1, got free_thresh {} and \
-                 occupied_thresh {}",
-                self.free_thresh, self.occupied_thresh
-            ));
+            return Err(MapYamlError::Thresholds {
+                free: self.free_thresh,
+                occupied: self.occupied_thresh,
+            });
         }
         if !(self.elevation_scale.is_finite() && self.elevation_scale != 0.0) {
-            return Err(format!(
-                "`elevation_scale` must be finite and non-zero, got {}",
-                self.elevation_scale
-            ));
+            return Err(MapYamlError::ElevationScale(self.elevation_scale));
         }
         if !self.elevation_offset.is_finite() {
-            return Err(format!(
-                "`elevation_offset` must be finite, got {}",
-                self.elevation_offset
-            ));
+            return Err(MapYamlError::ElevationOffset(self.elevation_offset));
         }
         Ok(())
     }
@@ -254,7 +279,7 @@ mod tests {
 
     fn yaml(text: &str) -> Result<MapYaml, String> {
         let parsed: MapYaml = serde_norway::from_str(text).map_err(|e| e.to_string())?;
-        parsed.check()?;
+        parsed.check().map_err(|e| e.to_string())?;
         Ok(parsed)
     }
 
