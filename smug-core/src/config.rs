@@ -636,7 +636,9 @@ pub fn apply_override(table: &mut toml::Table, text: &str) -> Result<KeyPath, Co
     if segments.iter().any(|s| s.is_empty()) {
         return Err(bad(format!("`{}` is not a dotted key", key.trim())));
     }
-    let value = parse_override_value(value.trim()).map_err(bad)?;
+    let value = value.trim();
+    let value = parse_override_value(value)
+        .ok_or_else(|| bad(format!("`{value}` is neither a TOML value nor a bare word")))?;
     let (leaf, parents) = segments.split_last().expect("split yields one segment");
     let mut current = table;
     for (depth, segment) in parents.iter().enumerate() {
@@ -661,21 +663,18 @@ pub fn apply_override(table: &mut toml::Table, text: &str) -> Result<KeyPath, Co
     Ok(KeyPath::dotted(&segments.join(".")))
 }
 
-fn parse_override_value(text: &str) -> Result<toml::Value, String> {
+/// A `--set` value: a TOML value, else a bare word as a string; `None` for neither.
+fn parse_override_value(text: &str) -> Option<toml::Value> {
     if let Ok(mut doc) = format!("v = {text}").parse::<toml::Table>() {
         if let Some(value) = doc.remove("v") {
-            return Ok(value);
+            return Some(value);
         }
     }
     let is_bare_word = !text.is_empty()
         && text
             .chars()
             .all(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | '.' | '/' | ':' | '+'));
-    if is_bare_word {
-        Ok(toml::Value::String(text.to_string()))
-    } else {
-        Err(format!("`{text}` is neither a TOML value nor a bare word"))
-    }
+    is_bare_word.then(|| toml::Value::String(text.to_string()))
 }
 
 #[cfg(test)]
