@@ -16,12 +16,7 @@ use smug_sequencing::{
 use smug_spaces::{DubinsSpace, ReedsSheppSpace};
 use std::path::Path;
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 /// Values that break arithmetic: extremes, specials, and ordinary ones between them.
 fn extreme() -> impl Strategy<Value = f64> {

@@ -7,14 +7,7 @@
 use smug_core::{LoadedConfig, NoPathReason, Pipeline, PlannerOutcome, Pose2, Proof};
 use std::path::Path;
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 /// A 16 × 12 m flat world: two walls and a closed box around (13.5, 2.5); a disc robot
 /// of radius 0.3, a car of turning radius 1 m.

@@ -14,13 +14,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::sync::{Arc, OnceLock};
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 const OBJECTIVES: [&str; 4] = ["path-length", "traversability", "energy", "time"];
 

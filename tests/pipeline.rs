@@ -4,8 +4,7 @@
 use smug_core::{LoadedConfig, Pipeline};
 use std::path::Path;
 
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 /// A flat 10 × 10 m world with a 2 m block at x ∈ [4, 6], y ∈ [4, 6] and one target
 /// whose PoIs are given by `pois`. A pose facing the block from 1.3 m puts the front

@@ -6,14 +6,7 @@ use std::path::Path;
 
 mod support;
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 fn demo() -> Pipeline {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../configs/flat-demo.toml");

@@ -4,12 +4,7 @@
 use smug_core::{LoadedConfig, NoPathReason, Pipeline, PlannerOutcome, Pose2, Proof};
 use std::path::Path;
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 /// A 12 × 8 m flat world with two walls (a zig-zag corridor) and a closed box around
 /// (10.5, 1.5); a disc robot of radius 0.3.

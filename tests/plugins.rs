@@ -5,17 +5,10 @@ use smug_core::registry::catalogue;
 use smug_core::{LoadedConfig, Pipeline};
 use std::path::Path;
 
-// Link every plugin crate (and the out-of-tree example) so their plugins register.
+// Link the built-in plugins (through smug-app) and the out-of-tree examples.
+use smug_app as _;
 use smug_example_objective as _;
 use smug_example_traversability as _;
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
 
 const CONFIG: &str = r#"
 seed = 5

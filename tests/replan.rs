@@ -13,14 +13,7 @@ use smug_core::mission::{
 };
 use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan};
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 mod support;
 use support::shipped_config as config;

@@ -16,14 +16,7 @@ use smug_core::mission::{
 };
 use smug_core::{plan_mission, Error, GridLayer, LoadedConfig, Pipeline, Plan, Pose2, World};
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+use smug_app as _;
 
 mod support;
 use support::shipped_config as config;

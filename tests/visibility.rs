@@ -13,11 +13,7 @@ use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{generate_scenarios, grid_to_map_yaml, scenario_to_world};
 use std::path::Path;
 
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_spaces as _;
-use smug_validity as _;
+use smug_app as _;
 
 const CONFIG: &str = include_str!("../configs/p2p-grid.toml");
 const SET: [&str; 5] = [

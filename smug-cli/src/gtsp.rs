@@ -6,9 +6,10 @@
 
 use crate::Outcome;
 use serde::Serialize;
+use smug_bench::solvers::GTSP_SOLVERS;
 use smug_core::TourKind;
 use smug_sequencing::gtsp_lns::GtspLnsParams;
-use smug_sequencing::{read_gtsplib, GtspExact, GtspExactParams, GtspLns, GTSP_SOLVER_NAMES};
+use smug_sequencing::{read_gtsplib, GtspExact, GtspExactParams, GtspLns};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -19,7 +20,7 @@ pub struct GtspArgs {
     pub file: PathBuf,
     /// Solver: gtsp-lns (large-neighbourhood search) or gtsp-exact (DP over clusters,
     /// up to 20 clusters).
-    #[arg(long, default_value = "gtsp-lns", value_parser = clap::builder::PossibleValuesParser::new(GTSP_SOLVER_NAMES))]
+    #[arg(long, default_value = "gtsp-lns", value_parser = clap::builder::PossibleValuesParser::new(GTSP_SOLVERS))]
     pub solver: String,
     /// Time budget in seconds (0 = none; then give --iterations).
     #[arg(long, default_value_t = 1.0)]

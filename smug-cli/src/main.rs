@@ -1,34 +1,14 @@
 //! `smug`: safe multi-goal planning from the command line.
 //!
 //! Exit codes: 0 solved / ok, 1 no solution, 2 bad input or error (one line on stderr).
+//!
+//! A thin layer over `smug-app` (which links every built-in plugin) and `smug-bench`:
+//! argument parsing, printing and exit codes.
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
-// Name every plugin crate so that its `inventory` registrations are linked in.
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
-
 mod bench;
-mod bench_gtsp;
-mod bench_modes;
-mod bench_modes_report;
-mod bench_objectives;
-mod bench_output;
-mod bench_p2p;
-mod bench_p2p_lunar;
-mod bench_p2p_maps;
-mod bench_paper;
-mod bench_paper_report;
-mod bench_replan;
-mod bench_tsp;
-mod bench_validity;
 mod check;
 mod gtsp;
 mod p2p;
@@ -93,22 +73,6 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
     }
 }
 
-/// The error and its causes on one line; a cause whose text the message already
-/// holds (library errors print their sources) is not repeated.
-fn one_line(err: &anyhow::Error) -> String {
-    let mut message = String::new();
-    for cause in err.chain() {
-        let text = cause.to_string();
-        if !message.contains(&text) {
-            if !message.is_empty() {
-                message.push_str(": ");
-            }
-            message.push_str(&text);
-        }
-    }
-    message.replace('\n', " ")
-}
-
 /// Restores the default SIGPIPE action, so `smug … | head` ends quietly instead of
 /// panicking on a closed pipe.
 fn die_quietly_on_closed_pipes() {
@@ -126,7 +90,7 @@ fn main() -> ExitCode {
         Ok(Outcome::Ok) => ExitCode::SUCCESS,
         Ok(Outcome::NoSolution) => ExitCode::from(1),
         Err(err) => {
-            let message = one_line(&err);
+            let message = smug_app::one_line(err.as_ref());
             eprintln!("smug: error: {message}");
             ExitCode::from(2)
         }

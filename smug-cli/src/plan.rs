@@ -1,9 +1,9 @@
 //! `smug plan`: the whole mission, from a config to plan.json, plan.csv and plan.svg.
 
 use crate::Outcome;
-use smug_core::mission::Unreachable;
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, World};
-use smug_worlds::render::{render_svg, RenderOptions};
+use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::{NoSolution, Planned};
+use smug_core::{Pipeline, Plan};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `smug plan`.
@@ -38,13 +38,10 @@ pub struct PlanArgs {
 /// Runs `smug plan`.
 pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     let mut set = args.set.clone();
-    if let Some(seed) = args.seed {
-        set.push(format!("seed={seed}"));
-    }
     if let Some(seconds) = &args.deadline {
         set.push(format!("plan.deadline={seconds}"));
     }
-    let loaded = LoadedConfig::from_file(&args.config, &set)?;
+    let loaded = smug_app::load_config(&args.config, &set, args.seed)?;
     let out = args
         .out
         .clone()
@@ -52,22 +49,23 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, &[])?;
     let progress = Progress::start("building the world and the checkers");
-    let mut pipeline = Pipeline::assemble(&loaded)?;
+    let pipeline = smug_app::plan::assemble(&loaded, None, None)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
-    let options = pipeline.config.plan;
-    let planned = plan_mission(&mut pipeline, options);
+    let planned = smug_app::plan::plan_on(pipeline);
     progress.finish();
-    let plan = match planned {
-        Ok(plan) => plan,
-        Err(smug_core::Error::Stage { source, .. }) if source.is::<Unreachable>() => {
-            eprintln!("smug: no solution: {source}");
+    let Planned {
+        plan,
+        pipeline,
+        world,
+    } = match planned? {
+        smug_app::Outcome::Solved(planned) => planned,
+        smug_app::Outcome::NoSolution { why } => {
+            match why {
+                NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
+                why => eprintln!("smug: no solution: {why}"),
+            }
             return Ok(Outcome::NoSolution);
         }
-        Err(err @ smug_core::Error::DeadlinePassed { .. }) => {
-            eprintln!("smug: no plan: {err}");
-            return Ok(Outcome::NoSolution);
-        }
-        Err(err) => return Err(err.into()),
     };
     if plan.deadline_reached {
         eprintln!(
@@ -75,10 +73,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
              found by then (marked `deadline_reached` in plan.json)"
         );
     }
-    let world = pipeline.world.clone().expect("plan_mission needs a world");
-    write_outputs(&plan, &world, &pipeline, &out)?;
+    write_outputs(&plan, &world, &pipeline.config.output, &out)?;
     if let Some(file) = &args.save_roadmap {
-        save_roadmap(&pipeline, &loaded, &world, file)?;
+        smug_app::save_roadmap(&pipeline, &loaded, &world, file)?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
@@ -86,28 +83,6 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         print_summary(&plan, &pipeline, &out);
     }
     Ok(Outcome::Ok)
-}
-
-/// Writes the planner's roadmap after a mission to `file`, fingerprinted for
-/// `loaded` on `world` (the world as built from the config).
-fn save_roadmap(
-    pipeline: &Pipeline,
-    loaded: &LoadedConfig,
-    world: &World,
-    file: &Path,
-) -> anyhow::Result<()> {
-    let snapshot = pipeline
-        .planner
-        .as_ref()
-        .and_then(|p| p.save_roadmap())
-        .ok_or_else(|| {
-            anyhow::anyhow!(
-                "{}: cannot save a roadmap: the configured planner keeps none",
-                file.display()
-            )
-        })?;
-    smug_core::write_roadmap(file, &snapshot, &smug_core::Fingerprint::of(loaded, world))?;
-    Ok(())
 }
 
 /// A spinner on stderr naming the running stage, shown only in a terminal.
@@ -135,100 +110,6 @@ impl Progress {
         if let Some(bar) = &self.0 {
             bar.finish_and_clear();
         }
-    }
-}
-
-pub(crate) fn write_outputs(
-    plan: &Plan,
-    world: &World,
-    pipeline: &Pipeline,
-    dir: &Path,
-) -> anyhow::Result<()> {
-    let output = &pipeline.config.output;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
-    // Each file whole or not at all: a killed run leaves the previous plan intact.
-    let write = |name: &str, text: String| {
-        let path = dir.join(name);
-        smug_core::output::write_atomic(&path, text.as_bytes())
-            .map_err(|e| anyhow::anyhow!("{}: cannot write: {e}", path.display()))
-    };
-    if output.json {
-        write("plan.json", serde_json::to_string_pretty(plan)?)?;
-    }
-    if output.csv {
-        write("plan.csv", plan_csv(plan))?;
-    }
-    if output.svg {
-        write("plan.svg", render_svg(world, &render_options(plan, world)))?;
-    }
-    Ok(())
-}
-
-/// The files `smug plan` writes into `dir`.
-const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
-
-/// Refuses an output directory where a plan file would overwrite one of the run's
-/// inputs (its config files, maps, missions, layers, and `extra`, e.g. a mission state).
-pub(crate) fn refuse_overwriting_inputs(
-    dir: &Path,
-    loaded: &LoadedConfig,
-    extra: &[PathBuf],
-) -> anyhow::Result<()> {
-    let outputs: Vec<PathBuf> = OUTPUT_FILES.iter().map(|name| dir.join(name)).collect();
-    let mut inputs = loaded.input_files();
-    inputs.extend(extra.iter().cloned());
-    match smug_core::output::output_over_input(&outputs, &inputs) {
-        Some(path) => anyhow::bail!(
-            "{}: is an input of this run; choose another --out (or [output] dir)",
-            path.display()
-        ),
-        None => Ok(()),
-    }
-}
-
-/// `plan.csv`: `x,y,z,yaw` per waypoint, and a `reversing` column (0/1) when the
-/// plan ever drives backwards (as `plan.json`'s `reversing`).
-fn plan_csv(plan: &Plan) -> String {
-    let gears = plan.reversing.len() == plan.waypoints.len() && !plan.reversing.is_empty();
-    let mut csv = String::from(if gears {
-        "x,y,z,yaw,reversing\n"
-    } else {
-        "x,y,z,yaw\n"
-    });
-    for (i, w) in plan.waypoints.iter().enumerate() {
-        csv += &format!("{},{},{},{}", w.x, w.y, w.z, w.yaw);
-        if gears {
-            csv += if plan.reversing[i] { ",1" } else { ",0" };
-        }
-        csv.push('\n');
-    }
-    csv
-}
-
-fn render_options(plan: &Plan, world: &World) -> RenderOptions {
-    let highlighted = plan
-        .pois
-        .iter()
-        .filter_map(|c| {
-            world
-                .mission
-                .targets
-                .iter()
-                .position(|t| t.id == c.target)
-                .map(|t| (t, c.index))
-        })
-        .collect();
-    RenderOptions {
-        title: Some(format!(
-            "{}: cost {:.2}, {} targets",
-            world.name,
-            plan.cost,
-            plan.sequence.len()
-        )),
-        paths: vec![plan.waypoints.iter().map(|w| [w.x, w.y]).collect()],
-        highlighted_pois: highlighted,
-        ..RenderOptions::default()
     }
 }
 
@@ -273,6 +154,23 @@ pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
             "{} PoIs were not valid for the robot and were left out",
             pipeline.dropped_pois.len()
         );
+    }
+    if !plan.dead_ends.is_empty() {
+        eprintln!(
+            "{} PoIs are dead ends for the robot and were left out (plan.json `dead_ends`):",
+            plan.dead_ends.len()
+        );
+        for d in &plan.dead_ends {
+            eprintln!("  target `{}` PoI {}: {}", d.target, d.index, d.why);
+        }
+    }
+    if !s.legs_without_path.is_empty() {
+        let counts: Vec<String> = s
+            .legs_without_path
+            .iter()
+            .map(|(why, n)| format!("{n} {why}"))
+            .collect();
+        eprintln!("pose pairs without a path: {}", counts.join(", "));
     }
     println!("order: {}", plan.sequence.join(" → "));
     println!("wrote {}/plan.json, plan.csv, plan.svg", out.display());

@@ -1,13 +1,12 @@
 //! `smug replan`: the rest of a mission from a mission state, to plan.json, plan.csv
 //! and plan.svg like `smug plan`, the plan marked as a replan.
 
-use crate::plan::{print_summary, refuse_overwriting_inputs, write_outputs, Progress};
+use crate::plan::{print_summary, Progress};
 use crate::Outcome;
-use smug_core::mission::{
-    assemble_replan_fingerprinted, changed_discs, replan_mission, MissionState, NoTargetLeft,
-    Unreachable,
-};
-use smug_core::LoadedConfig;
+use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::replan::{replan_from, stages, ReplanRequest};
+use smug_app::{NoSolution, Planned};
+use smug_core::mission::MissionState;
 use std::path::PathBuf;
 
 /// Arguments of `smug replan`.
@@ -39,11 +38,7 @@ pub struct ReplanArgs {
 
 /// Runs `smug replan`.
 pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
-    let mut set = args.set.clone();
-    if let Some(seed) = args.seed {
-        set.push(format!("seed={seed}"));
-    }
-    let loaded = LoadedConfig::from_file(&args.config, &set)?;
+    let loaded = smug_app::load_config(&args.config, &args.set, args.seed)?;
     let state = MissionState::from_file(&args.state)?;
     let out = args
         .out
@@ -51,43 +46,31 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, std::slice::from_ref(&args.state))?;
-    let progress = Progress::start("building the updated world and the checkers");
-    let state_name = args.state.display().to_string();
-    let (mut pipeline, fingerprint) = assemble_replan_fingerprinted(&loaded, &state, &state_name)?;
-    if let Some(file) = &args.roadmap {
-        progress.stage("loading the roadmap");
-        let snapshot = smug_core::read_roadmap(file, &fingerprint)?;
-        let changed = changed_discs(&state, &loaded.config.robot);
-        let planner = pipeline
-            .planner
-            .as_mut()
-            .ok_or_else(|| anyhow::anyhow!("{}: the config has no planner", file.display()))?;
-        planner
-            .load_roadmap(snapshot, &changed)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
-    }
-    progress.stage("replanning the remaining targets");
-    let options = pipeline.config.plan;
-    let planned = replan_mission(&mut pipeline, options, &state);
+    let progress = Progress::start(stages::ASSEMBLING);
+    let request = ReplanRequest {
+        state: &args.state,
+        roadmap: args.roadmap.as_deref(),
+    };
+    let planned = replan_from(&loaded, &state, &request, &mut |stage| {
+        progress.stage(stage)
+    });
     progress.finish();
-    let mut plan = match planned {
-        Ok(plan) => plan,
-        Err(smug_core::Error::Stage { source, .. })
-            if source.is::<Unreachable>() || source.is::<NoTargetLeft>() =>
-        {
-            eprintln!("smug: no solution: {source}");
+    let Planned {
+        plan,
+        pipeline,
+        world,
+    } = match planned? {
+        smug_app::Outcome::Solved(planned) => planned,
+        // A passed deadline is an error here (exit 2), as it always was for replans.
+        smug_app::Outcome::NoSolution {
+            why: NoSolution::DeadlinePassed(why),
+        } => anyhow::bail!("{why}"),
+        smug_app::Outcome::NoSolution { why } => {
+            eprintln!("smug: no solution: {why}");
             return Ok(Outcome::NoSolution);
         }
-        Err(err) => return Err(err.into()),
     };
-    if let Some(info) = plan.replan.as_mut() {
-        info.state_file = Some(state_name);
-    }
-    let world = pipeline
-        .world
-        .clone()
-        .expect("replan_mission needs a world");
-    write_outputs(&plan, &world, &pipeline, &out)?;
+    write_outputs(&plan, &world, &pipeline.config.output, &out)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
     } else {

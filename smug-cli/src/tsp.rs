@@ -9,10 +9,10 @@
 
 use crate::Outcome;
 use serde::Serialize;
+use smug_bench::solvers::{sequencer, SolverOptions, TSP_SOLVERS};
+use smug_bench::tsp::suite::{gap_percent, load_suite, require_suite_dir, BenchInstance};
 use smug_core::TourKind;
-use smug_sequencing::bench::{gap_percent, load_suite, suite_dir, BenchInstance};
-use smug_sequencing::bench::{DATA_ENV, SUITE_DESCRIPTION};
-use smug_sequencing::{read_tsplib, solver_by_name, SolverOptions, SOLVER_NAMES};
+use smug_sequencing::read_tsplib;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -28,7 +28,7 @@ pub struct TspArgs {
     pub data: Option<PathBuf>,
     /// Solver: auto (Held-Karp up to 16 nodes, local search above), held-karp,
     /// local-search or brute-force.
-    #[arg(long, default_value = "auto", value_parser = clap::builder::PossibleValuesParser::new(SOLVER_NAMES))]
+    #[arg(long, default_value = "auto", value_parser = clap::builder::PossibleValuesParser::new(TSP_SOLVERS))]
     pub solver: String,
     /// Local search time budget in seconds (0 = none; then give --iterations).
     #[arg(long, default_value_t = 1.0)]
@@ -73,7 +73,7 @@ pub fn run(args: TspArgs) -> anyhow::Result<Outcome> {
         None => (args.file.clone(), None),
     };
     let instance = read_tsplib(&path)?;
-    let solver = solver_by_name(
+    let solver = sequencer(
         &args.solver,
         &SolverOptions {
             time_limit_s: args.time_limit,
@@ -130,17 +130,6 @@ fn find_in_suite(data: Option<&Path>, name: &str) -> anyhow::Result<BenchInstanc
         );
     };
     Ok(found.clone())
-}
-
-/// The suite folder from `--data DIR` or `$SMUG_DATA/tsplib`, or an error saying what
-/// the suite is, what the folder must hold and where it is published.
-pub fn require_suite_dir(data: Option<&Path>) -> anyhow::Result<PathBuf> {
-    suite_dir(data, std::env::var_os(DATA_ENV).as_deref()).ok_or_else(|| {
-        anyhow::anyhow!(
-            "no TSPLIB suite given: pass --data DIR or set {DATA_ENV} (the suite is then \
-             ${DATA_ENV}/tsplib); {SUITE_DESCRIPTION}"
-        )
-    })
 }
 
 /// An integral cost as a JSON integer (TSPLIB costs), anything else as a float.

@@ -6,6 +6,38 @@
 use crate::pose::Bounds2;
 use serde::{Deserialize, Serialize};
 
+/// Why a grid geometry or layer is invalid.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GridError {
+    /// The resolution is not finite and > 0.
+    #[error("{grid} resolution must be > 0, got {resolution}")]
+    Resolution {
+        /// `grid` or `voxel`.
+        grid: &'static str,
+        /// The resolution given.
+        resolution: f64,
+    },
+    /// The origin is not finite.
+    #[error("{grid} origin must be finite, got {origin}")]
+    Origin {
+        /// `grid` or `voxel grid`.
+        grid: &'static str,
+        /// The origin given, as written.
+        origin: String,
+    },
+    /// The grid would not fit the memory limit.
+    #[error(transparent)]
+    Memory(#[from] crate::limits::MemoryLimitError),
+    /// A layer's data does not match its geometry.
+    #[error("grid data has {got} values, geometry {}×{} needs {}", size[0], size[1], size[0] * size[1])]
+    DataLength {
+        /// Values given.
+        got: usize,
+        /// The geometry's cells along x and y.
+        size: [usize; 2],
+    },
+}
+
 /// Geometry of a 2D grid: lower-left corner, square cell size, number of cells.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -20,12 +52,18 @@ pub struct GridGeometry {
 
 impl GridGeometry {
     /// A geometry; the resolution must be finite and > 0.
-    pub fn new(origin: [f64; 2], resolution: f64, size: [usize; 2]) -> Result<Self, String> {
+    pub fn new(origin: [f64; 2], resolution: f64, size: [usize; 2]) -> Result<Self, GridError> {
         if !(resolution.is_finite() && resolution > 0.0) {
-            return Err(format!("grid resolution must be > 0, got {resolution}"));
+            return Err(GridError::Resolution {
+                grid: "grid",
+                resolution,
+            });
         }
         if !(origin[0].is_finite() && origin[1].is_finite()) {
-            return Err(format!("grid origin must be finite, got {origin:?}"));
+            return Err(GridError::Origin {
+                grid: "grid",
+                origin: format!("{origin:?}"),
+            });
         }
         let cells = size.iter().map(|&n| n as u128).product::<u128>();
         crate::limits::check_allocation(&format!("a {}×{} grid", size[0], size[1]), cells, 4)?;
@@ -102,15 +140,12 @@ impl GridLayer {
     }
 
     /// A layer from data; its length must match the geometry.
-    pub fn from_data(geometry: GridGeometry, data: Vec<f32>) -> Result<Self, String> {
+    pub fn from_data(geometry: GridGeometry, data: Vec<f32>) -> Result<Self, GridError> {
         if data.len() != geometry.len() {
-            return Err(format!(
-                "grid data has {} values, geometry {}×{} needs {}",
-                data.len(),
-                geometry.size[0],
-                geometry.size[1],
-                geometry.len()
-            ));
+            return Err(GridError::DataLength {
+                got: data.len(),
+                size: geometry.size,
+            });
         }
         Ok(Self { geometry, data })
     }
@@ -192,12 +227,18 @@ pub struct VoxelGeometry {
 
 impl VoxelGeometry {
     /// A geometry; the resolution must be finite and > 0.
-    pub fn new(origin: [f64; 3], resolution: f64, size: [usize; 3]) -> Result<Self, String> {
+    pub fn new(origin: [f64; 3], resolution: f64, size: [usize; 3]) -> Result<Self, GridError> {
         if !(resolution.is_finite() && resolution > 0.0) {
-            return Err(format!("voxel resolution must be > 0, got {resolution}"));
+            return Err(GridError::Resolution {
+                grid: "voxel",
+                resolution,
+            });
         }
         if !origin.iter().all(|c| c.is_finite()) {
-            return Err(format!("voxel grid origin must be finite, got {origin:?}"));
+            return Err(GridError::Origin {
+                grid: "voxel grid",
+                origin: format!("{origin:?}"),
+            });
         }
         let voxels = size.iter().map(|&n| n as u128).product::<u128>();
         let shown = format!("a {}×{}×{} voxel grid", size[0], size[1], size[2]);

@@ -36,7 +36,7 @@ pub mod world;
 
 pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
 pub use error::{ConfigError, Error, Origin, RegistryError, Result};
-pub use grid::{GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};
+pub use grid::{GridError, GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};
 pub use mission::{plan_mission, PlanOptions};
 pub use mission::{Mission, Target};
 pub use objective::{Objective, PathLength};
@@ -45,7 +45,7 @@ pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline, WorldChange};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, Waypoint};
-pub use space::{MotionExtent, Se2Space, StateSpace};
+pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};
 pub use stages::*;
 pub use termination::Termination;
 pub use world::World;

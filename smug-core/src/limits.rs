@@ -55,20 +55,42 @@ pub fn memory_limit() -> u64 {
     MEMORY_BYTES.load(Ordering::Relaxed)
 }
 
-/// `Ok` when `count` items of `bytes_each` bytes fit the limit; else a message naming
+/// An allocation above the memory limit: what, how many of what size, and the limit.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{what} ({count} × {bytes_each} B) would need {}, above the memory limit of {} \
+     (`limits.memory_gb`)",
+    human(*needed),
+    human(*limit)
+)]
+pub struct MemoryLimitError {
+    /// What would be allocated, e.g. `a 100×100 grid`.
+    pub what: String,
+    /// How many items.
+    pub count: u128,
+    /// Bytes per item.
+    pub bytes_each: u128,
+    /// Bytes needed.
+    pub needed: u128,
+    /// The limit in bytes.
+    pub limit: u128,
+}
+
+/// `Ok` when `count` items of `bytes_each` bytes fit the limit; else an error naming
 /// `what`, the count, the size it would need and the limit.
-pub fn check_allocation(what: &str, count: u128, bytes_each: u128) -> Result<(), String> {
+pub fn check_allocation(what: &str, count: u128, bytes_each: u128) -> Result<(), MemoryLimitError> {
     let needed = count.saturating_mul(bytes_each);
     let limit = memory_limit();
     if needed <= u128::from(limit) {
         return Ok(());
     }
-    Err(format!(
-        "{what} ({count} × {bytes_each} B) would need {}, above the memory limit of {} \
-         (`limits.memory_gb`)",
-        human(needed),
-        human(u128::from(limit))
-    ))
+    Err(MemoryLimitError {
+        what: what.to_string(),
+        count,
+        bytes_each,
+        needed,
+        limit: u128::from(limit),
+    })
 }
 
 /// Bytes in B, kB, MB, GB, TB … with three significant digits.
@@ -96,7 +118,7 @@ mod tests {
         assert!(check_allocation("a grid", 1000, 4).is_ok());
         let err = check_allocation("the lunar world's grid", 4_000_000_000, 4).unwrap_err();
         assert_eq!(
-            err,
+            err.to_string(),
             "the lunar world's grid (4000000000 × 4 B) would need 16.000 GB, above the \
              memory limit of 8.000 GB (`limits.memory_gb`)"
         );

@@ -134,18 +134,25 @@ impl Default for Se2Space {
     }
 }
 
+/// Why SE(2) metric weights are invalid.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum SpaceError {
+    /// The translation weight is not finite and > 0.
+    #[error("translation_weight must be finite and > 0, got {0}")]
+    TranslationWeight(f64),
+    /// The rotation weight is not finite and ≥ 0.
+    #[error("rotation_weight must be finite and ≥ 0, got {0}")]
+    RotationWeight(f64),
+}
+
 impl Se2Space {
     /// A metric with the given weights; both must be finite and ≥ 0, `w_t` > 0.
-    pub fn new(translation_weight: f64, rotation_weight: f64) -> Result<Self, String> {
+    pub fn new(translation_weight: f64, rotation_weight: f64) -> Result<Self, SpaceError> {
         if !(translation_weight.is_finite() && translation_weight > 0.0) {
-            return Err(format!(
-                "translation_weight must be finite and > 0, got {translation_weight}"
-            ));
+            return Err(SpaceError::TranslationWeight(translation_weight));
         }
         if !(rotation_weight.is_finite() && rotation_weight >= 0.0) {
-            return Err(format!(
-                "rotation_weight must be finite and ≥ 0, got {rotation_weight}"
-            ));
+            return Err(SpaceError::RotationWeight(rotation_weight));
         }
         Ok(Self {
             w_t: translation_weight,
@@ -154,7 +161,7 @@ impl Se2Space {
     }
 
     /// A metric from its config parameters.
-    pub fn from_params(p: Se2SpaceParams) -> Result<Self, String> {
+    pub fn from_params(p: Se2SpaceParams) -> Result<Self, SpaceError> {
         Self::new(p.translation_weight, p.rotation_weight)
     }
 }
@@ -192,7 +199,7 @@ crate::register_plugin!(
     params = Se2SpaceParams,
     build = |params, _ctx| {
         let metric = Se2Space::from_params(params)
-            .map_err(|message| crate::Error::invalid_param("space", message))?;
+            .map_err(|message| crate::Error::invalid_param("space", message.to_string()))?;
         Ok(Box::new(metric))
     }
 );

@@ -11,26 +11,18 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods, PyUntypedArray, PyUntypedArra
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use smug_core::mission::{NoTargetLeft, Unreachable};
 
 mod replan;
+use smug_app::p2p::{P2pRequest, P2pWorld};
 use smug_core::{
-    Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2,
+    Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Pose2,
     TraversabilityEstimator, World,
 };
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
 
-// Name every plugin crate so that its registrations are linked in.
-use smug_objectives as _;
-use smug_planners as _;
-use smug_samplers as _;
-use smug_selection as _;
-use smug_sequencing as _;
-use smug_spaces as _;
-use smug_validity as _;
-use smug_worlds as _;
+// The built-in plugins are linked in through the application layer.
+use smug_app::{one_line, AppError};
 
 create_exception!(
     smug,
@@ -57,43 +49,50 @@ create_exception!(
     "The pipeline ran but no safe plan exists (the CLI's exit 1)."
 );
 
-/// The pipeline `smug p2p` uses when no config is given.
-const DEFAULT_P2P_CONFIG: &str = include_str!("../../configs/p2p-grid.toml");
-
-/// The error and its causes on one line, as the CLI prints it after `smug: error: `.
-fn one_line(err: &(dyn std::error::Error + 'static)) -> String {
-    let mut message = String::new();
-    let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(err);
-    while let Some(err) = cause {
-        let text = err.to_string();
-        if !message.contains(&text) {
-            if !message.is_empty() {
-                message.push_str(": ");
-            }
-            message.push_str(&text);
-        }
-        cause = err.source();
-    }
-    message.replace('\n', " ")
-}
-
 /// The Python exception for a library error: `NoSolution` for unreachable targets and
 /// a passed deadline, `ConfigError` for config and plugin errors, `InputError` for the rest.
 fn to_py(err: Error) -> PyErr {
+    if let Some(why) = smug_app::NoSolution::of(&err) {
+        return no_solution(&why);
+    }
     match &err {
-        Error::Stage { source, .. }
-            if source.is::<Unreachable>() || source.is::<NoTargetLeft>() =>
-        {
-            NoSolution::new_err(format!("no solution: {source}"))
-        }
-        Error::DeadlinePassed { .. } => NoSolution::new_err(format!("no solution: {err}")),
         Error::Config(_)
         | Error::Registry(_)
         | Error::InvalidParam { .. }
         | Error::MissingStage { .. } => ConfigError::new_err(one_line(&err)),
-        Error::Mission(_) | Error::InvalidInput(_) | Error::Io { .. } | Error::Stage { .. } => {
-            InputError::new_err(one_line(&err))
-        }
+        Error::Mission(_)
+        | Error::InvalidInput(_)
+        | Error::Io { .. }
+        | Error::Stage { .. }
+        | Error::DeadlinePassed { .. } => InputError::new_err(one_line(&err)),
+    }
+}
+
+/// The Python `NoSolution` for an outcome without a solution.
+fn no_solution(why: &smug_app::NoSolution) -> PyErr {
+    NoSolution::new_err(format!("no solution: {why}"))
+}
+
+/// The Python exception for an application error: library errors as [`to_py`], a
+/// map file's as the world stage's input error, config lookups as `ConfigError`, and
+/// roadmap files, mission states, outputs as `InputError`.
+fn app_to_py(err: AppError) -> PyErr {
+    match err {
+        AppError::Smug(err) => to_py(err),
+        AppError::Config(err) => to_py(err.into()),
+        AppError::Registry(err) => to_py(err.into()),
+        AppError::Map(err) => to_py(Error::stage("world", err)),
+        AppError::State(err) => InputError::new_err(err.to_string()),
+        err @ (AppError::NoPlanner | AppError::NoWorld) => ConfigError::new_err(err.to_string()),
+        err => InputError::new_err(one_line(&err)),
+    }
+}
+
+/// The solution of an outcome, or the Python `NoSolution`.
+fn solved<T>(outcome: smug_app::Outcome<T>) -> PyResult<T> {
+    match outcome {
+        smug_app::Outcome::Solved(value) => Ok(value),
+        smug_app::Outcome::NoSolution { why } => Err(no_solution(&why)),
     }
 }
 
@@ -430,25 +429,18 @@ fn parse_mission(text: &str) -> PyResult<Mission> {
     serde_json::from_value(value).map_err(|e| input_error(format!("mission: {e}")))
 }
 
-/// The library's error for a Python exception the estimator kept, else `err`.
-fn raise(raised: &Mutex<Option<PyErr>>, err: Error) -> PyErr {
+/// `err` caused by the Python exception the estimator kept, if it kept one.
+fn raise(raised: &Mutex<Option<PyErr>>, err: PyErr) -> PyErr {
     let kept = raised.lock().unwrap_or_else(|e| e.into_inner()).take();
-    match kept {
-        Some(original) => {
-            let wrapped = to_py(err);
-            Python::attach(|py| wrapped.set_cause(py, Some(original)));
-            wrapped
-        }
-        None => to_py(err),
+    if let Some(original) = kept {
+        Python::attach(|py| err.set_cause(py, Some(original)));
     }
+    err
 }
 
 /// Loads a config with overrides and a seed, as `smug plan --set … --seed N` does.
-fn load(config: &Path, mut set: Vec<String>, seed: Option<u64>) -> PyResult<LoadedConfig> {
-    if let Some(seed) = seed {
-        set.push(format!("seed={seed}"));
-    }
-    LoadedConfig::from_file(config, &set).map_err(|e| to_py(e.into()))
+fn load(config: &Path, set: Vec<String>, seed: Option<u64>) -> PyResult<LoadedConfig> {
+    smug_app::load_config(config, &set, seed).map_err(app_to_py)
 }
 
 /// Builds a config's world (with its traversability layer) without planning.
@@ -519,81 +511,35 @@ fn p2p(
             k / 6
         )));
     }
-    let loaded = match &config {
-        Some(path) => LoadedConfig::from_file(path, &set),
-        None => LoadedConfig::from_text(
-            DEFAULT_P2P_CONFIG,
-            "<default p2p config>",
-            Path::new("."),
-            &set,
-        ),
-    }
-    .map_err(|e| to_py(e.into()))?;
-    let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
-    let mission = Mission {
-        start: first_start,
-        end: None,
-        targets: Vec::new(),
-    };
-    let given_world = match (world, &map) {
+    let world = match (world, map) {
         (Some(_), Some(_)) => return Err(input_error("give either `world` or `map`, not both")),
-        (Some(w), None) => Some(World {
-            mission: mission.clone(),
-            ..(*w.inner).clone()
-        }),
-        (None, Some(map)) => {
-            let layers = smug_worlds::map_file::load_map(map, obstacle_height)
-                .map_err(|e| to_py(Error::stage("world", e)))?;
-            let name = smug_worlds::map_file::file_stem(map);
-            Some(
-                layers
-                    .into_world(name, mission, map)
-                    .map_err(|e| to_py(Error::stage("world", e)))?,
-            )
-        }
-        (None, None) => None,
+        (Some(w), None) => P2pWorld::Given(Box::new((*w.inner).clone())),
+        (None, Some(path)) => P2pWorld::Map {
+            path,
+            obstacle_height,
+        },
+        (None, None) => P2pWorld::Config,
     };
-    let results = py.detach(move || -> smug_core::Result<serde_json::Value> {
-        let mut pipeline = Pipeline::assemble_with(&loaded, given_world, None)?;
-        let planner = pipeline
-            .planner
-            .as_mut()
-            .ok_or_else(|| Error::MissingStage {
-                stage: "p2p".into(),
-                needed: "planner",
-            })?;
-        let started = Instant::now();
-        let mut rows = Vec::with_capacity(queries.len());
-        for (start, goal) in &queries {
-            let t = Instant::now();
-            let outcome = planner.plan(start, goal)?;
-            let time_s = t.elapsed().as_secs_f64();
-            let path = match &outcome {
-                PlannerOutcome::Exact(p) | PlannerOutcome::Approximate { path: p, .. } => Some(p),
-                _ => None,
-            };
-            let waypoints: Vec<[f64; 3]> = path.map_or(Vec::new(), |p| {
-                p.states.iter().map(|s| [s.x, s.y, s.yaw]).collect()
-            });
-            let reason = outcome.no_path_reason();
-            rows.push(serde_json::json!({
-                "status": outcome.status(),
-                "no_path": reason.map(|r| r.kind()),
-                "why": reason.map(|r| r.why()),
-                "cost": outcome.exact_path().map(|p| p.cost),
-                "time_s": time_s,
-                "vertices": planner.stats().vertices,
-                "waypoints": waypoints,
-            }));
+    let request = P2pRequest {
+        config,
+        set,
+        world,
+        prefer_exact: false,
+    };
+    let results = py
+        .detach(move || smug_app::p2p::p2p(&request, &queries))
+        .map_err(app_to_py)?;
+    let mut value = serde_json::to_value(&results)
+        .map_err(|e| InputError::new_err(format!("cannot write the results as JSON: {e}")))?;
+    // The Python rows have always held `no_path` and `why`, `None` when solved.
+    if let Some(rows) = value["queries"].as_array_mut() {
+        for row in rows.iter_mut().filter_map(|r| r.as_object_mut()) {
+            for key in ["no_path", "why"] {
+                row.entry(key).or_insert(serde_json::Value::Null);
+            }
         }
-        Ok(serde_json::json!({
-            "queries": rows,
-            "total_time_s": started.elapsed().as_secs_f64(),
-            "planner": planner.stats(),
-        }))
-    });
-    let results = results.map_err(to_py)?;
-    Ok(results.to_string())
+    }
+    Ok(value.to_string())
 }
 
 /// The native module `smug._smug`.

@@ -3,17 +3,14 @@
 //! (with `roadmap=`: on a saved roadmap), and `smug.Session`: a mission session kept in
 //! memory across replans.
 
-use crate::{load, one_line, raise, to_py, ConfigError, InputError, PyEstimator, PyWorld};
+use crate::{app_to_py, load, raise, solved, to_py, InputError, PyEstimator, PyWorld};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
-use smug_core::mission::{
-    assemble_replan_fingerprinted, changed_discs, replan_mission, MissionSession, MissionState,
-};
-use smug_core::{
-    plan_mission, Error, Fingerprint, LoadedConfig, Pipeline, Plan, TraversabilityEstimator, World,
-};
-use std::path::{Path, PathBuf};
+use smug_app::replan::ReplanRequest;
+use smug_core::mission::{MissionSession, MissionState};
+use smug_core::{Plan, TraversabilityEstimator, World};
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 /// What the Python side gets for a plan: `(plan.json text, waypoints (n, 4), world)`.
@@ -29,38 +26,6 @@ fn parts<'py>(py: Python<'py>, plan: &Plan, world: Arc<World>) -> PyResult<PlanP
     })
     .into_pyarray(py);
     Ok((text, waypoints, PyWorld { inner: world }))
-}
-
-/// Why a roadmap could not be saved or loaded (a Python `InputError`, the CLI's exit 2).
-#[derive(Debug)]
-pub(crate) struct RoadmapError(pub String);
-
-impl From<RoadmapError> for PyErr {
-    fn from(e: RoadmapError) -> Self {
-        InputError::new_err(e.0)
-    }
-}
-
-/// Writes the planner's roadmap after a mission to `file`, fingerprinted for `loaded`
-/// on `world` (the world the plan was made in), as `smug plan --save-roadmap` does.
-pub(crate) fn write_roadmap(
-    pipeline: &Pipeline,
-    loaded: &LoadedConfig,
-    world: &World,
-    file: &Path,
-) -> Result<(), RoadmapError> {
-    let snapshot = pipeline
-        .planner
-        .as_ref()
-        .and_then(|p| p.save_roadmap())
-        .ok_or_else(|| {
-            RoadmapError(format!(
-                "{}: cannot save a roadmap: the configured planner keeps none",
-                file.display()
-            ))
-        })?;
-    smug_core::write_roadmap(file, &snapshot, &Fingerprint::of(loaded, world))
-        .map_err(|e| RoadmapError(one_line(&e)))
 }
 
 /// Plans a mission (saving the planner's roadmap to `save_roadmap` when given);
@@ -86,23 +51,23 @@ pub fn plan<'py>(
         });
         ("python", estimator)
     });
-    let planned = py.detach(move || {
-        let mut pipeline = Pipeline::assemble_with(&loaded, given_world, estimator)?;
-        let options = pipeline.config.plan;
-        let plan = plan_mission(&mut pipeline, options)?;
-        let world = pipeline.world.clone();
-        let saved = match (&save_roadmap, &world) {
-            (Some(file), Some(world)) => write_roadmap(&pipeline, &loaded, world, file).err(),
-            _ => None,
+    let planned = py.detach(move || -> smug_app::Result<_> {
+        let outcome = smug_app::plan(&loaded, given_world, estimator)?;
+        let smug_app::Outcome::Solved(planned) = &outcome else {
+            return Ok((outcome, None));
         };
-        Ok::<_, Error>((plan, world, saved))
+        let saved = save_roadmap
+            .as_deref()
+            .map(|file| smug_app::save_roadmap(&planned.pipeline, &loaded, &planned.world, file))
+            .and_then(Result::err);
+        Ok((outcome, saved))
     });
-    let (plan, world, saved) = planned.map_err(|err| raise(&raised, err))?;
+    let (outcome, saved) = planned.map_err(|err| raise(&raised, app_to_py(err)))?;
+    let planned = solved(outcome).map_err(|err| raise(&raised, err))?;
     if let Some(refused) = saved {
-        return Err(refused.into());
+        return Err(app_to_py(refused));
     }
-    let world = world.ok_or_else(|| ConfigError::new_err("the config has no [world] section"))?;
-    parts(py, &plan, world)
+    parts(py, &planned.plan, planned.world)
 }
 
 /// Replans a mission from a state file (on the roadmap file `roadmap` when given);
@@ -118,32 +83,15 @@ pub fn replan<'py>(
     roadmap: Option<PathBuf>,
 ) -> PyResult<PlanParts<'py>> {
     let loaded = load(&config, set, seed)?;
-    let parsed = MissionState::from_file(&state).map_err(|e| InputError::new_err(e.to_string()))?;
-    let name = state.display().to_string();
-    let planned = py.detach(|| {
-        let (mut pipeline, fingerprint) =
-            assemble_replan_fingerprinted(&loaded, &parsed, &name).map_err(to_py)?;
-        if let Some(file) = &roadmap {
-            let snapshot = smug_core::read_roadmap(file, &fingerprint)
-                .map_err(|e| RoadmapError(one_line(&e)))?;
-            let changed = changed_discs(&parsed, &loaded.config.robot);
-            let planner = pipeline.planner.as_mut().ok_or_else(|| {
-                RoadmapError(format!("{}: the config has no planner", file.display()))
-            })?;
-            planner
-                .load_roadmap(snapshot, &changed)
-                .map_err(|e| RoadmapError(format!("{}: {}", file.display(), one_line(&e))))?;
-        }
-        let options = pipeline.config.plan;
-        let plan = replan_mission(&mut pipeline, options, &parsed).map_err(to_py)?;
-        Ok::<_, PyErr>((plan, pipeline.world.clone()))
-    });
-    let (mut plan, world) = planned?;
-    if let Some(info) = plan.replan.as_mut() {
-        info.state_file = Some(name);
-    }
-    let world = world.ok_or_else(|| InputError::new_err("the config has no [world] section"))?;
-    parts(py, &plan, world)
+    let request = ReplanRequest {
+        state: &state,
+        roadmap: roadmap.as_deref(),
+    };
+    let planned = py
+        .detach(|| smug_app::replan(&loaded, &request, &mut |_| {}))
+        .map_err(app_to_py)?;
+    let planned = solved(planned)?;
+    parts(py, &planned.plan, planned.world)
 }
 
 /// A mission session: the pipeline assembled once and kept in memory, the mission

@@ -63,3 +63,27 @@ impl From<SequencingError> for smug_core::Error {
         smug_core::Error::stage("sequencer", err)
     }
 }
+
+/// Why a solver's parameters are invalid; the message names the parameter.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    /// The time budget is negative or not finite.
+    #[error("time_limit_s = {0} must be a finite number ≥ 0")]
+    TimeLimit(f64),
+    /// Neither a time nor an iteration budget.
+    #[error("time_limit_s = 0 and max_iterations = 0: the search would never stop")]
+    NeverStops,
+    /// Too few neighbours per node.
+    #[error("neighbours = {0} must be at least 3")]
+    Neighbours(usize),
+    /// A fraction or weight out of its range.
+    #[error("{name} = {value} must be in [0, {most}]")]
+    OutOfRange {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// The largest value allowed.
+        most: f64,
+    },
+}

@@ -74,8 +74,8 @@ impl FromFileEstimator {
         let bytes =
             std::fs::read(&self.path).map_err(|e| self.error(format!("cannot read: {e}")))?;
         match extension(&self.path).as_str() {
-            "npy" => parse_npy(&bytes).map_err(|m| self.error(m)),
-            "csv" => parse_csv(&bytes).map_err(|m| self.error(m)),
+            "npy" => parse_npy(&bytes).map_err(|m| self.error(m.to_string())),
+            "csv" => parse_csv(&bytes).map_err(|m| self.error(m.to_string())),
             other => Err(self.error(format!(
                 "unsupported extension `.{other}` (use .npy, .json or .csv)"
             ))),
@@ -120,7 +120,7 @@ impl FromFileEstimator {
             .into_iter()
             .map(|v| v.unwrap_or(f32::NAN))
             .collect();
-        GridLayer::from_data(geometry, data).map_err(|m| self.error(m))
+        GridLayer::from_data(geometry, data).map_err(|m| self.error(m.to_string()))
     }
 }
 
@@ -155,10 +155,72 @@ impl TraversabilityEstimator for FromFileEstimator {
     }
 }
 
+/// Why a layer file's contents cannot be read as a 2D array.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+enum FormatError {
+    /// The file does not start as a `.npy` file does.
+    #[error("not a .npy file (bad magic)")]
+    NotNpy,
+    /// A `.npy` format version this reader does not know.
+    #[error("unsupported .npy version {0}")]
+    NpyVersion(u8),
+    /// The `.npy` header is cut short or not text.
+    #[error("truncated .npy header")]
+    TruncatedHeader,
+    /// The array's values are not little-endian 32- or 64-bit floats.
+    #[error("dtype must be '<f4' or '<f8': {0}")]
+    Dtype(String),
+    /// The array is in Fortran order.
+    #[error("Fortran-ordered arrays are not supported; save with C order")]
+    FortranOrder,
+    /// The header names no shape.
+    #[error("no shape in the .npy header")]
+    NoShape,
+    /// The shape is not a list of sizes.
+    #[error("bad shape `{0}`")]
+    BadShape(String),
+    /// The array is not 2D.
+    #[error("expected a 2D array, got shape {0:?}")]
+    NotTwoD(Vec<usize>),
+    /// The data does not fill the shape.
+    #[error("{bytes} data bytes for a {rows}×{columns} array of {width}-byte floats")]
+    DataSize {
+        /// Data bytes present.
+        bytes: usize,
+        /// Rows of the shape.
+        rows: usize,
+        /// Columns of the shape.
+        columns: usize,
+        /// Bytes per value.
+        width: usize,
+    },
+    /// A CSV file that is not UTF-8 text.
+    #[error("not UTF-8 text")]
+    NotText,
+    /// A CSV field that is not a number.
+    #[error("line {line}: `{text}` is not a number")]
+    NotANumber {
+        /// 1-based line.
+        line: usize,
+        /// The field.
+        text: String,
+    },
+    /// A CSV row of another length than the first.
+    #[error("line {line} has {got} values, the first row {first}")]
+    RowLength {
+        /// 1-based line.
+        line: usize,
+        /// Values on it.
+        got: usize,
+        /// Values on the first row.
+        first: usize,
+    },
+}
+
 /// Parses a 2D little-endian float NumPy array: `(rows, columns, values)`.
-fn parse_npy(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), String> {
+fn parse_npy(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), FormatError> {
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
-        return Err("not a .npy file (bad magic)".into());
+        return Err(FormatError::NotNpy);
     }
     let (header_len, start) = match bytes[6] {
         1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
@@ -166,42 +228,48 @@ fn parse_npy(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), String> {
             u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
             12,
         ),
-        v => return Err(format!("unsupported .npy version {v}")),
+        v => return Err(FormatError::NpyVersion(v)),
     };
     let header = bytes
         .get(start..start + header_len)
         .and_then(|h| std::str::from_utf8(h).ok())
-        .ok_or("truncated .npy header")?;
+        .ok_or(FormatError::TruncatedHeader)?;
     let width = if header.contains("'<f4'") {
         4
     } else if header.contains("'<f8'") {
         8
     } else {
-        return Err(format!("dtype must be '<f4' or '<f8': {}", header.trim()));
+        return Err(FormatError::Dtype(header.trim().to_string()));
     };
     if header.contains("'fortran_order': True") {
-        return Err("Fortran-ordered arrays are not supported; save with C order".into());
+        return Err(FormatError::FortranOrder);
     }
     let shape = header
         .split("'shape':")
         .nth(1)
         .and_then(|rest| rest.split(')').next())
-        .ok_or("no shape in the .npy header")?;
+        .ok_or(FormatError::NoShape)?;
     let dims: Vec<usize> = shape
         .trim_start_matches([' ', '('])
         .split(',')
         .filter(|s| !s.trim().is_empty())
-        .map(|s| s.trim().parse().map_err(|_| format!("bad shape `{shape}`")))
+        .map(|s| {
+            s.trim()
+                .parse()
+                .map_err(|_| FormatError::BadShape(shape.to_string()))
+        })
         .collect::<Result<_, _>>()?;
     let [rows, columns] = dims[..] else {
-        return Err(format!("expected a 2D array, got shape {dims:?}"));
+        return Err(FormatError::NotTwoD(dims));
     };
     let body = &bytes[start + header_len..];
     if body.len() != rows * columns * width {
-        return Err(format!(
-            "{} data bytes for a {rows}×{columns} array of {width}-byte floats",
-            body.len()
-        ));
+        return Err(FormatError::DataSize {
+            bytes: body.len(),
+            rows,
+            columns,
+            width,
+        });
     }
     let values = body
         .chunks_exact(width)
@@ -214,8 +282,8 @@ fn parse_npy(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), String> {
 }
 
 /// Parses comma-separated rows of numbers (`nan` or empty = no data).
-fn parse_csv(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), String> {
-    let text = std::str::from_utf8(bytes).map_err(|_| "not UTF-8 text".to_string())?;
+fn parse_csv(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), FormatError> {
+    let text = std::str::from_utf8(bytes).map_err(|_| FormatError::NotText)?;
     let mut values = Vec::new();
     let mut columns = None;
     let mut rows = 0;
@@ -228,18 +296,18 @@ fn parse_csv(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), String> {
             .split(',')
             .map(|f| match f.trim() {
                 "" => Ok(f64::NAN),
-                v => v
-                    .parse::<f64>()
-                    .map_err(|_| format!("line {}: `{v}` is not a number", n + 1)),
+                v => v.parse::<f64>().map_err(|_| FormatError::NotANumber {
+                    line: n + 1,
+                    text: v.to_string(),
+                }),
             })
             .collect::<Result<_, _>>()?;
         if *columns.get_or_insert(row.len()) != row.len() {
-            return Err(format!(
-                "line {} has {} values, the first row {}",
-                n + 1,
-                row.len(),
-                columns.unwrap_or(0)
-            ));
+            return Err(FormatError::RowLength {
+                line: n + 1,
+                got: row.len(),
+                first: columns.unwrap_or(0),
+            });
         }
         values.extend(row);
         rows += 1;

@@ -317,7 +317,7 @@ fn occupancy_geometry(world: &World, headroom: f64) -> Result<VoxelGeometry, Val
         )));
     }
     VoxelGeometry::new([g.origin[0], g.origin[1], z0], res, [nx, ny, nz])
-        .map_err(ValidityError::Map)
+        .map_err(|e| ValidityError::Map(e.to_string()))
 }
 
 /// Fills `geometry` (from [`occupancy_geometry`]) with the terrain of `world`.
@@ -417,5 +417,88 @@ mod tests {
         let mut empty = (*world).clone();
         empty.elevation.data.iter_mut().for_each(|v| *v = f32::NAN);
         assert!(SharedVolumes::for_world(&Arc::new(empty), 0.5).is_err());
+    }
+}
+
+/// Incremental updates (`volumes_update`) against volumes derived from scratch.
+#[cfg(test)]
+mod update_tests {
+    use super::{SharedVolumes, Volumes};
+    use proptest::prelude::*;
+    use smug_core::mission::{add_obstacles, DiscObstacle};
+    use smug_core::{GridGeometry, GridLayer, Mission, Pose2, World};
+    use std::sync::Arc;
+
+    /// Hills, a pit and a hole without data.
+    fn terrain() -> World {
+        let g = GridGeometry::new([0.0, 0.0], 0.1, [40, 30]).unwrap();
+        let mut elevation = GridLayer::from_fn(g, |i, j| {
+            let pit = if (10..14).contains(&i) && (5..9).contains(&j) {
+                -0.6
+            } else {
+                0.0
+            };
+            ((i as f32 * 0.4).sin() * 0.15 + (j as f32 * 0.3).cos() * 0.1) + pit
+        });
+        elevation.set(30, 20, f32::NAN);
+        let mission = Mission {
+            start: Pose2::new(1.0, 1.0, 0.0),
+            end: None,
+            targets: vec![],
+        };
+        World::new("terrain", elevation, mission)
+    }
+
+    fn bits(v: &Volumes) -> (Vec<bool>, Vec<u32>) {
+        (
+            v.occupancy.data.clone(),
+            v.esdf.data.iter().map(|d| d.to_bits()).collect(),
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// Updated volumes equal the volumes derived from scratch, bit for bit, after
+        /// one to three obstacles added in two steps (low ones, in the pit, on the
+        /// border, over the hole); or the update declines.
+        #[test]
+        fn updated_volumes_equal_derived_ones(
+            discs in prop::collection::vec((0.0..4.0f64, 0.0..3.0f64, 0.05..0.6f64, 0.05..0.25f64), 1..4),
+            split in 0usize..3,
+        ) {
+            let headroom = 0.8;
+            let obstacles: Vec<DiscObstacle> = discs
+                .iter()
+                .map(|&(x, y, radius, height)| DiscObstacle { center: [x, y], radius, height })
+                .collect();
+            let split = split.min(obstacles.len());
+            let mut world = Arc::new(terrain());
+            // The volumes of each world stay held (sources live while a holder does).
+            let mut held = vec![SharedVolumes::for_world(&world, headroom).unwrap()];
+            let mut geometry = *held[0].volumes().geometry();
+            for step in [&obstacles[..split], &obstacles[split..]] {
+                let mut next = (*world).clone();
+                add_obstacles(&mut next, step);
+                let next = Arc::new(next);
+                let derived = Volumes::from_world(&next, headroom).unwrap();
+                match SharedVolumes::updated(&world, &next, headroom, step) {
+                    Some(updated) => {
+                        prop_assert!(updated.is_derived());
+                        prop_assert_eq!(bits(updated.volumes()), bits(&derived));
+                        held.push(updated);
+                    }
+                    None => {
+                        // Only a grid of another extent (an obstacle's top above the
+                        // highest terrain) is declined here.
+                        prop_assert_ne!(derived.geometry(), &geometry);
+                        let volumes = SharedVolumes::for_world(&next, headroom).unwrap();
+                        volumes.volumes();
+                        held.push(volumes);
+                    }
+                }
+                geometry = *derived.geometry();
+                world = next;
+            }
+        }
     }
 }

@@ -92,26 +92,47 @@ pub(crate) fn raise_rectangle(layer: &mut GridLayer, min: [f64; 2], max: [f64; 2
     }
 }
 
+/// Why a procedural world's size and resolution make no grid.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub(crate) enum CanvasError {
+    /// The size is not positive and finite.
+    #[error("size must be positive, got {0:?}")]
+    Size([f64; 2]),
+    /// The resolution is not positive and finite.
+    #[error("resolution must be > 0, got {0}")]
+    Resolution(f64),
+    /// More than 10⁸ cells.
+    #[error("size {size:?} at {resolution} m has too many cells")]
+    TooManyCells {
+        /// The size, metres.
+        size: [f64; 2],
+        /// The resolution, metres.
+        resolution: f64,
+    },
+    /// The grid itself is refused (e.g. above the memory limit).
+    #[error(transparent)]
+    Grid(#[from] smug_core::GridError),
+}
+
 /// A geometry of `size` metres at `resolution`, origin at (0, 0).
-pub(crate) fn geometry(size: [f64; 2], resolution: f64) -> Result<GridGeometry, String> {
+pub(crate) fn geometry(size: [f64; 2], resolution: f64) -> Result<GridGeometry, CanvasError> {
     if !(size[0] > 0.0 && size[1] > 0.0 && size[0].is_finite() && size[1].is_finite()) {
-        return Err(format!("size must be positive, got {size:?}"));
+        return Err(CanvasError::Size(size));
     }
     if !(resolution > 0.0 && resolution.is_finite()) {
-        return Err(format!("resolution must be > 0, got {resolution}"));
+        return Err(CanvasError::Resolution(resolution));
     }
     let cells = [
         (size[0] / resolution).round(),
         (size[1] / resolution).round(),
     ];
     if cells[0] * cells[1] > 1e8 {
-        return Err(format!(
-            "size {size:?} at {resolution} m has too many cells"
-        ));
+        return Err(CanvasError::TooManyCells { size, resolution });
     }
     GridGeometry::new(
         [0.0, 0.0],
         resolution,
         [cells[0].max(1.0) as usize, cells[1].max(1.0) as usize],
     )
+    .map_err(CanvasError::from)
 }

@@ -296,7 +296,7 @@ pub(crate) fn write_map_yaml(
         .to_yaml(comment)
         .map_err(|message| ExportError::Encode {
             path: path.to_path_buf(),
-            message,
+            message: message.to_string(),
         })?;
     write_file(path, text.as_bytes())
 }

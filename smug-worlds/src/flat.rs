@@ -81,7 +81,7 @@ pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<World, Error>
         params.resolution,
         [cells[0] as usize, cells[1] as usize],
     )
-    .map_err(bad)?;
+    .map_err(|e| bad(e.to_string()))?;
     if let Some(k) = params
         .obstacles
         .iter()

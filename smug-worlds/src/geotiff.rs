@@ -25,7 +25,7 @@ use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
 
 /// The largest DEM read, in pixels (as for map images).
-pub const MAX_PIXELS: u64 = crate::map_file::MAX_PIXELS;
+pub const MAX_PIXELS: u64 = crate::limits::MAX_PIXELS;
 
 /// Why a GeoTIFF could not be read; every message names the file.
 #[derive(Debug, thiserror::Error)]

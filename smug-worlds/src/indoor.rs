@@ -134,7 +134,7 @@ pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<World, 
         )));
     }
     let s = params.size;
-    let g = geometry([s, s], params.resolution).map_err(bad)?;
+    let g = geometry([s, s], params.resolution).map_err(|e| bad(e.to_string()))?;
     let mut floor = GridLayer::filled(g, 0.0);
     let h = params.wall_height;
     let half = s / 2.0;

@@ -13,6 +13,7 @@ pub mod flat;
 pub mod geotiff;
 pub mod grid_gen;
 pub mod indoor;
+pub mod limits;
 pub mod lunar;
 pub mod map_file;
 pub mod mission_file;

@@ -176,7 +176,7 @@ pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<World, Er
             "pois_per_target and inspection_distance must be > 0".into()
         ));
     }
-    let g = geometry(params.size, params.resolution).map_err(bad)?;
+    let g = geometry(params.size, params.resolution).map_err(|e| bad(e.to_string()))?;
     let mut terrain = GridLayer::filled(g, 0.0);
     base_terrain(&mut terrain, rng);
     let start = params.start.unwrap_or(Pose2::new(2.0, 2.0, PI / 4.0));

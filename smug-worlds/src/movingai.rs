@@ -183,8 +183,12 @@ pub fn parse_map(text: &str, path: &Path) -> Result<MovingAiMap, MovingAiError> 
         let words: Vec<&str> = header.split_whitespace().collect();
         match words.as_slice() {
             ["map"] => break line,
-            ["height", n] => height = Some(parse_dimension(n).map_err(|m| syntax(line, m))?),
-            ["width", n] => width = Some(parse_dimension(n).map_err(|m| syntax(line, m))?),
+            ["height", n] => {
+                height = Some(parse_dimension(n).map_err(|m| syntax(line, m.to_string()))?)
+            }
+            ["width", n] => {
+                width = Some(parse_dimension(n).map_err(|m| syntax(line, m.to_string()))?)
+            }
             _ => {
                 return Err(syntax(
                     line,
@@ -202,7 +206,7 @@ pub fn parse_map(text: &str, path: &Path) -> Result<MovingAiMap, MovingAiError> 
     let mut passable = Vec::new();
     for row in 0..height {
         let (line, text) = next_line(&format!("row {row} of {height}"))?;
-        passable.extend(parse_row(text, width).map_err(|m| syntax(line, m))?);
+        passable.extend(parse_row(text, width).map_err(|m| syntax(line, m.to_string()))?);
     }
     if let Some((k, extra)) = lines.find(|(_, l)| !l.trim().is_empty()) {
         return Err(syntax(
@@ -217,21 +221,75 @@ pub fn parse_map(text: &str, path: &Path) -> Result<MovingAiMap, MovingAiError> 
     })
 }
 
-fn parse_dimension(word: &str) -> Result<usize, String> {
+/// What is wrong on one line of a `.map` or `.scen` file (the line and the file are
+/// added by [`MovingAiError::Syntax`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+enum LineError {
+    /// A map size that is not a positive whole number.
+    #[error("expected a positive whole number, got `{0}`")]
+    Dimension(String),
+    /// A map row of another width than the header's.
+    #[error("row has {got} cells, the header says width {width}")]
+    RowWidth {
+        /// Cells on the row.
+        got: usize,
+        /// The header's width.
+        width: usize,
+    },
+    /// A terrain character MovingAI does not define.
+    #[error("unknown terrain `{terrain}` in column {column} (expected one of . G S @ O T W)")]
+    Terrain {
+        /// The character, escaped.
+        terrain: String,
+        /// 1-based column.
+        column: usize,
+    },
+    /// A scenario line without its 9 fields.
+    #[error(
+        "expected 9 fields (bucket map width height start_x start_y goal_x goal_y \
+         optimal_length), got {0}"
+    )]
+    Fields(usize),
+    /// A field that must be a whole number.
+    #[error("`{name}` must be a whole number ≥ 0, got `{word}`")]
+    Whole {
+        /// The field.
+        name: &'static str,
+        /// Its text.
+        word: String,
+    },
+    /// An optimal length that is not a number ≥ 0.
+    #[error("`optimal_length` must be a number ≥ 0, got `{0}`")]
+    Length(String),
+    /// A scenario's start or goal off its map.
+    #[error("start {start:?} or goal {goal:?} lies outside the {width}×{height} map")]
+    Outside {
+        /// The start cell.
+        start: [usize; 2],
+        /// The goal cell.
+        goal: [usize; 2],
+        /// The map's width.
+        width: usize,
+        /// The map's height.
+        height: usize,
+    },
+}
+
+fn parse_dimension(word: &str) -> Result<usize, LineError> {
     match word.parse::<usize>() {
         Ok(n) if n > 0 => Ok(n),
-        _ => Err(format!("expected a positive whole number, got `{word}`")),
+        _ => Err(LineError::Dimension(word.to_string())),
     }
 }
 
 /// The passability of one map row.
-fn parse_row(text: &str, width: usize) -> Result<Vec<bool>, String> {
+fn parse_row(text: &str, width: usize) -> Result<Vec<bool>, LineError> {
     let cells: Vec<char> = text.chars().collect();
     if cells.len() != width {
-        return Err(format!(
-            "row has {} cells, the header says width {width}",
-            cells.len()
-        ));
+        return Err(LineError::RowWidth {
+            got: cells.len(),
+            width,
+        });
     }
     cells
         .iter()
@@ -239,11 +297,10 @@ fn parse_row(text: &str, width: usize) -> Result<Vec<bool>, String> {
         .map(|(column, &c)| match c {
             '.' | 'G' | 'S' => Ok(true),
             '@' | 'O' | 'T' | 'W' => Ok(false),
-            other => Err(format!(
-                "unknown terrain `{}` in column {} (expected one of . G S @ O T W)",
-                other.escape_debug(),
-                column + 1
-            )),
+            other => Err(LineError::Terrain {
+                terrain: other.escape_debug().to_string(),
+                column: column + 1,
+            }),
         })
         .collect()
 }
@@ -268,11 +325,11 @@ pub fn parse_scenarios(text: &str, path: &Path) -> Result<Vec<Scenario>, MovingA
     }
     lines
         .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(k, l)| parse_scenario(l).map_err(|m| syntax(k + 1, m)))
+        .map(|(k, l)| parse_scenario(l).map_err(|m| syntax(k + 1, m.to_string())))
         .collect()
 }
 
-fn parse_scenario(line: &str) -> Result<Scenario, String> {
+fn parse_scenario(line: &str) -> Result<Scenario, LineError> {
     let fields: Vec<&str> = line.split('\t').map(str::trim).collect();
     let fields: Vec<&str> = if fields.len() == 9 {
         fields
@@ -280,15 +337,13 @@ fn parse_scenario(line: &str) -> Result<Scenario, String> {
         line.split_whitespace().collect()
     };
     let [bucket, map, width, height, sx, sy, gx, gy, length] = fields.as_slice() else {
-        return Err(format!(
-            "expected 9 fields (bucket map width height start_x start_y goal_x goal_y \
-             optimal_length), got {}",
-            fields.len()
-        ));
+        return Err(LineError::Fields(fields.len()));
     };
-    let whole = |name: &str, word: &str| {
-        word.parse::<usize>()
-            .map_err(|_| format!("`{name}` must be a whole number ≥ 0, got `{word}`"))
+    let whole = |name: &'static str, word: &str| {
+        word.parse::<usize>().map_err(|_| LineError::Whole {
+            name,
+            word: word.to_string(),
+        })
     };
     let scenario = Scenario {
         bucket: whole("bucket", bucket)? as u32,
@@ -301,14 +356,16 @@ fn parse_scenario(line: &str) -> Result<Scenario, String> {
             .parse::<f64>()
             .ok()
             .filter(|v| v.is_finite() && *v >= 0.0)
-            .ok_or_else(|| format!("`optimal_length` must be a number ≥ 0, got `{length}`"))?,
+            .ok_or_else(|| LineError::Length(length.to_string()))?,
     };
     let inside = |[x, y]: [usize; 2]| x < scenario.width && y < scenario.height;
     if !(inside(scenario.start) && inside(scenario.goal)) {
-        return Err(format!(
-            "start {:?} or goal {:?} lies outside the {}×{} map",
-            scenario.start, scenario.goal, scenario.width, scenario.height
-        ));
+        return Err(LineError::Outside {
+            start: scenario.start,
+            goal: scenario.goal,
+            width: scenario.width,
+            height: scenario.height,
+        });
     }
     Ok(scenario)
 }

@@ -102,13 +102,13 @@ pub fn rasterise(
         }
     }
     let size = [(hi[0] - lo[0]) as u64 + 1, (hi[1] - lo[1]) as u64 + 1];
-    if size[0] * size[1] > crate::map_file::MAX_PIXELS {
+    if size[0] * size[1] > crate::limits::MAX_PIXELS {
         return Err(fail(format!(
             "covers {} × {} cells of {cell_size} m, more than the {} SMUG rasterises \
              (a larger cell_size, or a cloud in metres?)",
             size[0],
             size[1],
-            crate::map_file::MAX_PIXELS
+            crate::limits::MAX_PIXELS
         )));
     }
     let geometry = GridGeometry::new(
@@ -116,7 +116,7 @@ pub fn rasterise(
         cell_size,
         [size[0] as usize, size[1] as usize],
     )
-    .map_err(fail)?;
+    .map_err(|e| fail(e.to_string()))?;
     let mut sum = vec![0.0f64; geometry.len()];
     let mut top = vec![f64::NEG_INFINITY; geometry.len()];
     let mut count = vec![0u32; geometry.len()];

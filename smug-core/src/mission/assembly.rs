@@ -8,29 +8,6 @@ use crate::plan::{ChosenPoi, Plan, PlanStats, Segment};
 use crate::pose::Pose2;
 use crate::world::World;
 
-/// Where the mission's poses sit in the oracle.
-pub(super) struct Layout {
-    pub(super) start: usize,
-    pub(super) end: usize,
-    /// For each target of the mission, the oracle indices of its PoIs.
-    pub(super) pois: Vec<Vec<usize>>,
-}
-
-/// Registers the mission's start, end and PoIs with the oracle.
-pub(super) fn register_poses(oracle: &mut PathOracle, mission: &Mission) -> Layout {
-    let start = oracle.add_pose(mission.start);
-    let end = match mission.end {
-        Some(end) => oracle.add_pose(end),
-        None => start,
-    };
-    let pois = mission
-        .targets
-        .iter()
-        .map(|t| t.pois.iter().map(|p| oracle.add_pose(*p)).collect())
-        .collect();
-    Layout { start, end, pois }
-}
-
 /// The index of `pose` among the world's original PoIs of target `id`.
 pub(super) fn original_index(world: &World, id: &str, pose: &Pose2) -> usize {
     world

@@ -5,7 +5,8 @@
 //! the planner proves it), every remaining PoI is joined to every other through the
 //! start, so every order has a route.
 
-use super::assembly::{original_index, Layout};
+use super::assembly::original_index;
+use super::layout::Layout;
 use super::Mission;
 use crate::error::Result;
 use crate::oracle::PathOracle;

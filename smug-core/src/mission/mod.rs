@@ -4,7 +4,9 @@
 mod assembly;
 mod dead_ends;
 mod joint;
+mod layout;
 mod obstacles;
+mod options;
 mod replan;
 mod run;
 mod sequential;
@@ -12,11 +14,12 @@ mod session;
 mod state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
+pub use options::{PlanMode, PlanOptions, Representative, SequencingCosts};
 pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,
 };
-pub use run::{plan_mission, PlanMode, PlanOptions, Representative, SequencingCosts, Unreachable};
+pub use run::{plan_mission, Unreachable};
 pub use session::{MissionSession, WorldUpdate};
 pub use state::{MissionState, StateError};
 

@@ -76,12 +76,12 @@ fn updated_world(
         .as_deref()
         .cloned()
         .ok_or(Error::MissingStage {
-            stage: "smug replan".into(),
+            stage: "replan".into(),
             needed: "world",
         })?;
     state
         .check(&world.mission, &world.bounds(), path)
-        .map_err(|e| Error::stage("smug replan", e))?;
+        .map_err(|e| Error::stage("replan", e))?;
     let fingerprint = Fingerprint::of(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
     Ok((world, pipeline.context().clone(), fingerprint))
@@ -269,12 +269,12 @@ pub fn replan_mission(
             .as_ref()
             .map(|w| w.mission.clone())
             .ok_or(Error::MissingStage {
-                stage: "smug replan".into(),
+                stage: "replan".into(),
                 needed: "world",
             })?;
     let (targets, skipped, dropped) = remaining_targets(pipeline, &original, state);
     if targets.is_empty() {
-        return Err(Error::stage("smug replan", NoTargetLeft { skipped }));
+        return Err(Error::stage("replan", NoTargetLeft { skipped }));
     }
     let mission = replan_mission_of(&original, state, targets);
     check_endpoints(pipeline, &mission, "mission state")?;
@@ -288,7 +288,7 @@ pub fn replan_mission(
     }));
     if plan.sequence.is_empty() {
         return Err(Error::stage(
-            "smug replan",
+            "replan",
             NoTargetLeft {
                 skipped: skipped_all,
             },

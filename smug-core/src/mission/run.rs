@@ -4,9 +4,11 @@
 //! path oracle, so every query shares the planner's roadmap. The joint mode (`joint`)
 //! chooses the order and the PoIs together.
 
-use super::assembly::{assemble_plan, register_poses, stats, Layout};
+use super::assembly::{assemble_plan, stats};
 use super::dead_ends::drop_dead_ends;
 use super::joint::{joint_tour, JointProblem};
+use super::layout::{register_poses, Layout};
+use super::options::{PlanMode, PlanOptions};
 use super::sequential::sequence;
 use super::Mission;
 use crate::deadline;
@@ -18,104 +20,7 @@ use crate::plan::Plan;
 use crate::post_process::{concatenate, waypoints};
 use crate::stages::{Selection, SelectionError, SelectionProblem};
 use crate::world::World;
-use serde::{Deserialize, Serialize};
 use std::time::Instant;
-
-/// Which pose stands in for a target when the visiting order is computed.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Representative {
-    /// The PoI nearest the target's centre.
-    #[default]
-    NearestPoi,
-    /// The target's first PoI.
-    FirstPoi,
-}
-
-/// How the sequencer's ToI cost matrix is filled.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SequencingCosts {
-    /// Plan only the legs the tour uses: solve on lower bounds (straight-line metric
-    /// costs) where no path is planned yet, plan the tour's unplanned legs, repeat until
-    /// the tour uses planned legs only. With an exact solver the order is optimal for
-    /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
-    /// applied to sequencing).
-    #[default]
-    Lazy,
-    /// Plan a path between every pair of representatives (the paper's way). A
-    /// [`MissionSession`](super::MissionSession)'s replans serve the pairs it kept paths
-    /// for and fill the others lazily (only the pairs the tour uses are planned).
-    Full,
-}
-
-/// Whether the order and the PoIs are chosen one after the other or together.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum PlanMode {
-    /// The paper's way: the target order from representative poses (sequencer), then
-    /// one PoI per target along it (selector).
-    #[default]
-    Sequential,
-    /// Order and PoIs together: a generalized TSP over every PoI with lazy path costs,
-    /// solved by the sequencer's `solve_clusters` (a GTSP solver, e.g. `gtsp-lns` or
-    /// `gtsp-exact`); the selector is not used.
-    Joint,
-}
-
-/// How the mission is run (the config's `[plan]` section).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct PlanOptions {
-    /// The pose that stands in for each target when sequencing.
-    pub representative: Representative,
-    /// Leave out targets none of whose PoIs can be reached (and say so) instead of failing.
-    pub skip_unreachable: bool,
-    /// Keep the roadmap's headings instead of aligning waypoints with the direction of travel.
-    pub keep_headings: bool,
-    /// How the sequencer's cost matrix is filled: `"lazy"` (default) or `"full"`.
-    pub sequencing_costs: SequencingCosts,
-    /// `"sequential"` (default: order, then PoIs) or `"joint"` (both at once, GTSP).
-    pub mode: PlanMode,
-    /// Seconds from the start of the run (world building included) after which anytime
-    /// searches stop with their best result and path queries search only the roadmap
-    /// built so far; nothing is planned after a grace of a quarter of it (≥ 1 s). `None`:
-    /// no deadline. Results then depend on the machine's speed.
-    pub deadline: Option<f64>,
-    /// Once the route is chosen (either mode), plan each of its legs that costs more
-    /// than its lower bound again, on the roadmap as grown since the leg was planned,
-    /// and keep the cheaper path. The choice stays optimal for the planned costs: only
-    /// its own legs got cheaper.
-    pub refine_legs: bool,
-}
-
-impl Default for PlanOptions {
-    fn default() -> Self {
-        Self {
-            representative: Representative::default(),
-            skip_unreachable: false,
-            keep_headings: false,
-            sequencing_costs: SequencingCosts::default(),
-            mode: PlanMode::default(),
-            deadline: None,
-            refine_legs: true,
-        }
-    }
-}
-
-impl PlanOptions {
-    /// The first option with a value outside its domain: `(key, message)`.
-    pub fn invalid_field(&self) -> Option<(&'static str, String)> {
-        let deadline = self.deadline?;
-        (!(deadline.is_finite() && deadline > 0.0)).then(|| {
-            (
-                "deadline",
-                format!("must be a finite number of seconds > 0, got {deadline}"),
-            )
-        })
-    }
-}
-
 /// Targets that cannot be reached: the plan fails and names them.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("no safe path reaches target(s) {}{}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "), why_suffix(.why))]
@@ -211,7 +116,7 @@ fn order_then_select(
     *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
     let t = Instant::now();
     let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "selector",
     })?;
     let problem = SelectionProblem {
@@ -269,15 +174,15 @@ fn refine_route(
 fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let started = Instant::now();
     let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "world",
     })?;
     let world = pipeline.world.clone().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "world",
     })?;
     let planner = pipeline.planner.take().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "planner",
     })?;
     let keep_answers = pipeline.answers.is_some();
@@ -328,7 +233,7 @@ fn plan_on_oracle(
                     .filter(|d| ids.contains(&d.target))
                     .map(|d| format!("target `{}` PoI {}: {}", d.target, d.index, d.why))
                     .collect();
-                return Err(Error::stage("smug plan", Unreachable { targets: ids, why }));
+                return Err(Error::stage("plan", Unreachable { targets: ids, why }));
             }
             skipped.extend(ids);
             targets.retain(|t| !emptied.contains(t));
@@ -342,7 +247,7 @@ fn plan_on_oracle(
             PlanMode::Joint => {
                 let t = Instant::now();
                 let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
-                    stage: "smug plan".into(),
+                    stage: "plan".into(),
                     needed: "sequencer",
                 })?;
                 let joint = JointProblem {
@@ -368,7 +273,7 @@ fn plan_on_oracle(
                 if unreachable.is_empty() {
                     if let Some(target) = unroutable_target(&other, &order) {
                         return Err(Error::stage(
-                            "smug plan",
+                            "plan",
                             Unreachable {
                                 targets: vec![mission.targets[target].id.clone()],
                                 why: vec![format!(
@@ -380,7 +285,7 @@ fn plan_on_oracle(
                     }
                     other?;
                     return Err(Error::stage(
-                        "smug plan",
+                        "plan",
                         Unreachable {
                             targets: vec!["(the end pose)".into()],
                             why: Vec::new(),
@@ -393,7 +298,7 @@ fn plan_on_oracle(
                     .collect();
                 if !options.skip_unreachable {
                     return Err(Error::stage(
-                        "smug plan",
+                        "plan",
                         Unreachable {
                             targets: ids,
                             why: Vec::new(),

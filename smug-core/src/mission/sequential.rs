@@ -1,8 +1,8 @@
 //! The sequential mode's first step: the visiting order of the targets from path
 //! costs between one representative pose per target (full or lazy cost matrix).
 
-use super::assembly::Layout;
-use super::run::{Representative, SequencingCosts};
+use super::layout::Layout;
+use super::options::{Representative, SequencingCosts};
 use super::Mission;
 use crate::error::{Error, Result};
 use crate::oracle::PathOracle;
@@ -39,7 +39,7 @@ pub(super) fn sequence(
     costs: SequencingCosts,
 ) -> Result<Vec<usize>> {
     let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
-        stage: "smug plan".into(),
+        stage: "plan".into(),
         needed: "sequencer",
     })?;
     let open = mission.end.is_some();
@@ -86,7 +86,7 @@ fn fills_lazily(oracle: &PathOracle, costs: SequencingCosts) -> bool {
 
 /// Path costs between every pair of `nodes` (each pair planned once when the oracle is
 /// symmetric, both ways otherwise).
-fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
+pub(super) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
     let n = nodes.len();
     let mut costs = vec![0.0; n * n];
     if oracle.answers_many() {
@@ -199,7 +199,7 @@ pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (us
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::objective::PathLength;
     use crate::path::Path;
@@ -238,7 +238,7 @@ mod tests {
     }
 
     /// The best tour by trying every order (small n only).
-    struct Exhaustive;
+    pub(in crate::mission) struct Exhaustive;
 
     impl Sequencer for Exhaustive {
         fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour> {
@@ -314,7 +314,10 @@ mod tests {
         }
     }
 
-    fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
+    pub(in crate::mission) fn oracle(
+        poses: &[Pose2],
+        detours: Vec<f64>,
+    ) -> (PathOracle, Vec<usize>) {
         let objective = PathLength::default();
         let planner = DetourPlanner {
             poses: poses.to_vec(),
@@ -376,72 +379,6 @@ mod tests {
             prop_assert!((true_cost - full.cost).abs() < 1e-9, "warm {true_cost} vs full {}", full.cost);
             let row = n as u64 - 1;
             prop_assert!(warm.stats().paths_planned <= row, "at most the start's row");
-        }
-
-        /// Joint mode with an exact GTSP solver on a fixed roadmap: never more than the
-        /// sequential mode (order from representatives, then the DP selection), and
-        /// exactly the best one-PoI-per-target tour over all planned paths.
-        #[test]
-        fn joint_with_an_exact_solver_never_costs_more_than_sequential_dp(
-            points in prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), 14),
-            detours in prop::collection::vec(1.0..2.0f64, 196),
-            sizes in prop::collection::vec(1usize..=3, 2..=4),
-            open in any::<bool>(),
-        ) {
-            let total: usize = sizes.iter().sum::<usize>() + 2;
-            let poses: Vec<Pose2> = points[..total].iter().map(|&(x, y, yaw)| Pose2::new(x, y, yaw)).collect();
-            let padded: Vec<f64> = (0..total * total).map(|k| detours[(k / total) * 14 + k % total]).collect();
-            let (mut seq_oracle, nodes) = oracle(&poses, padded.clone());
-            let mut groups = Vec::new();
-            let mut next = 1;
-            for &size in &sizes {
-                groups.push(nodes[next..next + size].to_vec());
-                next += size;
-            }
-            let end = if open { nodes[total - 1] } else { nodes[0] };
-            // Sequential: representatives are the first PoIs; DP selection along the order.
-            let mut reps = vec![nodes[0]];
-            reps.extend(groups.iter().map(|g| g[0]));
-            let kind = if open { reps.push(end); TourKind::OpenTo(reps.len() - 1) } else { TourKind::Closed };
-            let tour = Exhaustive.solve(&full_matrix(&mut seq_oracle, &reps).unwrap(), kind).unwrap();
-            let order: Vec<usize> = tour.order.iter().copied().filter(|&v| v != 0 && v <= groups.len()).map(|v| v - 1).collect();
-            let selection = crate::stages::SelectionProblem {
-                start: nodes[0],
-                groups: order.iter().map(|&g| groups[g].clone()).collect(),
-                end,
-            };
-            let (_, sequential) = selection.solve_layers(|i, j| seq_oracle.cost(i, j)).unwrap();
-            let (mut joint_oracle, _) = oracle(&poses, padded);
-            let problem = super::super::joint::JointProblem {
-                start: nodes[0],
-                groups: groups.clone(),
-                end: open.then_some(end),
-            };
-            let (joint_order, joint) = super::super::joint::joint_tour(&Exhaustive, &mut joint_oracle, &problem).unwrap();
-            prop_assert!(joint.cost <= sequential + 1e-9, "joint {} vs sequential {sequential}", joint.cost);
-            let mut sorted = joint_order.clone();
-            sorted.sort_unstable();
-            prop_assert_eq!(sorted, (0..groups.len()).collect::<Vec<_>>());
-            for (&g, &p) in joint_order.iter().zip(&joint.chosen) {
-                prop_assert!(groups[g].contains(&p));
-            }
-            // The best tour over every planned path: the GTSP on the full matrix.
-            let mut all = vec![nodes[0]];
-            all.extend(groups.iter().flatten());
-            let mut members = vec![vec![0]];
-            let mut k = 1;
-            for g in &groups {
-                members.push((k..k + g.len()).collect());
-                k += g.len();
-            }
-            if open {
-                members.push(vec![all.len()]);
-                all.push(end);
-            }
-            let clusters = Clusters::new(all.len(), members).unwrap();
-            let kind = if open { TourKind::OpenTo(clusters.len() - 1) } else { TourKind::Closed };
-            let best = Exhaustive.solve_clusters(&full_matrix(&mut seq_oracle, &all).unwrap(), &clusters, kind).unwrap();
-            prop_assert!((joint.cost - best.cost).abs() < 1e-9, "joint {} vs optimum {}", joint.cost, best.cost);
         }
     }
 }

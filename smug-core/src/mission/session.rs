@@ -105,7 +105,7 @@ impl MissionSession {
         let world = self.world()?.clone();
         state
             .check(&world.mission, &world.bounds(), "mission state")
-            .map_err(|e| Error::stage("smug replan", e))?;
+            .map_err(|e| Error::stage("replan", e))?;
         self.pipeline.build_times_s.clear();
         self.apply_obstacles(&state.obstacles)?;
         replan_mission(&mut self.pipeline, self.options, state)
@@ -201,7 +201,7 @@ impl MissionSession {
     fn new_obstacles<'a>(&self, all: &'a [DiscObstacle]) -> Result<&'a [DiscObstacle]> {
         let refuse = |key: String, message: String| {
             Error::stage(
-                "smug replan",
+                "replan",
                 StateError::Key {
                     path: "mission state".into(),
                     key,

@@ -104,9 +104,9 @@ impl MissionState {
             message,
         };
         self.check_pose(bounds)
-            .map_err(|m| error("pose".into(), m))?;
+            .map_err(|m| error("pose".into(), m.to_string()))?;
         for (k, o) in self.obstacles.iter().enumerate() {
-            check_obstacle(o).map_err(|m| error(format!("obstacles[{k}]"), m))?;
+            check_obstacle(o).map_err(|m| error(format!("obstacles[{k}]"), m.to_string()))?;
             if o.contains(self.pose[0], self.pose[1]) {
                 let message = format!(
                     "{:?} lies inside obstacles[{k}] (centre {:?}, radius {})",
@@ -144,15 +144,15 @@ impl MissionState {
         Ok(())
     }
 
-    fn check_pose(&self, bounds: &Bounds2) -> Result<(), String> {
+    fn check_pose(&self, bounds: &Bounds2) -> Result<(), BadValue> {
         if !self.pose.iter().all(|v| v.is_finite()) {
-            return Err(format!("{:?} has a non-finite value", self.pose));
+            return Err(BadValue::NotFinite(format!("{:?}", self.pose)));
         }
         if !bounds.contains(self.pose[0], self.pose[1]) {
-            return Err(format!(
-                "{:?} is off the map (x in [{}, {}], y in [{}, {}])",
-                self.pose, bounds.min[0], bounds.max[0], bounds.min[1], bounds.max[1]
-            ));
+            return Err(BadValue::OffMap {
+                pose: self.pose,
+                bounds: *bounds,
+            });
         }
         Ok(())
     }
@@ -163,21 +163,48 @@ impl MissionState {
     }
 }
 
-fn check_obstacle(o: &DiscObstacle) -> Result<(), String> {
+/// What is wrong with a pose or an obstacle of a mission state.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+enum BadValue {
+    /// A value (shown as written) is not finite.
+    #[error("{0} has a non-finite value")]
+    NotFinite(String),
+    /// The pose lies outside the map.
+    #[error(
+        "{pose:?} is off the map (x in [{}, {}], y in [{}, {}])",
+        bounds.min[0], bounds.max[0], bounds.min[1], bounds.max[1]
+    )]
+    OffMap {
+        /// The pose.
+        pose: [f64; 3],
+        /// The map.
+        bounds: Bounds2,
+    },
+    /// A size is not a positive number.
+    #[error("{what} must be a positive number, got {value}")]
+    NotPositive {
+        /// `radius` or `height`.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
+}
+
+fn check_obstacle(o: &DiscObstacle) -> Result<(), BadValue> {
     if !(o.center.iter().all(|v| v.is_finite())) {
-        return Err(format!("center {:?} has a non-finite value", o.center));
+        return Err(BadValue::NotFinite(format!("center {:?}", o.center)));
     }
     if !(o.radius.is_finite() && o.radius > 0.0) {
-        return Err(format!(
-            "radius must be a positive number, got {}",
-            o.radius
-        ));
+        return Err(BadValue::NotPositive {
+            what: "radius",
+            value: o.radius,
+        });
     }
     if !(o.height.is_finite() && o.height > 0.0) {
-        return Err(format!(
-            "height must be a positive number, got {}",
-            o.height
-        ));
+        return Err(BadValue::NotPositive {
+            what: "height",
+            value: o.height,
+        });
     }
     Ok(())
 }

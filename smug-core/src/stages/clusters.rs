@@ -1,7 +1,7 @@
 //! Clusters of a generalized TSP (GTSP): the nodes of a cost matrix partitioned into
 //! sets, of which a tour visits exactly one node each.
 
-use super::sequencer::{Tour, TourKind};
+use super::tour::{Tour, TourKind};
 use crate::error::{Error, Result};
 
 /// A partition of the nodes `0..n` of a cost matrix into non-empty clusters.

@@ -7,6 +7,7 @@ pub mod roadmap_file;
 mod sampler;
 mod selector;
 mod sequencer;
+mod tour;
 mod traversability;
 mod validity;
 

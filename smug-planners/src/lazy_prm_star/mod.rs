@@ -107,7 +107,7 @@ fn check_roadmap_size(params: &LazyPrmStarParams) -> Result<()> {
     ] {
         let what = format!("a roadmap of {key} = {count} vertices");
         smug_core::limits::check_allocation(&what, count.into(), BYTES_PER_VERTEX)
-            .map_err(|message| Error::invalid_param("planner", message))?;
+            .map_err(|message| Error::invalid_param("planner", message.to_string()))?;
     }
     Ok(())
 }

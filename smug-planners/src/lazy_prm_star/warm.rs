@@ -119,7 +119,7 @@ impl LazyPrmStar {
         }
         self.roadmap
             .restore(&snapshot.vertices, &snapshot.edges)
-            .map_err(incompatible)?;
+            .map_err(|e| incompatible(e.to_string()))?;
         let mut counts = LoadCounts {
             vertices: snapshot.vertices.len() as u64,
             edges: snapshot.edges.len() as u64,

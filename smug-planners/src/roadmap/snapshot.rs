@@ -3,6 +3,32 @@
 use super::{pose_key, Roadmap, UnionFind, Validity};
 use smug_core::{CheckStatus, Pose2, SavedEdge, SavedVertex};
 
+/// Why a saved roadmap cannot be restored.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RestoreError {
+    /// The roadmap to restore into already has vertices.
+    #[error("the planner's roadmap is not empty")]
+    NotEmpty,
+    /// A vertex's pose is not finite.
+    #[error("vertex {0}: pose is not finite")]
+    Pose(usize),
+    /// An edge's ends are not two different saved vertices.
+    #[error("edge {edge}: ends {a} and {b} of {n} vertices")]
+    Ends {
+        /// The edge's index.
+        edge: usize,
+        /// One end.
+        a: u32,
+        /// The other end.
+        b: u32,
+        /// Number of vertices.
+        n: u32,
+    },
+    /// An edge's cost is NaN.
+    #[error("edge {0}: cost is not a number")]
+    Cost(usize),
+}
+
 fn status(v: Validity) -> CheckStatus {
     match v {
         Validity::Unknown => CheckStatus::Unchecked,
@@ -64,14 +90,18 @@ impl Roadmap {
 
     /// Replaces this (empty) roadmap's graph by the saved `vertices` and `edges`;
     /// invalid ones are kept as removed. Errors name what is inconsistent.
-    pub fn restore(&mut self, vertices: &[SavedVertex], edges: &[SavedEdge]) -> Result<(), String> {
+    pub fn restore(
+        &mut self,
+        vertices: &[SavedVertex],
+        edges: &[SavedEdge],
+    ) -> Result<(), RestoreError> {
         if !self.poses.is_empty() {
-            return Err("the planner's roadmap is not empty".into());
+            return Err(RestoreError::NotEmpty);
         }
         for (i, v) in vertices.iter().enumerate() {
             let pose: Pose2 = v.pose.into();
             if !(pose.x.is_finite() && pose.y.is_finite() && pose.yaw.is_finite()) {
-                return Err(format!("vertex {i}: pose is not finite"));
+                return Err(RestoreError::Pose(i));
             }
             let id = self.poses.len() as u32;
             self.poses.push(pose);
@@ -89,13 +119,15 @@ impl Roadmap {
         for (i, edge) in edges.iter().enumerate() {
             let (there, back) = (f64::from_bits(edge.cost), f64::from_bits(edge.cost_back));
             if edge.a >= n || edge.b >= n || edge.a == edge.b {
-                return Err(format!(
-                    "edge {i}: ends {} and {} of {n} vertices",
-                    edge.a, edge.b
-                ));
+                return Err(RestoreError::Ends {
+                    edge: i,
+                    a: edge.a,
+                    b: edge.b,
+                    n,
+                });
             }
             if there.is_nan() || back.is_nan() {
-                return Err(format!("edge {i}: cost is not a number"));
+                return Err(RestoreError::Cost(i));
             }
             if self.directed {
                 self.add_directed_edge(edge.a, edge.b, there);

@@ -21,6 +21,7 @@ mod search;
 mod tour;
 
 use crate::costs::{tour_of, validate, validate_clusters, Dist};
+use crate::error::ParamError;
 use crate::local_search::{check_search_budget, search_termination};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
@@ -81,7 +82,7 @@ impl GtspLnsParams {
     }
 
     /// Checks the values; the message names the offending parameter.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), ParamError> {
         check_search_budget(self.time_limit_s, self.max_iterations)?;
         let fractions = [
             ("max_removal_fraction", self.max_removal_fraction, 1.0),
@@ -91,7 +92,7 @@ impl GtspLnsParams {
         ];
         for (name, value, most) in fractions {
             if !(value >= 0.0 && value <= most) {
-                return Err(format!("{name} = {value} must be in [0, {most}]"));
+                return Err(ParamError::OutOfRange { name, value, most });
             }
         }
         Ok(())

@@ -24,6 +24,7 @@ mod tour;
 pub use construct::Construction;
 
 use crate::costs::{tour_of, trivial_tour, validate, Dist};
+use crate::error::ParamError;
 use crate::held_karp::{HeldKarp, HeldKarpParams};
 use kick::Kick;
 use neighbours::Neighbours;
@@ -79,13 +80,10 @@ impl LocalSearchParams {
     }
 
     /// Checks the values; the message names the offending parameter.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), ParamError> {
         check_search_budget(self.time_limit_s, self.max_iterations)?;
         if self.neighbours < 3 {
-            return Err(format!(
-                "neighbours = {} must be at least 3",
-                self.neighbours
-            ));
+            return Err(ParamError::Neighbours(self.neighbours));
         }
         Ok(())
     }
@@ -100,14 +98,15 @@ pub(crate) fn search_termination(time_limit_s: f64, max_iterations: u64) -> Term
 }
 
 /// Checks a search's budget parameters: a finite time ≥ 0, and not both unbounded.
-pub(crate) fn check_search_budget(time_limit_s: f64, max_iterations: u64) -> Result<(), String> {
+pub(crate) fn check_search_budget(
+    time_limit_s: f64,
+    max_iterations: u64,
+) -> Result<(), ParamError> {
     if !(time_limit_s >= 0.0 && time_limit_s.is_finite()) {
-        return Err(format!(
-            "time_limit_s = {time_limit_s} must be a finite number ≥ 0"
-        ));
+        return Err(ParamError::TimeLimit(time_limit_s));
     }
     if time_limit_s == 0.0 && max_iterations == 0 {
-        return Err("time_limit_s = 0 and max_iterations = 0: the search would never stop".into());
+        return Err(ParamError::NeverStops);
     }
     Ok(())
 }

@@ -1,0 +1,39 @@
+//! SMUG's application layer, shared by the `smug` CLI and the Python package: it links
+//! every built-in plugin crate once (so their `inventory` registrations are in any
+//! binary that uses this crate) and offers what both front ends do:
+//!
+//! - [`plan()`]: a config to a plan (and [`outputs`]: plan.json, plan.csv, plan.svg);
+//! - [`replan()`]: the rest of a mission from a mission state file;
+//! - [`p2p`]: point-to-point queries on one shared roadmap, one typed result;
+//! - [`save_roadmap`] / [`load_roadmap`]: the planner's roadmap file;
+//! - one [`Outcome`] (`Solved` / `NoSolution { why }`) beside a typed [`AppError`],
+//!   instead of each front end deciding what counts as "no solution".
+//!
+//! The front ends keep argument parsing, printing and (for Python) conversion.
+
+#![warn(missing_docs)]
+
+// Name every plugin crate so that its `inventory` registrations are linked in. This is
+// the one list of the built-in plugins (beside the fuzz harness's own).
+use smug_objectives as _;
+use smug_planners as _;
+use smug_samplers as _;
+use smug_selection as _;
+use smug_sequencing as _;
+use smug_spaces as _;
+use smug_validity as _;
+use smug_worlds as _;
+
+pub mod error;
+pub mod outcome;
+pub mod outputs;
+pub mod p2p;
+pub mod plan;
+pub mod replan;
+pub mod roadmap;
+
+pub use error::{AppError, Result};
+pub use outcome::{one_line, NoSolution, Outcome};
+pub use plan::{load_config, plan, Planned};
+pub use replan::{replan, ReplanRequest};
+pub use roadmap::{load_roadmap, save_roadmap};

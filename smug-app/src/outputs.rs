@@ -1,0 +1,107 @@
+//! The files a plan is written to: plan.json, plan.csv and plan.svg (as the config's
+//! `[output]` asks), each whole or not at all.
+
+use crate::{AppError, Result};
+use smug_core::{LoadedConfig, Plan, World};
+use smug_worlds::render::{render_svg, RenderOptions};
+use std::path::{Path, PathBuf};
+
+/// The files [`write_outputs`] may write into its directory.
+pub const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
+
+/// Writes `plan` (made in `world`) into `dir` as `output` asks; each file whole or not
+/// at all, so a killed run leaves the previous plan intact.
+pub fn write_outputs(
+    plan: &Plan,
+    world: &World,
+    output: &smug_core::config::OutputConfig,
+    dir: &Path,
+) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
+        path: dir.to_path_buf(),
+        what: "cannot create",
+        source,
+    })?;
+    let write = |name: &str, text: String| {
+        let path = dir.join(name);
+        smug_core::output::write_atomic(&path, text.as_bytes()).map_err(|source| AppError::Write {
+            path,
+            what: "cannot write",
+            source,
+        })
+    };
+    if output.json {
+        write("plan.json", serde_json::to_string_pretty(plan)?)?;
+    }
+    if output.csv {
+        write("plan.csv", plan_csv(plan))?;
+    }
+    if output.svg {
+        write("plan.svg", render_svg(world, &render_options(plan, world)))?;
+    }
+    Ok(())
+}
+
+/// Refuses an output directory where a plan file would overwrite one of the run's
+/// inputs (its config files, maps, missions, layers, and `extra`, e.g. a mission state).
+pub fn refuse_overwriting_inputs(
+    dir: &Path,
+    loaded: &LoadedConfig,
+    extra: &[PathBuf],
+) -> Result<()> {
+    let outputs: Vec<PathBuf> = OUTPUT_FILES.iter().map(|name| dir.join(name)).collect();
+    let mut inputs = loaded.input_files();
+    inputs.extend(extra.iter().cloned());
+    match smug_core::output::output_over_input(&outputs, &inputs) {
+        Some(path) => Err(AppError::OutputOverInput {
+            path: path.to_path_buf(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// `plan.csv`: `x,y,z,yaw` per waypoint, and a `reversing` column (0/1) when the
+/// plan ever drives backwards (as `plan.json`'s `reversing`).
+pub fn plan_csv(plan: &Plan) -> String {
+    let gears = plan.reversing.len() == plan.waypoints.len() && !plan.reversing.is_empty();
+    let mut csv = String::from(if gears {
+        "x,y,z,yaw,reversing\n"
+    } else {
+        "x,y,z,yaw\n"
+    });
+    for (i, w) in plan.waypoints.iter().enumerate() {
+        csv += &format!("{},{},{},{}", w.x, w.y, w.z, w.yaw);
+        if gears {
+            csv += if plan.reversing[i] { ",1" } else { ",0" };
+        }
+        csv.push('\n');
+    }
+    csv
+}
+
+/// How plan.svg draws `plan` on `world`: the path, the chosen PoIs and a title.
+pub fn render_options(plan: &Plan, world: &World) -> RenderOptions {
+    let highlighted = plan
+        .pois
+        .iter()
+        .filter_map(|c| {
+            world
+                .mission
+                .targets
+                .iter()
+                .position(|t| t.id == c.target)
+                .map(|t| (t, c.index))
+        })
+        .collect();
+    RenderOptions {
+        title: Some(format!(
+            "{}: cost {:.2}, {} targets",
+            world.name,
+            plan.cost,
+            plan.sequence.len()
+        )),
+        paths: vec![plan.waypoints.iter().map(|w| [w.x, w.y]).collect()],
+        highlighted_pois: highlighted,
+        ..RenderOptions::default()
+    }
+}

@@ -1,0 +1,59 @@
+//! Planning a mission from a config, as `smug plan` and `smug.plan` do.
+
+use crate::{AppError, Outcome, Result};
+use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, TraversabilityEstimator, World};
+use std::path::Path;
+use std::sync::Arc;
+
+/// A plan with the pipeline that made it and the world it was made in.
+pub struct Planned {
+    /// The plan.
+    pub plan: Plan,
+    /// The pipeline (its planner keeps the roadmap, see [`crate::save_roadmap`]).
+    pub pipeline: Pipeline,
+    /// The world the plan was made in.
+    pub world: Arc<World>,
+}
+
+/// Loads a config with `--set` overrides and a seed, as `smug plan --set … --seed N`.
+pub fn load_config(config: &Path, set: &[String], seed: Option<u64>) -> Result<LoadedConfig> {
+    let mut set = set.to_vec();
+    if let Some(seed) = seed {
+        set.push(format!("seed={seed}"));
+    }
+    Ok(LoadedConfig::from_file(config, &set)?)
+}
+
+/// Builds every stage of `loaded`, with `world` (when given) instead of the config's
+/// `[world]` and `estimator` (when given) instead of its `[traversability]`.
+pub fn assemble(
+    loaded: &LoadedConfig,
+    world: Option<World>,
+    estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
+) -> Result<Pipeline> {
+    Ok(Pipeline::assemble_with(loaded, world, estimator)?)
+}
+
+/// Plans the mission on an assembled pipeline with the config's plan options.
+pub fn plan_on(mut pipeline: Pipeline) -> Result<Outcome<Planned>> {
+    let options = pipeline.config.plan;
+    let plan = match Outcome::of(plan_mission(&mut pipeline, options))? {
+        Outcome::Solved(plan) => plan,
+        Outcome::NoSolution { why } => return Ok(Outcome::NoSolution { why }),
+    };
+    let world = pipeline.world.clone().ok_or(AppError::NoWorld)?;
+    Ok(Outcome::Solved(Planned {
+        plan,
+        pipeline,
+        world,
+    }))
+}
+
+/// Assembles the pipeline of `loaded` and plans its mission (see [`assemble`]).
+pub fn plan(
+    loaded: &LoadedConfig,
+    world: Option<World>,
+    estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
+) -> Result<Outcome<Planned>> {
+    plan_on(assemble(loaded, world, estimator)?)
+}

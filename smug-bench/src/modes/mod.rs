@@ -1,0 +1,152 @@
+//! `smug bench modes`: the sequential mode with the full and with the lazy cost matrix
+//! against the joint mode (a GTSP over every PoI, the `auto` sequencer), on several missions and
+//! N seeds (issue 17's comparison): cost, paths planned, planning time, failures, and
+//! joint minus sequential per seed.
+
+mod report;
+pub mod runs;
+
+use crate::error::ResultExt as _;
+use crate::output::write_report;
+use report::{report, Summary};
+pub use runs::{Mission, Mode, Run, MISSIONS, MODES};
+use serde::Serialize;
+use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
+use std::path::PathBuf;
+
+/// Arguments of `smug bench modes`.
+#[derive(clap::Args, Debug)]
+pub struct BenchModesArgs {
+    /// Missions by name: lunar (13×10), indoor (12×2), lunar-48x6, lunar-200x10 (200
+    /// targets × 10 PoIs on 100×100 m: slow in the joint mode, opt-in).
+    #[arg(long, value_delimiter = ',', default_value = "lunar,indoor,lunar-48x6")]
+    missions: Vec<String>,
+    /// Seeds per mission and mode (1..=N); the seed sets the world and the planner.
+    #[arg(long, default_value_t = 10)]
+    runs: u64,
+    /// Modes by name: full (sequential, full matrix), lazy (sequential, lazy matrix),
+    /// joint (GTSP over every PoI, the `auto` sequencer: exact while small, LNS above).
+    #[arg(long, value_delimiter = ',', default_value = "full,lazy,joint")]
+    modes: Vec<String>,
+    /// Override a config key (every run, after the mission's and the mode's overrides).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Write the Markdown report here (else stdout only).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+/// The JSON written beside the report.
+#[derive(Debug, Serialize)]
+struct Raw<'a> {
+    seeds: u64,
+    runs: &'a [Run],
+    #[serde(flatten)]
+    summary: &'a Summary,
+}
+
+/// Runs `smug bench modes`.
+pub fn run(args: BenchModesArgs) -> crate::Result<()> {
+    let missions = lookup("--missions", "mission", &args.missions, &MISSIONS, |m| {
+        m.name
+    })?;
+    let modes = lookup("--modes", "mode", &args.modes, &MODES, |m| m.name)?;
+    if args.runs == 0 {
+        crate::error::bail!("--runs: must be at least 1");
+    }
+    let mut runs = Vec::new();
+    for mission in &missions {
+        for mode in &modes {
+            for seed in 1..=args.runs {
+                eprintln!("{} / {} / seed {seed}", mission.name, mode.name);
+                runs.push(plan_once(mission, mode, seed, &args.set)?);
+            }
+        }
+    }
+    let summary = Summary::of(&missions, &modes, &runs);
+    let raw = Raw {
+        seeds: args.runs,
+        runs: &runs,
+        summary: &summary,
+    };
+    write_report(
+        &report(&missions, &modes, args.runs, &args.set, &summary, &runs),
+        &raw,
+        args.out.as_deref(),
+        args.json.as_deref(),
+    )?;
+    Ok(())
+}
+
+/// The known items named in `names` (in that order, without repeats); an unknown name
+/// is an error naming it and the known ones.
+fn lookup<'a, T>(
+    flag: &str,
+    what: &str,
+    names: &[String],
+    known: &'a [T],
+    name: impl Fn(&T) -> &'static str,
+) -> crate::Result<Vec<&'a T>> {
+    let mut found: Vec<&T> = Vec::new();
+    for wanted in names.iter().map(|n| n.trim()) {
+        let item = known.iter().find(|k| name(k) == wanted).ok_or_else(|| {
+            let all: Vec<&str> = known.iter().map(&name).collect();
+            crate::error::invalid!(
+                "{flag}: unknown {what} `{wanted}`; known: {}",
+                all.join(", ")
+            )
+        })?;
+        if !found.iter().any(|f| name(f) == wanted) {
+            found.push(item);
+        }
+    }
+    Ok(found)
+}
+
+/// Plans `mission` in `mode` with `seed`. A config or pipeline that does not load or
+/// assemble is an error (bad input); a planning failure is a run with `error` set.
+fn plan_once(mission: &Mission, mode: &Mode, seed: u64, set: &[String]) -> crate::Result<Run> {
+    let mut overrides: Vec<String> = mission.set.iter().map(|s| s.to_string()).collect();
+    overrides.extend(mode.set.iter().map(|s| s.to_string()));
+    overrides.push(format!("seed={seed}"));
+    overrides.extend(set.iter().cloned());
+    let context = || format!("{} / {} / seed {seed}", mission.name, mode.name);
+    let loaded = LoadedConfig::from_file(std::path::Path::new(mission.config), &overrides)
+        .with_context(context)?;
+    let mut pipeline = Pipeline::assemble(&loaded).with_context(context)?;
+    let options = pipeline.config.plan;
+    let planned = plan_mission(&mut pipeline, options);
+    let mut run = Run {
+        mission: mission.name.into(),
+        mode: mode.name.into(),
+        seed,
+        cost: None,
+        paths_planned: None,
+        planning_s: None,
+        error: None,
+    };
+    match planned {
+        Ok(plan) => {
+            run.cost = Some(plan.cost);
+            run.paths_planned = Some(plan.stats.paths_planned);
+            run.planning_s = Some(planning_s(&plan));
+        }
+        Err(err) => run.error = Some(err.to_string()),
+    }
+    Ok(run)
+}
+
+/// The plan's planning time: its `total` minus the pipeline's build times (as `smug
+/// plan` reports them, `build:<stage>`).
+fn planning_s(plan: &Plan) -> f64 {
+    let times = &plan.stats.stage_times_s;
+    let built: f64 = times
+        .iter()
+        .filter(|(stage, _)| stage.starts_with("build:"))
+        .map(|(_, s)| s)
+        .sum();
+    times.get("total").copied().unwrap_or(0.0) - built
+}

@@ -1,0 +1,37 @@
+//! The output convention of every `smug bench` command: the Markdown report on stdout
+//! and in `--out`, the raw numbers as JSON in `--json` (default: beside `--out`).
+
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// Where the raw JSON goes: `--json`, else `--out` with the extension `.json`.
+pub fn json_path(out: Option<&Path>, json: Option<&Path>) -> Option<PathBuf> {
+    json.map(Path::to_path_buf)
+        .or_else(|| out.map(|p| p.with_extension("json")))
+}
+
+/// Prints the report and writes it and the raw numbers where asked.
+pub fn write_report(
+    report: &str,
+    raw: &impl Serialize,
+    out: Option<&Path>,
+    json: Option<&Path>,
+) -> crate::Result<()> {
+    print!("{report}");
+    if let Some(path) = out {
+        write_file(path, report)?;
+    }
+    if let Some(path) = json_path(out, json) {
+        write_file(&path, &serde_json::to_string_pretty(raw)?)?;
+    }
+    Ok(())
+}
+
+fn write_file(path: &Path, text: &str) -> crate::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| crate::error::invalid!("{}: cannot create: {e}", dir.display()))?;
+    }
+    smug_core::output::write_atomic(path, text.as_bytes())
+        .map_err(|e| crate::error::invalid!("{}: cannot write: {e}", path.display()))
+}
