@@ -102,6 +102,7 @@ mod tests {
             "sequencing",
             Unreachable {
                 targets: vec!["t1".into()],
+                why: Vec::new(),
             },
         );
         let outcome = Outcome::<()>::of(Err(unreachable)).unwrap();

@@ -15,6 +15,7 @@ pub mod output;
 pub mod p2p;
 pub mod paper;
 pub mod replan;
+pub mod robots;
 pub mod solvers;
 pub mod tsp;
 pub mod validity;

@@ -3,7 +3,7 @@
 
 use crate::Outcome;
 use clap::Subcommand;
-use smug_bench::{gtsp, modes, objectives, p2p, paper, replan, tsp, validity};
+use smug_bench::{gtsp, modes, objectives, p2p, paper, replan, robots, tsp, validity};
 
 /// Arguments of `smug bench`.
 #[derive(clap::Args, Debug)]
@@ -34,6 +34,9 @@ enum BenchCommand {
     /// Sequential (full and lazy cost matrix) against joint planning (GTSP over every
     /// PoI): cost, paths planned, planning time and joint minus sequential per seed.
     Modes(modes::BenchModesArgs),
+    /// Every robot profile (and the car models with the lattice planner) on each world:
+    /// cost, wall time and its ratio to ANYmal's, paths planned, PoIs dropped and why.
+    Robots(robots::BenchRobotsArgs),
 }
 
 /// Runs `smug bench`.
@@ -47,6 +50,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Objectives(args) => objectives::run(args),
         BenchCommand::Replan(args) => replan::run(args),
         BenchCommand::Modes(args) => modes::run(args),
+        BenchCommand::Robots(args) => robots::run(args),
     }?;
     Ok(Outcome::Ok)
 }
