@@ -49,8 +49,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, &[])?;
     let progress = Progress::start("building the world and the checkers");
-    let pipeline = smug_app::plan::assemble(&loaded, None, None)?;
+    let mut pipeline = smug_app::plan::assemble(&loaded, None, None)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
+    pipeline.progress = progress.paths_planned();
     let planned = smug_app::plan::plan_on(pipeline);
     progress.finish();
     let Planned {
@@ -95,6 +96,9 @@ impl Progress {
             return Self(None);
         }
         let bar = indicatif::ProgressBar::new_spinner();
+        if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg} {prefix}") {
+            bar.set_style(style);
+        }
         bar.enable_steady_tick(std::time::Duration::from_millis(100));
         bar.set_message(stage.to_string());
         Self(Some(bar))
@@ -104,6 +108,14 @@ impl Progress {
         if let Some(bar) = &self.0 {
             bar.set_message(stage.to_string());
         }
+    }
+
+    /// A callback that shows the paths planned so far beside the stage (in a terminal).
+    pub(crate) fn paths_planned(&self) -> Option<smug_core::oracle::ProgressFn> {
+        let bar = self.0.clone()?;
+        Some(std::sync::Arc::new(move |paths: u64| {
+            bar.set_prefix(format!("{paths} paths planned"));
+        }))
     }
 
     pub(crate) fn finish(&self) {

@@ -134,8 +134,13 @@ impl KnownAnswers {
     }
 }
 
+/// Told the number of paths planned so far after each plan (a progress display; it must
+/// not change what is planned).
+pub type ProgressFn = Arc<dyn Fn(u64) + Send + Sync>;
+
 /// Lower bounds and lazily planned paths between registered poses.
 pub struct PathOracle {
+    progress: Option<ProgressFn>,
     poses: Vec<Pose2>,
     objective: Arc<dyn Objective>,
     planner: Box<dyn PointToPointPlanner>,
@@ -157,6 +162,20 @@ impl PathOracle {
             cache: HashMap::new(),
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
+            progress: None,
+        }
+    }
+
+    /// Tells `progress` the number of paths planned after each plan.
+    pub fn with_progress(mut self, progress: Option<ProgressFn>) -> Self {
+        self.progress = progress;
+        self
+    }
+
+    /// Tells the progress display how many paths are planned.
+    fn report_progress(&self) {
+        if let Some(progress) = &self.progress {
+            progress(self.stats.paths_planned);
         }
     }
 
@@ -326,6 +345,7 @@ impl PathOracle {
         let goals: Vec<Pose2> = wanted.iter().map(|&j| self.poses[j]).collect();
         let outcomes = self.planner.plan_many(&self.poses[i], &goals)?;
         self.stats.paths_planned += wanted.len() as u64;
+        self.report_progress();
         for (j, outcome) in wanted.into_iter().zip(outcomes) {
             if self.cache.contains_key(&(i, j)) {
                 continue;
@@ -417,6 +437,7 @@ impl PathOracle {
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
         refuse_after_deadline()?;
         self.stats.paths_planned += 1;
+        self.report_progress();
         let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
         let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
         Ok(PlannedPath { outcome, cost })

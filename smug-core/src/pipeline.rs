@@ -273,6 +273,9 @@ pub struct Pipeline {
     /// found here without planning and adds every exact path it planned (what a
     /// [`MissionSession`](crate::mission::MissionSession) remembers between replans).
     pub answers: Option<KnownAnswers>,
+    /// Told the number of paths planned so far after each plan of
+    /// [`plan_mission`](crate::plan_mission) (a progress display; `None`: nothing told).
+    pub progress: Option<crate::oracle::ProgressFn>,
     context: BuildContext,
 }
 
@@ -322,6 +325,7 @@ impl Pipeline {
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
             answers: None,
+            progress: None,
             context: ctx.clone(),
         };
         if config.cost.is_some() {

@@ -188,7 +188,8 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
     let keep_answers = pipeline.answers.is_some();
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
         .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
-        .with_known(pipeline.answers.take().unwrap_or_default());
+        .with_known(pipeline.answers.take().unwrap_or_default())
+        .with_progress(pipeline.progress.clone());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
     if keep_answers {
         pipeline.answers = Some(oracle.take_known_answers());
