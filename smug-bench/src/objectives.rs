@@ -89,7 +89,7 @@ pub fn run(args: BenchObjectivesArgs) -> crate::Result<()> {
 
 /// Whether the config's world takes a `seed` parameter (procedural worlds): the config
 /// assembles with it set.
-fn world_is_seeded(config: &std::path::Path) -> bool {
+pub(crate) fn world_is_seeded(config: &std::path::Path) -> bool {
     LoadedConfig::from_file(config, &["world.params.seed=1".to_string()])
         .is_ok_and(|loaded| Pipeline::assemble(&loaded).is_ok())
 }
