@@ -322,7 +322,7 @@ impl PointToPointPlanner for LatticePlanner {
 
     fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
         self.counts.queries += goals.len() as u64;
-        Ok(self.search(start, goals))
+        Ok(self.search(start, goals, self.params.max_expansions))
     }
 
     fn answers_many(&self) -> bool {
@@ -339,10 +339,7 @@ impl PointToPointPlanner for LatticePlanner {
         goal: &Pose2,
         effort: u64,
     ) -> Result<Option<NoPathReason>> {
-        let budget = self.params.max_expansions;
-        self.params.max_expansions = effort.max(1);
-        let outcome = self.search(start, std::slice::from_ref(goal));
-        self.params.max_expansions = budget;
+        let outcome = self.search(start, std::slice::from_ref(goal), effort.max(1));
         Ok(outcome[0].no_path_reason().filter(NoPathReason::is_proved))
     }
 

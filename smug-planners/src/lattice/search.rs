@@ -122,8 +122,14 @@ impl Run {
 }
 
 impl LatticePlanner {
-    /// Plans from `start` to every goal with one search.
-    pub(super) fn search(&mut self, start: &Pose2, goals: &[Pose2]) -> Vec<PlannerOutcome> {
+    /// Plans from `start` to every goal with one search of at most `max_expansions`
+    /// expansions (0: as many as the lattice has).
+    pub(super) fn search(
+        &mut self,
+        start: &Pose2,
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) -> Vec<PlannerOutcome> {
         let started = Instant::now();
         self.counts.searches += 1;
         self.last_costs = vec![None; goals.len()];
@@ -151,7 +157,7 @@ impl LatticePlanner {
             }
         }
         if !asked.is_empty() {
-            let (reached, end) = self.run(start, asked);
+            let (reached, end) = self.run(start, asked, max_expansions);
             for (goal, k) in reached.into_iter().zip(index) {
                 outcomes[k] = Some(self.outcome(start, &goal, &end, k));
             }
@@ -197,7 +203,7 @@ impl LatticePlanner {
 
     /// The A* loop: settles the goals it reaches, ends when all are, when nothing is
     /// left to expand, or when a budget runs out.
-    fn run(&mut self, start: &Pose2, goals: Vec<Goal>) -> (Vec<Goal>, End) {
+    fn run(&mut self, start: &Pose2, goals: Vec<Goal>, max_expansions: u64) -> (Vec<Goal>, End) {
         self.buffers.next_generation();
         let open_goals = goals.len();
         let mut run = Run {
@@ -221,7 +227,7 @@ impl LatticePlanner {
             },
         );
         let started = Instant::now();
-        let max = match self.params.max_expansions {
+        let max = match max_expansions {
             0 => u64::MAX,
             m => m,
         };
