@@ -153,50 +153,57 @@ thread_local! {
     static LAST_CURVE: Cell<Option<(CurveKey, Curve)>> = const { Cell::new(None) };
 }
 
-/// Slots of the per-thread table of curves by relative pose (a power of two).
-const RELATIVE_SLOTS: usize = 4096;
+/// Sets of the per-thread table of curves by relative pose (a power of two), each of
+/// [`WAYS`] entries.
+const RELATIVE_SETS: usize = 8192;
+
+/// Entries per set of the table.
+const WAYS: usize = 2;
 
 /// A relative pose's solver and bits, its curve, and whether it was asked for again
 /// since it was stored or last spared.
 type RelativeEntry = ((u8, [u64; 3]), Curve, bool);
 
 thread_local! {
-    /// Curves by the goal's pose relative to the start (unit radius), in a direct-mapped
-    /// table with a second chance: a lattice's motions repeat the same few relative
-    /// poses all over the map and keep their slots; poses asked once (a roadmap's, a
-    /// shot's) take a slot only from an entry not asked for again since it was stored
-    /// (no allocation, no probing).
-    static BY_RELATIVE: RefCell<Vec<Option<RelativeEntry>>> =
-        RefCell::new(vec![None; RELATIVE_SLOTS]);
+    /// Curves by the goal's pose relative to the start (unit radius), in a two-way
+    /// set-associative table with a second chance: a lattice's motions repeat the same
+    /// few hundred relative poses (each both ways) all over the map and keep their
+    /// entries; poses asked once (a roadmap's, a shot's, a validator's sub-motions)
+    /// take an entry only from one not asked for again since it was stored (no
+    /// allocation, no probing beyond the set).
+    static BY_RELATIVE: RefCell<Vec<[Option<RelativeEntry>; WAYS]>> =
+        RefCell::new(vec![[None; WAYS]; RELATIVE_SETS]);
 }
 
 /// The curve of solver `kind` to the relative pose `rel`: from the table when this
-/// thread solved the same bits last in its slot (the same bits give the same curve),
-/// else `compute()` (then stored).
+/// thread solved the same bits last in its set (the same bits give the same curve),
+/// else `compute()` (then stored in an entry not asked for again since it was stored;
+/// when both were, both lose that mark and the curve is not kept).
 fn memo_relative(kind: u8, rel: [f64; 3], compute: impl FnOnce() -> Curve) -> Curve {
     let key = (kind, rel.map(f64::to_bits));
     let mut h = kind as u64;
     for bits in key.1 {
         h = (h ^ bits).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     }
-    let slot = (h >> 40) as usize & (RELATIVE_SLOTS - 1);
+    let set = (h >> 40) as usize & (RELATIVE_SETS - 1);
     BY_RELATIVE.with(|table| {
         let mut table = table.borrow_mut();
-        match &mut table[slot] {
-            Some((k, curve, asked)) if *k == key => {
+        let ways = &mut table[set];
+        for (k, curve, asked) in ways.iter_mut().flatten() {
+            if *k == key {
                 *asked = true;
-                *curve
-            }
-            Some((_, _, asked)) if *asked => {
-                *asked = false; // spared once: replaced at the next miss
-                compute()
-            }
-            entry => {
-                let curve = compute();
-                *entry = Some((key, curve, false));
-                curve
+                return *curve;
             }
         }
+        let curve = compute();
+        match ways
+            .iter_mut()
+            .find(|entry| !matches!(entry, Some((_, _, true))))
+        {
+            Some(entry) => *entry = Some((key, curve, false)),
+            None => ways.iter_mut().flatten().for_each(|e| e.2 = false),
+        }
+        curve
     })
 }
 
