@@ -316,3 +316,50 @@ fn a_target_whose_every_poi_is_a_dead_end_is_named_and_why() {
         other => panic!("{other}"),
     }
 }
+
+/// Every path's states as bits, `None` for no path.
+fn bits(outcomes: &[Vec<PlannerOutcome>]) -> Vec<Option<Vec<[u64; 3]>>> {
+    outcomes
+        .iter()
+        .flatten()
+        .map(|o| {
+            o.exact_path().map(|p| {
+                p.states
+                    .iter()
+                    .map(|s| [s.x.to_bits(), s.y.to_bits(), s.yaw.to_bits()])
+                    .collect()
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn rows_searched_side_by_side_equal_rows_searched_alone_bit_for_bit() {
+    for space in SPACES {
+        let poses: Vec<Pose2> = queries().iter().flat_map(|q| [q.0, q.1]).collect();
+        let rows: Vec<(Pose2, Vec<Pose2>)> = poses
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (*s, poses[i + 1..].to_vec()))
+            .filter(|(_, goals)| !goals.is_empty())
+            .collect();
+        let on_threads = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut p = pipeline(&[space]);
+            pool.install(|| p.planner.as_mut().unwrap().plan_rows(&rows).unwrap())
+        };
+        let one = on_threads(1);
+        let two = on_threads(2);
+        assert_eq!(bits(&one), bits(&two), "{space}: 1 thread vs 2");
+        let mut p = pipeline(&[space]);
+        let alone: Vec<Vec<PlannerOutcome>> = rows
+            .iter()
+            .map(|(s, g)| p.planner.as_mut().unwrap().plan_many(s, g).unwrap())
+            .collect();
+        assert_eq!(bits(&one), bits(&alone), "{space}: rows vs one by one");
+        assert!(bits(&one).iter().filter(|b| b.is_some()).count() >= 20);
+    }
+}

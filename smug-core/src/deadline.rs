@@ -44,6 +44,23 @@ pub fn set(seconds: Option<f64>) -> DeadlineGuard {
     }
 }
 
+/// This thread's deadline, for threads working on its behalf ([`adopt`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Carried(Option<Limits>);
+
+/// This thread's deadline as it stands, to hand to worker threads.
+pub fn carry() -> Carried {
+    Carried(LIMITS.with(Cell::get))
+}
+
+/// Sets this (worker) thread's deadline to `carried` until the guard is dropped.
+pub fn adopt(carried: Carried) -> DeadlineGuard {
+    DeadlineGuard {
+        previous: LIMITS.with(|d| d.replace(carried.0)),
+        previously_reached: REACHED.with(|r| r.replace(false)),
+    }
+}
+
 /// Seconds between the deadline and the hard stop for a deadline of `seconds`.
 pub fn grace(seconds: f64) -> f64 {
     (0.25 * seconds).max(1.0)

@@ -328,35 +328,56 @@ impl PathOracle {
     /// the planner's `plan_many`, and caches them (served by [`path`](Self::path) and
     /// [`cost`](Self::cost) afterwards, as cache hits).
     pub fn plan_from(&mut self, i: usize, js: &[usize]) -> Result<()> {
-        let mut wanted: Vec<usize> = Vec::new();
-        for &j in js {
-            if j != i
-                && !self.cache.contains_key(&(i, j))
-                && !wanted.contains(&j)
-                && !self.take_known(i, j)
-            {
-                wanted.push(j);
+        self.plan_rows(&[(i, js.to_vec())])
+    }
+
+    /// [`plan_from`](Self::plan_from) for every row `(i, js)`, with one call to the
+    /// planner's `plan_rows` (which may search the rows side by side).
+    pub fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+        let mut asked: Vec<(usize, Vec<usize>)> = Vec::new();
+        for (i, js) in rows {
+            let mut wanted: Vec<usize> = Vec::new();
+            for &j in js {
+                let earlier = asked.iter().any(|(a, w)| {
+                    (*a == *i && w.contains(&j)) || (self.symmetric && *a == j && w.contains(i))
+                });
+                if j != *i
+                    && !earlier
+                    && !self.cache.contains_key(&(*i, j))
+                    && !wanted.contains(&j)
+                    && !self.take_known(*i, j)
+                {
+                    wanted.push(j);
+                }
+            }
+            if !wanted.is_empty() {
+                asked.push((*i, wanted));
             }
         }
-        if wanted.is_empty() {
+        if asked.is_empty() {
             return Ok(());
         }
         refuse_after_deadline()?;
-        let goals: Vec<Pose2> = wanted.iter().map(|&j| self.poses[j]).collect();
-        let outcomes = self.planner.plan_many(&self.poses[i], &goals)?;
-        self.stats.paths_planned += wanted.len() as u64;
-        self.report_progress();
-        for (j, outcome) in wanted.into_iter().zip(outcomes) {
-            if self.cache.contains_key(&(i, j)) {
-                continue;
+        let queries: Vec<(Pose2, Vec<Pose2>)> = asked
+            .iter()
+            .map(|(i, js)| (self.poses[*i], js.iter().map(|&j| self.poses[j]).collect()))
+            .collect();
+        let answers = self.planner.plan_rows(&queries)?;
+        for ((i, wanted), outcomes) in asked.into_iter().zip(answers) {
+            self.stats.paths_planned += wanted.len() as u64;
+            for (j, outcome) in wanted.into_iter().zip(outcomes) {
+                if self.cache.contains_key(&(i, j)) {
+                    continue;
+                }
+                let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
+                let planned = Arc::new(PlannedPath { outcome, cost });
+                if self.symmetric {
+                    self.cache.insert((j, i), Arc::new(planned.reversed()));
+                }
+                self.cache.insert((i, j), planned);
             }
-            let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
-            let planned = Arc::new(PlannedPath { outcome, cost });
-            if self.symmetric {
-                self.cache.insert((j, i), Arc::new(planned.reversed()));
-            }
-            self.cache.insert((i, j), planned);
         }
+        self.report_progress();
         Ok(())
     }
 

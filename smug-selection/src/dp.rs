@@ -32,9 +32,9 @@ impl PoiSelector for DpSelector {
             layers.extend(problem.groups.iter().cloned());
             layers.push(vec![problem.end]);
             for pair in layers.windows(2) {
-                for &p in &pair[0] {
-                    oracle.plan_from(p, &pair[1])?;
-                }
+                let rows: Vec<(usize, Vec<usize>)> =
+                    pair[0].iter().map(|&p| (p, pair[1].clone())).collect();
+                oracle.plan_rows(&rows)?;
             }
         }
         let (chosen, cost) = problem.solve_layers(|i, j| oracle.cost(i, j))?;

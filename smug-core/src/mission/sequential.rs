@@ -90,11 +90,15 @@ pub(super) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<Co
     let n = nodes.len();
     let mut costs = vec![0.0; n * n];
     if oracle.answers_many() {
-        // One call per row (the rest of the row for a symmetric oracle).
-        for i in 0..n {
-            let from = if oracle.is_symmetric() { i + 1 } else { 0 };
-            oracle.plan_from(nodes[i], &nodes[from..])?;
-        }
+        // One search per row (the rest of the row for a symmetric oracle), side by
+        // side where the planner can.
+        let rows: Vec<(usize, Vec<usize>)> = (0..n)
+            .map(|i| {
+                let from = if oracle.is_symmetric() { i + 1 } else { 0 };
+                (nodes[i], nodes[from..].to_vec())
+            })
+            .collect();
+        oracle.plan_rows(&rows)?;
     }
     for i in 0..n {
         for j in i + 1..n {

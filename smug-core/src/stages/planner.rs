@@ -187,6 +187,16 @@ pub trait PointToPointPlanner: Send + Sync {
         goals.iter().map(|goal| self.plan(start, goal)).collect()
     }
 
+    /// Plans every row `(start, goals)` as [`plan_many`](Self::plan_many) would, the
+    /// answers in the rows' order. The default plans the rows one after another; a
+    /// planner whose searches can run side by side (on threads) overrides it, with
+    /// answers that must not depend on how many run at once.
+    fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
+        rows.iter()
+            .map(|(start, goals)| self.plan_many(start, goals))
+            .collect()
+    }
+
     /// True when [`plan_many`](Self::plan_many) is cheaper than one query per goal:
     /// the path oracle then plans a cost-matrix row or a DP layer in one call
     /// (default false: pairs are planned one by one, in the order they are asked).

@@ -3,16 +3,13 @@
 //! lattice, and the heuristic (the objective's bound and the obstacle-aware distances
 //! of a goal set).
 
+use super::heuristic;
 use super::primitives::{Layout, StateId};
-use super::search::{Goal, START};
-use super::{heuristic, LatticePlanner};
+use super::search::{Goal, Worker, START};
 use smug_core::Pose2;
 use std::sync::Arc;
 
-/// How many obstacle-aware heuristics of goal sets are kept.
-const HEURISTICS_KEPT: usize = 32;
-
-impl LatticePlanner {
+impl Worker<'_> {
     /// Whether the shot from `from` (at `pose`) to `target` is valid: cached for lattice
     /// poses (the same goals come back in a mission's later searches).
     pub(super) fn shot_valid(&mut self, from: u32, pose: &Pose2, target: &Pose2) -> bool {
@@ -21,14 +18,14 @@ impl LatticePlanner {
             [target.x.to_bits(), target.y.to_bits(), target.yaw.to_bits()],
         );
         if from != START {
-            if let Some(&valid) = self.caches.shots.get(&key) {
+            if let Some(valid) = self.sh.caches.shot(&key) {
                 return valid;
             }
         }
-        self.counts.shot_checks += 1;
-        let valid = self.motions.is_valid_motion(pose, target);
+        self.me.counts.shot_checks += 1;
+        let valid = self.sh.motions.is_valid_motion(pose, target);
         if from != START {
-            self.caches.shots.insert(key, valid);
+            self.sh.caches.set_shot(key, valid);
         }
         valid
     }
@@ -36,7 +33,7 @@ impl LatticePlanner {
     /// The objective's bound as its contract gives it without solving for a curve:
     /// `w_t·‖Δxy‖ + w_r·d(yaw)`.
     pub(super) fn cheap_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
-        let (w_t, w_r) = self.objective.bound_weights();
+        let (w_t, w_r) = self.sh.objective.bound_weights();
         w_t * a.xy_distance(b) + w_r * smug_core::pose::angle_distance(a.yaw, b.yaw)
     }
 
@@ -47,7 +44,7 @@ impl LatticePlanner {
     pub(super) fn heuristic(&self, id: u32, goals: &[Goal], h2d: Option<&Vec<f32>>) -> f64 {
         let mut h = 0.0;
         if let Some(d) = h2d {
-            h = d[id as usize / self.lattice.headings] as f64;
+            h = d[id as usize / self.sh.lattice.headings] as f64;
             if h.is_infinite() {
                 return h;
             }
@@ -55,7 +52,7 @@ impl LatticePlanner {
             h *= 1.0 - 1e-6;
         }
         if let [goal] = goals {
-            h = h.max(self.cheap_bound(&self.lattice.pose(id), &goal.pose));
+            h = h.max(self.cheap_bound(&self.sh.lattice.pose(id), &goal.pose));
         }
         h
     }
@@ -63,56 +60,51 @@ impl LatticePlanner {
     /// The lattice poses the start joins with the model's curves (one gear, no loops),
     /// valid, with their costs.
     pub(super) fn start_successors(&mut self, start: &Pose2) -> Vec<(u32, f64, bool)> {
-        let cell = self.lattice.cell;
+        let sh = self.sh;
+        let cell = sh.lattice.cell;
         let reach = 2.0 * std::f64::consts::SQRT_2 * cell * 1.5;
-        let space = self.space.clone();
         let layout = Layout {
-            space: space.as_ref(),
-            radius: self.radius,
-            reverse: space.has_reverse_gear(),
+            space: sh.space.as_ref(),
+            radius: sh.radius,
+            reverse: sh.space.has_reverse_gear(),
         };
-        let h = self.lattice.headings as i64;
-        let k0 = self.lattice.heading_bin(start.yaw) as i64;
+        let h = sh.lattice.headings as i64;
+        let k0 = sh.lattice.heading_bin(start.yaw) as i64;
         let spread =
-            (reach / (self.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
+            (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
         let mut out = Vec::new();
-        for (ix, iy) in self.lattice.points_near(start.x, start.y, reach) {
+        for (ix, iy) in sh.lattice.points_near(start.x, start.y, reach) {
             for dk in -spread..=spread {
                 let k = (k0 + dk).rem_euclid(h) as usize;
-                let id = self.lattice.id(ix, iy, k);
-                let to = self.lattice.pose(id);
+                let id = sh.lattice.id(ix, iy, k);
+                let to = sh.lattice.pose(id);
                 let direct = start.xy_distance(&to);
                 if direct < 1e-9 && dk == 0 {
                     continue;
                 }
-                let extent = self.space.motion_extent(start, &to);
-                if extent.length > 1.3 * direct + cell
-                    || extent.turning > self.space_turn(start, &to) + 0.6
-                {
+                let extent = sh.space.motion_extent(start, &to);
+                let turn = smug_core::pose::angle_distance(start.yaw, to.yaw);
+                if extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6 {
                     continue;
                 }
-                let reverse = self.space.is_reversing(start, &to, 0.5);
+                let reverse = sh.space.is_reversing(start, &to, 0.5);
                 if !layout.one_gear(start, &to, reverse) || !self.state_valid(id) {
                     continue;
                 }
-                self.counts.edge_checks += 1;
-                if self.motions.is_valid_motion(start, &to) {
-                    out.push((id, self.objective.motion_cost(start, &to), reverse));
+                self.me.counts.edge_checks += 1;
+                if sh.motions.is_valid_motion(start, &to) {
+                    out.push((id, sh.objective.motion_cost(start, &to), reverse));
                 }
             }
         }
         out
     }
 
-    pub(super) fn space_turn(&self, a: &Pose2, b: &Pose2) -> f64 {
-        smug_core::pose::angle_distance(a.yaw, b.yaw)
-    }
-
     /// The objective's cost of the motion between two lattice poses (never 0: 0 marks
     /// an unknown edge).
     pub(super) fn edge_cost(&self, from: StateId, to: StateId) -> f32 {
-        let (a, b) = (self.lattice.pose(from), self.lattice.pose(to));
-        (self.objective.motion_cost(&a, &b) as f32).max(f32::MIN_POSITIVE)
+        let (a, b) = (self.sh.lattice.pose(from), self.sh.lattice.pose(to));
+        (self.sh.objective.motion_cost(&a, &b) as f32).max(f32::MIN_POSITIVE)
     }
 
     /// Whether the motion between two lattice poses is valid (its end state cached).
@@ -120,26 +112,26 @@ impl LatticePlanner {
         if !self.state_valid(to) {
             return false;
         }
-        self.counts.edge_checks += 1;
-        let (a, b) = (self.lattice.pose(from), self.lattice.pose(to));
-        self.motions.is_valid_motion(&a, &b)
+        self.me.counts.edge_checks += 1;
+        let (a, b) = (self.sh.lattice.pose(from), self.sh.lattice.pose(to));
+        self.sh.motions.is_valid_motion(&a, &b)
     }
 
     /// Whether a lattice pose is valid (cached).
     pub(super) fn state_valid(&mut self, id: StateId) -> bool {
-        let i = id as usize;
-        if self.caches.state[i] == 0 {
-            self.counts.state_checks += 1;
-            let valid = self.states.is_valid(&self.lattice.pose(id));
-            self.caches.state[i] = if valid { 1 } else { 2 };
+        if let Some(valid) = self.sh.caches.state(id) {
+            return valid;
         }
-        self.caches.state[i] == 1
+        self.me.counts.state_checks += 1;
+        let valid = self.sh.states.is_valid(&self.sh.lattice.pose(id));
+        self.sh.caches.set_state(id, valid);
+        valid
     }
 
     /// Whether some heading is valid at a lattice point (the 2D relaxation's nodes).
     pub(super) fn point_open(&mut self, ix: usize, iy: usize) -> bool {
-        (0..self.lattice.headings).any(|k| {
-            let id = self.lattice.id(ix, iy, k);
+        (0..self.sh.lattice.headings).any(|k| {
+            let id = self.sh.lattice.id(ix, iy, k);
             self.state_valid(id)
         })
     }
@@ -150,36 +142,31 @@ impl LatticePlanner {
             .iter()
             .flat_map(|g| [g.pose.x.to_bits(), g.pose.y.to_bits()])
             .collect();
-        if let Some(pos) = self.caches.heuristics.iter().position(|(k, _)| *k == key) {
-            let hit = self.caches.heuristics.remove(pos);
-            let values = hit.1.clone();
-            self.caches.heuristics.push(hit);
+        if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
         }
-        let (w_t, _) = self.objective.bound_weights();
+        let sh = self.sh;
+        let (w_t, _) = sh.objective.bound_weights();
         let mut seeds = Vec::new();
         for goal in goals {
-            for (ix, iy) in self
+            for (ix, iy) in sh
                 .lattice
-                .points_near(goal.pose.x, goal.pose.y, self.shot_radius)
+                .points_near(goal.pose.x, goal.pose.y, sh.shot_radius)
             {
-                let [x, y] = self.lattice.position(ix, iy);
+                let [x, y] = sh.lattice.position(ix, iy);
                 seeds.push(((ix, iy), w_t * (x - goal.pose.x).hypot(y - goal.pose.y)));
             }
         }
-        let weighted: Vec<(i32, i32, f64)> = self
+        let weighted: Vec<(i32, i32, f64)> = sh
             .displacements
             .iter()
             .map(|&(di, dj, len)| (di, dj, w_t * len))
             .collect();
-        let (nx, ny) = (self.lattice.nx, self.lattice.ny);
+        let (nx, ny) = (sh.lattice.nx, sh.lattice.ny);
         let values = Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
             self.point_open(ix, iy)
         }));
-        if self.caches.heuristics.len() >= HEURISTICS_KEPT {
-            self.caches.heuristics.remove(0);
-        }
-        self.caches.heuristics.push((key, values.clone()));
+        sh.caches.keep_heuristic(key, values.clone());
         values
     }
 }

@@ -21,6 +21,7 @@
 //! primitive it tried costs and whether it is valid) is kept for the mission's later
 //! queries: after the first few, searches are pure graph searches.
 
+mod caches;
 mod edges;
 mod heuristic;
 mod primitives;
@@ -30,13 +31,14 @@ mod tests;
 
 pub use primitives::{Lattice, Primitive, Primitives, StateId};
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use smug_core::{
     BuildContext, Error, MotionValidator, NoPathReason, Objective, PlannerOutcome, PlannerStats,
     PointToPointPlanner, Pose2, Result, StateSpace, StateValidityChecker, TimeBreakdown,
 };
-use std::collections::{BTreeMap, HashMap};
-use std::sync::Arc;
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
 
 /// Parameters of the `lattice` planner.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -85,20 +87,6 @@ impl Default for LatticeParams {
     }
 }
 
-/// What the planner has learnt of the lattice so far, kept across queries.
-pub(crate) struct Caches {
-    /// Per lattice pose: 0 unknown, 1 valid, 2 invalid.
-    state: Vec<u8>,
-    /// Per lattice pose and primitive (stride: the most primitives of a heading): 0.0
-    /// unknown, infinity invalid, else the objective's cost of the motion, negative
-    /// while its validity is not known.
-    edge: Vec<f32>,
-    /// Obstacle-aware heuristics of recent goal sets: (key, distances per point).
-    heuristics: Vec<(Vec<u64>, Arc<Vec<f32>>)>,
-    /// Shots checked from lattice poses: (pose, goal bits) → valid.
-    shots: HashMap<(StateId, [u64; 3]), bool>,
-}
-
 /// Counters of the planner's work.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Counts {
@@ -111,8 +99,22 @@ pub(crate) struct Counts {
     breakdown: TimeBreakdown,
 }
 
-/// The lattice planner.
-pub struct LatticePlanner {
+impl Counts {
+    /// Adds `other`'s counts to these.
+    fn add(&mut self, other: &Counts) {
+        self.queries += other.queries;
+        self.searches += other.searches;
+        self.expansions += other.expansions;
+        self.state_checks += other.state_checks;
+        self.edge_checks += other.edge_checks;
+        self.shot_checks += other.shot_checks;
+        self.breakdown.astar_s += other.breakdown.astar_s;
+    }
+}
+
+/// What every search reads: the lattice, the pipeline's stages, and the caches (which
+/// searches on several threads fill together).
+pub(crate) struct Shared {
     params: LatticeParams,
     lattice: Lattice,
     primitives: Primitives,
@@ -124,11 +126,21 @@ pub struct LatticePlanner {
     motions: Arc<dyn MotionValidator>,
     radius: f64,
     shot_radius: f64,
-    caches: Caches,
-    buffers: search::Buffers,
+    caches: caches::Caches,
+}
+
+/// The lattice planner.
+pub struct LatticePlanner {
+    shared: Shared,
+    /// Buffers of idle searchers, one per thread that searched at once.
+    searchers: Mutex<Vec<search::Searcher>>,
     counts: Counts,
     last_costs: Vec<Option<f64>>,
 }
+
+/// Lattice poses beyond which rows are searched one at a time (each thread's buffers
+/// take about 24 bytes per pose).
+const MAX_PARALLEL_STATES: usize = 8_000_000;
 
 /// Lattice poses at most (memory: about 50 bytes per pose and primitive).
 const MAX_STATES: usize = 60_000_000;
@@ -197,23 +209,20 @@ impl LatticePlanner {
         let displacements = distinct_displacements(&primitives, cell);
         let n = lattice.len();
         Ok(Self {
-            caches: Caches {
-                state: vec![0; n],
-                edge: vec![0.0; n * primitives.stride],
-                heuristics: Vec::new(),
-                shots: HashMap::new(),
+            shared: Shared {
+                caches: caches::Caches::new(n, primitives.stride),
+                params,
+                lattice,
+                primitives,
+                displacements,
+                space,
+                objective,
+                states,
+                motions,
+                radius,
+                shot_radius,
             },
-            buffers: search::Buffers::new(n),
-            params,
-            lattice,
-            primitives,
-            displacements,
-            space,
-            objective,
-            states,
-            motions,
-            radius,
-            shot_radius,
+            searchers: Mutex::new(Vec::new()),
             counts: Counts::default(),
             last_costs: Vec::new(),
         })
@@ -221,12 +230,47 @@ impl LatticePlanner {
 
     /// The lattice searched.
     pub fn lattice(&self) -> &Lattice {
-        &self.lattice
+        &self.shared.lattice
     }
 
     /// The motion primitives per heading.
     pub fn primitives(&self) -> &Primitives {
-        &self.primitives
+        &self.shared.primitives
+    }
+
+    /// Searches from `start` to `goals` with an idle searcher (a new one when none
+    /// is idle), whose counts are then added to the planner's.
+    fn search_with_pool(
+        shared: &Shared,
+        pool: &Mutex<Vec<search::Searcher>>,
+        start: &Pose2,
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) -> (search::Answers, Counts) {
+        let idle = pool.lock().expect("searcher pool").pop();
+        let mut searcher = idle.unwrap_or_else(|| search::Searcher::new(shared.lattice.len()));
+        let answers = search::Worker {
+            sh: shared,
+            me: &mut searcher,
+        }
+        .search(start, goals, max_expansions);
+        let counts = std::mem::take(&mut searcher.counts);
+        pool.lock().expect("searcher pool").push(searcher);
+        (answers, counts)
+    }
+
+    /// One search on this thread; its path costs become [`Self::last_costs`].
+    fn search(
+        &mut self,
+        start: &Pose2,
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) -> Vec<PlannerOutcome> {
+        let (answers, counts) =
+            Self::search_with_pool(&self.shared, &self.searchers, start, goals, max_expansions);
+        self.counts.add(&counts);
+        self.last_costs = answers.costs;
+        answers.outcomes
     }
 
     /// The search's costs of the last query's paths before shortcutting, one per goal
@@ -322,7 +366,34 @@ impl PointToPointPlanner for LatticePlanner {
 
     fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
         self.counts.queries += goals.len() as u64;
-        Ok(self.search(start, goals, self.params.max_expansions))
+        Ok(self.search(start, goals, self.shared.params.max_expansions))
+    }
+
+    /// The rows' searches run side by side on rayon's threads, sharing the caches;
+    /// each search's answer is the same as alone (see [`caches`]).
+    fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
+        if rows.len() < 2 || self.shared.lattice.len() > MAX_PARALLEL_STATES {
+            return rows.iter().map(|(s, g)| self.plan_many(s, g)).collect();
+        }
+        let (shared, pool) = (&self.shared, &self.searchers);
+        let max = shared.params.max_expansions;
+        let deadline = smug_core::deadline::carry();
+        let answered: Vec<(search::Answers, Counts)> = rows
+            .par_iter()
+            .with_max_len(1)
+            .map(|(start, goals)| {
+                let _deadline = smug_core::deadline::adopt(deadline);
+                Self::search_with_pool(shared, pool, start, goals, max)
+            })
+            .collect();
+        let mut outcomes = Vec::with_capacity(rows.len());
+        for ((answers, counts), (_, goals)) in answered.into_iter().zip(rows) {
+            self.counts.add(&counts);
+            self.counts.queries += goals.len() as u64;
+            self.last_costs = answers.costs;
+            outcomes.push(answers.outcomes);
+        }
+        Ok(outcomes)
     }
 
     fn answers_many(&self) -> bool {
@@ -345,14 +416,17 @@ impl PointToPointPlanner for LatticePlanner {
 
     fn stats(&self) -> PlannerStats {
         let c = &self.counts;
-        let known = self.caches.state.iter().filter(|&&s| s != 0).count() as u64;
+        let known = self.shared.caches.states_known();
         PlannerStats {
             queries: c.queries,
             vertices: known,
             edges: c.edge_checks,
             breakdown: c.breakdown,
             counters: BTreeMap::from([
-                ("lattice_poses".to_string(), self.lattice.len() as u64),
+                (
+                    "lattice_poses".to_string(),
+                    self.shared.lattice.len() as u64,
+                ),
                 ("searches".to_string(), c.searches),
                 ("expansions".to_string(), c.expansions),
                 ("state_checks".to_string(), c.state_checks),
@@ -360,7 +434,8 @@ impl PointToPointPlanner for LatticePlanner {
                 ("shot_checks".to_string(), c.shot_checks),
                 (
                     "primitives".to_string(),
-                    self.primitives
+                    self.shared
+                        .primitives
                         .by_heading
                         .iter()
                         .map(Vec::len)

@@ -2,7 +2,7 @@
 //! start joined to the lattice by the model's curves, goals reached by lazily checked
 //! analytic shots, caches of state and primitive validity kept across queries.
 
-use super::LatticePlanner;
+use super::{Counts, Shared};
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -12,36 +12,78 @@ use std::time::Instant;
 /// The start's node id (lattice poses are `0..len`).
 pub(super) const START: u32 = u32::MAX;
 
+/// One lattice pose's entry in a search: its cost, parent and gear once closed (or
+/// the best way queued by a verified motion), stamped with the search's generation.
+#[derive(Clone, Copy, Debug, Default)]
+struct Node {
+    g: f64,
+    parent: u32,
+    /// The primitive (of the parent's heading) of the best verified way queued.
+    prim: u16,
+    /// Generation in which `g` was last set.
+    stamp: u32,
+    /// Generation in which the pose was closed.
+    closed: u32,
+    /// Gear of the motion that reached the pose: 0 forward, 1 reverse.
+    gear: u8,
+}
+
 /// Per-search arrays over the lattice, reused across searches (generation stamps
-/// instead of clearing).
+/// instead of clearing); one entry per pose, so a pose's data is one cache line.
 pub(crate) struct Buffers {
     generation: u32,
-    stamp: Vec<u32>,
-    closed: Vec<u32>,
-    g: Vec<f64>,
-    parent: Vec<u32>,
-    /// Gear of the motion that reached the pose: 0 forward, 1 reverse.
-    gear: Vec<u8>,
+    nodes: Vec<Node>,
 }
 
 impl Buffers {
     pub(crate) fn new(n: usize) -> Self {
         Self {
             generation: 0,
-            stamp: vec![0; n],
-            closed: vec![0; n],
-            g: vec![0.0; n],
-            parent: vec![0; n],
-            gear: vec![0; n],
+            nodes: vec![Node::default(); n],
         }
     }
 
     fn next_generation(&mut self) {
         self.generation = self.generation.wrapping_add(1);
         if self.generation == 0 {
-            self.stamp.fill(0);
-            self.closed.fill(0);
+            self.nodes.fill(Node::default());
             self.generation = 1;
+        }
+    }
+
+    fn is_closed(&self, i: usize) -> bool {
+        self.nodes[i].closed == self.generation
+    }
+
+    /// The cost of a verified way to pose `i` known in this search, if any.
+    fn known_g(&self, i: usize) -> Option<f64> {
+        let node = &self.nodes[i];
+        (node.stamp == self.generation).then_some(node.g)
+    }
+
+    /// True when a verified way to pose `i` is queued or closed that pops before a
+    /// way from `parent` by `prim` and `reverse` at cost `g` would: by cost, then as
+    /// [`Item::rank`] breaks ties (so that what is queued never changes what pops).
+    fn beaten(&self, i: usize, g: f64, parent: u32, prim: u16, reverse: bool) -> bool {
+        let node = &self.nodes[i];
+        node.stamp == self.generation
+            && (g > node.g
+                || (g == node.g
+                    && (parent, prim, reverse) > (node.parent, node.prim, node.gear == 1)))
+    }
+}
+
+/// What one thread needs to search: its buffers and counters.
+pub(crate) struct Searcher {
+    buffers: Buffers,
+    pub(super) counts: Counts,
+}
+
+impl Searcher {
+    pub(crate) fn new(n: usize) -> Self {
+        Self {
+            buffers: Buffers::new(n),
+            counts: Counts::default(),
         }
     }
 }
@@ -85,10 +127,33 @@ impl PartialOrd for Entry {
     }
 }
 impl Ord for Entry {
-    // A min-heap on the key (ties as the heap leaves them: the same pushes and pops
-    // give the same order, so runs are reproducible).
+    // A min-heap on the key, ties broken by the item: a total order, so the order of
+    // pops does not depend on which other entries were pushed (whether a motion's
+    // validity was already known, learnt by a search on another thread, changes what
+    // is pushed, never what is popped first).
     fn cmp(&self, other: &Self) -> Ordering {
-        other.key.total_cmp(&self.key)
+        other
+            .key
+            .total_cmp(&self.key)
+            .then_with(|| other.item.rank().cmp(&self.item.rank()))
+    }
+}
+
+impl Item {
+    /// The tie-break of equal keys: shots before nodes (a goal settled ends a search
+    /// sooner), then by ids, cost and motion.
+    fn rank(&self) -> (u8, u32, u32, u64, u16, bool) {
+        match *self {
+            Item::Node {
+                id,
+                parent,
+                g,
+                prim,
+                reverse,
+                ..
+            } => (1, id, parent, g.to_bits(), prim, reverse),
+            Item::Shot { from, goal, costed } => (0, goal, from, 0, 0, costed),
+        }
     }
 }
 
@@ -121,7 +186,21 @@ impl Run {
     }
 }
 
-impl LatticePlanner {
+/// A search's view: the planner's shared, read-only data and caches, and this
+/// thread's buffers and counters.
+pub(super) struct Worker<'a> {
+    pub(super) sh: &'a Shared,
+    pub(super) me: &'a mut Searcher,
+}
+
+/// A search's answers: one outcome per goal, and the search's cost of each path
+/// before shortcutting.
+pub(super) struct Answers {
+    pub(super) outcomes: Vec<PlannerOutcome>,
+    pub(super) costs: Vec<Option<f64>>,
+}
+
+impl Worker<'_> {
     /// Plans from `start` to every goal with one search of at most `max_expansions`
     /// expansions (0: as many as the lattice has).
     pub(super) fn search(
@@ -129,21 +208,24 @@ impl LatticePlanner {
         start: &Pose2,
         goals: &[Pose2],
         max_expansions: u64,
-    ) -> Vec<PlannerOutcome> {
+    ) -> Answers {
         let started = Instant::now();
-        self.counts.searches += 1;
-        self.last_costs = vec![None; goals.len()];
-        if !self.states.is_valid(start) {
-            return vec![PlannerOutcome::InvalidStart; goals.len()];
+        self.me.counts.searches += 1;
+        let mut costs = vec![None; goals.len()];
+        if !self.sh.states.is_valid(start) {
+            return Answers {
+                outcomes: vec![PlannerOutcome::InvalidStart; goals.len()],
+                costs,
+            };
         }
         let mut outcomes: Vec<Option<PlannerOutcome>> = vec![None; goals.len()];
         let mut asked = Vec::new();
         let mut index = Vec::new();
         for (k, goal) in goals.iter().enumerate() {
-            if !self.states.is_valid(goal) {
+            if !self.sh.states.is_valid(goal) {
                 outcomes[k] = Some(PlannerOutcome::InvalidGoal);
             } else if goal.xy_distance(start) < 1e-12 && goal.yaw == start.yaw {
-                self.last_costs[k] = Some(0.0);
+                costs[k] = Some(0.0);
                 outcomes[k] = Some(PlannerOutcome::Exact(Path {
                     states: vec![*start],
                     cost: 0.0,
@@ -159,40 +241,44 @@ impl LatticePlanner {
         if !asked.is_empty() {
             let (reached, end) = self.run(start, asked, max_expansions);
             for (goal, k) in reached.into_iter().zip(index) {
-                outcomes[k] = Some(self.outcome(start, &goal, &end, k));
+                costs[k] = goal.reached.map(|(cost, _)| cost);
+                outcomes[k] = Some(self.outcome(start, &goal, &end));
             }
         }
-        self.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
-        outcomes
-            .into_iter()
-            .map(|o| o.expect("every goal answered"))
-            .collect()
+        self.me.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
+        Answers {
+            outcomes: outcomes
+                .into_iter()
+                .map(|o| o.expect("every goal answered"))
+                .collect(),
+            costs,
+        }
     }
 
     /// The outcome for one goal once the search ended.
-    fn outcome(&mut self, start: &Pose2, goal: &Goal, end: &End, k: usize) -> PlannerOutcome {
+    fn outcome(&self, start: &Pose2, goal: &Goal, end: &End) -> PlannerOutcome {
         let Some((cost, from)) = goal.reached else {
             return PlannerOutcome::NoPath(match end {
                 End::Budget(b) => NoPathReason::BudgetSpent(*b),
                 _ => NoPathReason::Proved(Proof::Exhausted),
             });
         };
-        self.last_costs[k] = Some(cost);
+        let _ = cost;
         let mut states = vec![goal.pose];
         let mut at = from;
         while at != START {
-            states.push(self.lattice.pose(at));
-            at = self.buffers.parent[at as usize];
+            states.push(self.sh.lattice.pose(at));
+            at = self.me.buffers.nodes[at as usize].parent;
         }
         states.push(*start);
         states.reverse();
-        let path = Path::new(states, self.objective.as_ref());
-        if !self.params.shortcut || path.states.len() <= 2 {
+        let path = Path::new(states, self.sh.objective.as_ref());
+        if !self.sh.params.shortcut || path.states.len() <= 2 {
             return PlannerOutcome::Exact(path);
         }
         let shorter = Path::new(
-            crate::shortcut::shortcut_galloping(&path.states, self.motions.as_ref()),
-            self.objective.as_ref(),
+            crate::shortcut::shortcut_galloping(&path.states, self.sh.motions.as_ref()),
+            self.sh.objective.as_ref(),
         );
         PlannerOutcome::Exact(if shorter.cost < path.cost {
             shorter
@@ -204,7 +290,7 @@ impl LatticePlanner {
     /// The A* loop: settles the goals it reaches, ends when all are, when nothing is
     /// left to expand, or when a budget runs out.
     fn run(&mut self, start: &Pose2, goals: Vec<Goal>, max_expansions: u64) -> (Vec<Goal>, End) {
-        self.buffers.next_generation();
+        self.me.buffers.next_generation();
         let open_goals = goals.len();
         let mut run = Run {
             heap: BinaryHeap::new(),
@@ -212,7 +298,7 @@ impl LatticePlanner {
             open_goals,
             h2d: None,
         };
-        if self.params.obstacle_heuristic {
+        if self.sh.params.obstacle_heuristic {
             run.h2d = Some(self.goal_heuristic(&run.goals));
         }
         run.push(
@@ -237,7 +323,7 @@ impl LatticePlanner {
                 if expansions >= max {
                     return (run.goals, End::Budget(Budget::Expansions));
                 }
-                if started.elapsed().as_secs_f64() > self.params.time_limit {
+                if started.elapsed().as_secs_f64() > self.sh.params.time_limit {
                     return (run.goals, End::Budget(Budget::Time));
                 }
                 if smug_core::deadline::passed() {
@@ -258,7 +344,7 @@ impl LatticePlanner {
                     }
                     if self.close(id, parent, g, reverse) {
                         expansions += 1;
-                        self.counts.expansions += 1;
+                        self.me.counts.expansions += 1;
                         self.expand(start, id, g, &mut run);
                     }
                 }
@@ -279,33 +365,37 @@ impl LatticePlanner {
         if id == START {
             return true;
         }
-        let b = &mut self.buffers;
+        let b = &mut self.me.buffers;
         let i = id as usize;
-        if b.closed[i] == b.generation || (b.stamp[i] == b.generation && g > b.g[i]) {
+        if b.is_closed(i) || b.known_g(i).is_some_and(|known| g > known) {
             return false;
         }
-        b.closed[i] = b.generation;
-        b.stamp[i] = b.generation;
-        b.g[i] = g;
-        b.parent[i] = parent;
-        b.gear[i] = reverse as u8;
+        let generation = b.generation;
+        b.nodes[i] = Node {
+            g,
+            parent,
+            prim: 0,
+            stamp: generation,
+            closed: generation,
+            gear: reverse as u8,
+        };
         true
     }
 
     /// Checks the primitive that reached `id` from `parent` (validity cached; its cost
     /// was known when it was queued): false when it is invalid or `id` is closed.
     fn verify(&mut self, id: u32, parent: u32, prim: u16) -> bool {
-        let b = &self.buffers;
-        if b.closed[id as usize] == b.generation {
+        if self.me.buffers.is_closed(id as usize) {
             return false;
         }
-        let slot = parent as usize * self.primitives.stride + prim as usize;
-        let cached = self.caches.edge[slot];
+        let slot = parent as usize * self.sh.primitives.stride + prim as usize;
+        let mut cached = self.sh.caches.edge(slot);
         if cached < 0.0 {
             let valid = self.edge_valid(parent, id);
-            self.caches.edge[slot] = if valid { -cached } else { f32::INFINITY };
+            cached = if valid { -cached } else { f32::INFINITY };
+            self.sh.caches.set_edge(slot, cached);
         }
-        self.caches.edge[slot].is_finite()
+        cached.is_finite()
     }
 
     /// The search's cost of a motion of objective cost `cost` from `parent`: reverse
@@ -313,10 +403,10 @@ impl LatticePlanner {
     fn step_cost(&self, parent: u32, cost: f64, reverse: bool) -> f64 {
         let mut step = cost;
         if reverse {
-            step *= self.params.reverse_penalty;
+            step *= self.sh.params.reverse_penalty;
         }
-        if parent != START && self.buffers.gear[parent as usize] != reverse as u8 {
-            step += self.params.gear_change_cost;
+        if parent != START && self.me.buffers.nodes[parent as usize].gear != reverse as u8 {
+            step += self.sh.params.gear_change_cost;
         }
         step
     }
@@ -325,7 +415,7 @@ impl LatticePlanner {
         if id == START {
             *start
         } else {
-            self.lattice.pose(id)
+            self.sh.lattice.pose(id)
         }
     }
 
@@ -334,7 +424,7 @@ impl LatticePlanner {
         let pose = self.pose_of(start, id);
         for j in 0..run.goals.len() {
             let goal = &run.goals[j];
-            if goal.reached.is_none() && pose.xy_distance(&goal.pose) <= self.shot_radius {
+            if goal.reached.is_none() && pose.xy_distance(&goal.pose) <= self.sh.shot_radius {
                 let bound = self.cheap_bound(&pose, &goal.pose);
                 if bound.is_finite() {
                     let item = Item::Shot {
@@ -353,22 +443,21 @@ impl LatticePlanner {
             }
             return;
         }
-        let (ix, iy, k) = self.lattice.decode(id);
-        let stride = self.primitives.stride;
-        for p in 0..self.primitives.by_heading[k].len() {
-            let prim = self.primitives.by_heading[k][p];
-            let Some((jx, jy)) = self.lattice.offset(ix, iy, prim.di, prim.dj) else {
+        let sh = self.sh;
+        let (ix, iy, k) = sh.lattice.decode(id);
+        let stride = sh.primitives.stride;
+        for (p, prim) in sh.primitives.by_heading[k].iter().enumerate() {
+            let Some((jx, jy)) = sh.lattice.offset(ix, iy, prim.di, prim.dj) else {
                 continue;
             };
-            let to = self.lattice.id(jx, jy, prim.to_heading);
+            let to = sh.lattice.id(jx, jy, prim.to_heading);
             let slot = id as usize * stride + p;
-            let mut cached = self.caches.edge[slot];
+            let mut cached = sh.caches.edge(slot);
             if cached.is_infinite() {
                 continue;
             }
             if cached == 0.0 {
-                cached = -self.edge_cost(id, to);
-                self.caches.edge[slot] = cached;
+                cached = sh.caches.set_edge_cost(slot, -self.edge_cost(id, to));
             }
             // Negative: the cost is known, the validity not yet (checked when popped).
             let (cost, verified) = (cached.abs() as f64, cached > 0.0);
@@ -391,9 +480,9 @@ impl LatticePlanner {
         reverse: bool,
         verified: bool,
     ) {
-        let b = &self.buffers;
+        let b = &self.me.buffers;
         let i = to as usize;
-        if b.closed[i] == b.generation || (b.stamp[i] == b.generation && g >= b.g[i]) {
+        if b.is_closed(i) || b.beaten(i, g, parent, prim, reverse) {
             return;
         }
         let h = self.heuristic(to, &run.goals, run.h2d.as_deref());
@@ -401,12 +490,16 @@ impl LatticePlanner {
             return; // no goal reachable from there
         }
         if verified {
-            let b = &mut self.buffers;
-            b.stamp[i] = b.generation;
-            b.g[i] = g;
+            let b = &mut self.me.buffers;
+            let node = &mut b.nodes[i];
+            node.stamp = b.generation;
+            node.g = g;
+            node.parent = parent;
+            node.prim = prim;
+            node.gear = reverse as u8;
         }
         run.push(
-            g + self.params.heuristic_weight * h,
+            g + self.sh.params.heuristic_weight * h,
             Item::Node {
                 id: to,
                 parent,
@@ -437,10 +530,10 @@ impl LatticePlanner {
         let g = if from == START {
             0.0
         } else {
-            self.buffers.g[from as usize]
+            self.me.buffers.nodes[from as usize].g
         };
         if !costed {
-            let cost = self.objective.motion_cost(&pose, &target);
+            let cost = self.sh.objective.motion_cost(&pose, &target);
             if !cost.is_finite() {
                 return;
             }
@@ -455,7 +548,7 @@ impl LatticePlanner {
             }
         }
         if self.shot_valid(from, &pose, &target) {
-            let cost = g + self.objective.motion_cost(&pose, &target);
+            let cost = g + self.sh.objective.motion_cost(&pose, &target);
             run.goals[goal].reached = Some((cost, from));
             run.open_goals -= 1;
         }
