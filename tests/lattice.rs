@@ -363,3 +363,68 @@ fn rows_searched_side_by_side_equal_rows_searched_alone_bit_for_bit() {
         assert!(bits(&one).iter().filter(|b| b.is_some()).count() >= 20);
     }
 }
+
+#[test]
+fn a_poi_in_a_closed_box_is_left_out_and_named_for_a_reversing_car_too() {
+    // Reeds–Shepp is symmetric: the start's reach decides both ways.
+    let boxed = "{ x = 13.5, y = 2.5, yaw = 0.0 }";
+    let config = CONFIG
+        .replace(
+            "mission = { start = { x = 1.5, y = 1.5 } }",
+            &format!(
+                r#"mission = {{ start = {{ x = 2.5, y = 9.5, yaw = 0.0 }}, targets = [
+    {{ id = "box", position = {{ x = 13.5, y = 2.5 }}, pois = [{boxed}, {OPEN}] }},
+    {{ id = "far", position = {{ x = 8.0, y = 9.0 }}, pois = [{{ x = 8.0, y = 9.0, yaw = 0.0 }}] }},
+] }}"#
+            ),
+        )
+        .replace("type = \"dubins\"", "type = \"reeds-shepp\"");
+    let loaded = LoadedConfig::from_text(&config, "boxed.toml", Path::new("."), &[]).unwrap();
+    let mut p = Pipeline::assemble(&loaded).unwrap();
+    let options = p.config.plan;
+    let plan = smug_core::mission::plan_mission(&mut p, options).unwrap();
+    assert_eq!(plan.dead_ends.len(), 1, "{:?}", plan.dead_ends);
+    let dead = &plan.dead_ends[0];
+    assert_eq!((dead.target.as_str(), dead.index), ("box", 0));
+    assert!(
+        dead.why.contains("cannot be reached from the start"),
+        "{}",
+        dead.why
+    );
+    let chosen = plan.pois.iter().find(|c| c.target == "box").unwrap();
+    assert_eq!(chosen.index, 1);
+}
+
+#[test]
+fn a_start_hemmed_in_joins_the_lattice_farther_out() {
+    // In a corridor a few centimetres wider than the disc, between two rows of lattice
+    // points: no lattice pose near the start is valid, the first ones out of the
+    // corridor are.
+    let config = CONFIG.replace(
+        "obstacles = [",
+        "obstacles = [
+    { min = [6.6, 5.9], max = [8.2, 6.08] },
+    { min = [6.6, 6.74], max = [8.2, 6.9] },",
+    );
+    let settings = ["space.type=reeds-shepp", "world.params.resolution=0.02"];
+    let loaded = LoadedConfig::from_text(
+        &config,
+        "hemmed.toml",
+        Path::new("."),
+        &settings.map(String::from),
+    )
+    .unwrap();
+    let mut p = Pipeline::assemble(&loaded).unwrap();
+    let start = Pose2::new(7.4, 6.40625, 0.0);
+    let goal = Pose2::new(2.5, 9.5, 0.0);
+    let checker = p.state_validity.as_ref().unwrap();
+    assert!(checker.is_valid(&start));
+    for dy in [-0.078125, 0.078125] {
+        assert!(!checker.is_valid(&Pose2::new(7.4, 6.40625 + dy, 0.0)));
+    }
+    let outcome = p.planner.as_mut().unwrap().plan(&start, &goal).unwrap();
+    let path = outcome
+        .exact_path()
+        .unwrap_or_else(|| panic!("{outcome:?}"));
+    check_path(&p, &start, &goal, &path.states, path.cost);
+}

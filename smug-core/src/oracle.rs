@@ -381,6 +381,20 @@ impl PathOracle {
         Ok(())
     }
 
+    /// Plans every pair of `pairs` not planned yet: side by side (one row each, with
+    /// [`plan_rows`](Self::plan_rows)) when the planner answers many goals per call,
+    /// else one after another as [`path`](Self::path) would.
+    pub fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+        if !self.planner.answers_many() {
+            for &(i, j) in pairs {
+                self.path(i, j)?;
+            }
+            return Ok(());
+        }
+        let rows: Vec<(usize, Vec<usize>)> = pairs.iter().map(|&(i, j)| (i, vec![j])).collect();
+        self.plan_rows(&rows)
+    }
+
     /// Plans the cached pair `i → j` again on the roadmap as it is now (grown by every
     /// query since the pair was planned) and keeps the new path when it is cheaper.
     /// True when the cost went down; an unplanned pair is planned as by

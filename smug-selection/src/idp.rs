@@ -39,13 +39,14 @@ pub(crate) fn idp(oracle: &mut PathOracle, problem: &SelectionProblem) -> Result
     let mut best: Option<Selection> = None;
     loop {
         let (chosen, _) = problem.solve_layers(|i, j| Ok(oracle.cost_or_bound(i, j)))?;
-        let mut planned_new = false;
-        for leg in problem.route(&chosen).windows(2) {
-            if !oracle.is_planned(leg[0], leg[1]) {
-                oracle.cost(leg[0], leg[1])?;
-                planned_new = true;
-            }
-        }
+        let unplanned: Vec<(usize, usize)> = problem
+            .route(&chosen)
+            .windows(2)
+            .filter(|leg| !oracle.is_planned(leg[0], leg[1]))
+            .map(|leg| (leg[0], leg[1]))
+            .collect();
+        let planned_new = !unplanned.is_empty();
+        oracle.plan_pairs(&unplanned)?;
         // Every leg is planned now: this is the route's true cost.
         let cost = problem.route_cost(&chosen, |i, j| oracle.cost(i, j))?;
         // `<=`: among equals keep the latest, the DP's final (provably optimal) choice.

@@ -58,11 +58,33 @@ impl Worker<'_> {
     }
 
     /// The lattice poses the start joins with the model's curves (one gear, no loops),
-    /// valid, with their costs.
+    /// valid, with their costs: the poses around it with headings near its own; for a
+    /// start hemmed in there (a car facing a stone, its back to another), poses of any
+    /// heading in rings twice as wide each time, up to the shot radius (the distance
+    /// at which goals are joined).
     pub(super) fn start_successors(&mut self, start: &Pose2) -> Vec<(u32, f64, bool)> {
+        let near = 2.0 * std::f64::consts::SQRT_2 * self.sh.lattice.cell * 1.5;
+        let joined = self.joins(start, near, false);
+        if !joined.is_empty() {
+            return joined;
+        }
+        let mut reach = near;
+        while reach < self.sh.shot_radius {
+            reach = (2.0 * reach).min(self.sh.shot_radius);
+            let joined = self.joins(start, reach, true);
+            if !joined.is_empty() {
+                return joined;
+            }
+        }
+        Vec::new()
+    }
+
+    /// The valid one-gear curves from `start` to lattice poses within `reach`: with
+    /// headings near the start's and nearly straight (`wide`: any heading, at most
+    /// half a turn longer than the straight line).
+    fn joins(&mut self, start: &Pose2, reach: f64, wide: bool) -> Vec<(u32, f64, bool)> {
         let sh = self.sh;
         let cell = sh.lattice.cell;
-        let reach = 2.0 * std::f64::consts::SQRT_2 * cell * 1.5;
         let layout = Layout {
             space: sh.space.as_ref(),
             radius: sh.radius,
@@ -70,11 +92,14 @@ impl Worker<'_> {
         };
         let h = sh.lattice.headings as i64;
         let k0 = sh.lattice.heading_bin(start.yaw) as i64;
-        let spread =
-            (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
+        let spread = if wide {
+            h / 2
+        } else {
+            (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1
+        };
         let mut out = Vec::new();
         for (ix, iy) in sh.lattice.points_near(start.x, start.y, reach) {
-            for dk in -spread..=spread {
+            for dk in (-spread..=spread).take(h as usize) {
                 let k = (k0 + dk).rem_euclid(h) as usize;
                 let id = sh.lattice.id(ix, iy, k);
                 let to = sh.lattice.pose(id);
@@ -84,7 +109,12 @@ impl Worker<'_> {
                 }
                 let extent = sh.space.motion_extent(start, &to);
                 let turn = smug_core::pose::angle_distance(start.yaw, to.yaw);
-                if extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6 {
+                let too_long = if wide {
+                    extent.length > direct + std::f64::consts::PI * sh.radius
+                } else {
+                    extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6
+                };
+                if too_long {
                     continue;
                 }
                 let reverse = sh.space.is_reversing(start, &to, 0.5);
