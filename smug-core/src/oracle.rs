@@ -382,10 +382,10 @@ impl PathOracle {
     }
 
     /// Plans every pair of `pairs` not planned yet: side by side (one row each, with
-    /// [`plan_rows`](Self::plan_rows)) when the planner answers many goals per call,
+    /// [`plan_rows`](Self::plan_rows)) when the planner searches rows side by side,
     /// else one after another as [`path`](Self::path) would.
     pub fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
-        if !self.planner.answers_many() {
+        if !self.planner.plans_rows_side_by_side() {
             for &(i, j) in pairs {
                 self.path(i, j)?;
             }

@@ -197,6 +197,13 @@ pub trait PointToPointPlanner: Send + Sync {
             .collect()
     }
 
+    /// True when [`plan_rows`](Self::plan_rows) searches rows side by side: the path
+    /// oracle then hands it independent pairs (a route's legs) together (default
+    /// false: they are planned one by one with [`plan`](Self::plan)).
+    fn plans_rows_side_by_side(&self) -> bool {
+        false
+    }
+
     /// True when [`plan_many`](Self::plan_many) is cheaper than one query per goal:
     /// the path oracle then plans a cost-matrix row or a DP layer in one call
     /// (default false: pairs are planned one by one, in the order they are asked).

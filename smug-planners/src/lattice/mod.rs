@@ -400,6 +400,10 @@ impl PointToPointPlanner for LatticePlanner {
         true
     }
 
+    fn plans_rows_side_by_side(&self) -> bool {
+        self.shared.lattice.len() <= MAX_PARALLEL_STATES
+    }
+
     fn proves_dead_ends(&self) -> bool {
         true
     }
