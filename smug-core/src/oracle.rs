@@ -3,10 +3,12 @@
 //! Sequencing and PoI selection only talk to the oracle. It owns the point-to-point
 //! planner, so every query of a mission shares one roadmap.
 
+use crate::deadline::Deadline;
 use crate::error::{Error, Result};
 use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
+use crate::run_context::RunContext;
 use crate::space::StateSpace;
 use crate::stages::{
     Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PointToPointPlanner,
@@ -148,6 +150,7 @@ pub struct PathOracle {
     symmetric: bool,
     stats: OracleStats,
     known: KnownAnswers,
+    run: RunContext,
 }
 
 impl PathOracle {
@@ -163,7 +166,21 @@ impl PathOracle {
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
             progress: None,
+            run: RunContext::default(),
         }
+    }
+
+    /// Runs within `run`: plans nothing more once its deadline's hard stop has passed,
+    /// builds cost matrices within its memory limit (default: a deadline that is never
+    /// armed, the default limit).
+    pub fn with_run(mut self, run: RunContext) -> Self {
+        self.run = run;
+        self
+    }
+
+    /// The run context the oracle plans within.
+    pub fn run(&self) -> &RunContext {
+        &self.run
     }
 
     /// Tells `progress` the number of paths planned after each plan.
@@ -341,7 +358,7 @@ impl PathOracle {
         if wanted.is_empty() {
             return Ok(());
         }
-        refuse_after_deadline()?;
+        refuse_after_deadline(&self.run.deadline)?;
         let goals: Vec<Pose2> = wanted.iter().map(|&j| self.poses[j]).collect();
         let outcomes = self.planner.plan_many(&self.poses[i], &goals)?;
         self.stats.paths_planned += wanted.len() as u64;
@@ -435,7 +452,7 @@ impl PathOracle {
     }
 
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
-        refuse_after_deadline()?;
+        refuse_after_deadline(&self.run.deadline)?;
         self.stats.paths_planned += 1;
         self.report_progress();
         let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
@@ -445,9 +462,9 @@ impl PathOracle {
 }
 
 /// No new path is planned once the run's hard stop has passed (the deadline's seconds
-/// are filled in by whoever set it).
-fn refuse_after_deadline() -> Result<()> {
-    if crate::deadline::hard_stop_passed() {
+/// are filled in by whoever armed it).
+fn refuse_after_deadline(deadline: &Deadline) -> Result<()> {
+    if deadline.hard_stop_passed() {
         return Err(Error::DeadlinePassed {
             seconds: f64::NAN,
             during: "path planning".into(),

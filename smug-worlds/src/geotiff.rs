@@ -19,7 +19,7 @@
 //! tag's value becomes NaN. The grid's origin is the lower-left corner of the lower-left
 //! pixel, and raster row 0 (north) is the grid's top row.
 
-use smug_core::{GridGeometry, GridLayer};
+use smug_core::{GridGeometry, GridLayer, MemoryLimit};
 use std::path::{Path, PathBuf};
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
@@ -62,6 +62,11 @@ const GT_MODEL_TYPE_GEO_KEY: u16 = 1024;
 
 /// Reads the GeoTIFF DEM at `path` (see the [module documentation](self)).
 pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
+    read_geotiff_within(path, MemoryLimit::default())
+}
+
+/// [`read_geotiff`] into a grid that must fit `memory` (a run's limit).
+pub fn read_geotiff_within(path: &Path, memory: MemoryLimit) -> Result<Dem, GeoTiffError> {
     let fail = |message: String| GeoTiffError {
         path: path.to_path_buf(),
         message,
@@ -128,8 +133,9 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         )));
     }
     let origin = [corner[0], corner[1] - f64::from(height) * scale];
-    let geometry = GridGeometry::new(origin, scale, [width as usize, height as usize])
-        .map_err(|m| fail(format!("bad georeferencing: {m}")))?;
+    let geometry =
+        GridGeometry::new_within(origin, scale, [width as usize, height as usize], memory)
+            .map_err(|m| fail(format!("bad georeferencing: {m}")))?;
     let (nx, ny) = (width as usize, height as usize);
     let elevation = GridLayer::from_fn(geometry, |i, j| values[(ny - 1 - j) * nx + i]);
     Ok(Dem {

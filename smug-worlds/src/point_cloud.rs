@@ -17,7 +17,7 @@
 //! the highest (`max`) or the mean (`mean`) z of its points; cells without points are NaN.
 
 use serde::{Deserialize, Serialize};
-use smug_core::{GridGeometry, GridLayer};
+use smug_core::{GridGeometry, GridLayer, MemoryLimit};
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
@@ -83,6 +83,17 @@ pub fn rasterise(
     reduce: Reduce,
     path: &Path,
 ) -> Result<GridLayer, PointCloudError> {
+    rasterise_within(points, cell_size, reduce, path, MemoryLimit::default())
+}
+
+/// [`rasterise`] into a grid that must fit `memory` (a run's limit).
+pub fn rasterise_within(
+    points: &[[f64; 3]],
+    cell_size: f64,
+    reduce: Reduce,
+    path: &Path,
+    memory: MemoryLimit,
+) -> Result<GridLayer, PointCloudError> {
     let fail = |message: String| PointCloudError {
         path: path.to_path_buf(),
         message,
@@ -111,10 +122,11 @@ pub fn rasterise(
             crate::limits::MAX_PIXELS
         )));
     }
-    let geometry = GridGeometry::new(
+    let geometry = GridGeometry::new_within(
         [lo[0] * cell_size, lo[1] * cell_size],
         cell_size,
         [size[0] as usize, size[1] as usize],
+        memory,
     )
     .map_err(|e| fail(e.to_string()))?;
     let mut sum = vec![0.0f64; geometry.len()];

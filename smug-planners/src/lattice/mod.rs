@@ -128,6 +128,8 @@ pub struct LatticePlanner {
     buffers: search::Buffers,
     counts: Counts,
     last_costs: Vec<Option<f64>>,
+    /// The run's deadline: searches stop at it.
+    deadline: smug_core::Deadline,
 }
 
 /// Lattice poses at most (memory: about 50 bytes per pose and primitive).
@@ -138,6 +140,12 @@ fn invalid(key: &str, message: impl std::fmt::Display) -> Error {
 }
 
 impl LatticePlanner {
+    /// Searches stop at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: smug_core::Deadline) -> Self {
+        self.deadline = deadline;
+        self
+    }
+
     /// The planner on `bounds` for the model `space` (which must be curvature-limited),
     /// costs by `objective`, validity by `states` and `motions`.
     pub fn new(
@@ -204,6 +212,7 @@ impl LatticePlanner {
                 shots: HashMap::new(),
             },
             buffers: search::Buffers::new(n),
+            deadline: smug_core::Deadline::new(),
             params,
             lattice,
             primitives,
@@ -373,14 +382,15 @@ impl PointToPointPlanner for LatticePlanner {
 
 fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
     let world = ctx.world()?;
-    LatticePlanner::new(
+    Ok(LatticePlanner::new(
         params,
         world.bounds(),
         ctx.space(),
         ctx.objective(),
         ctx.state_validity()?,
         ctx.motion_validator()?,
-    )
+    )?
+    .with_deadline(ctx.deadline()))
 }
 
 smug_core::register_plugin!(

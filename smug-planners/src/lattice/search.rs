@@ -240,7 +240,7 @@ impl LatticePlanner {
                 if started.elapsed().as_secs_f64() > self.params.time_limit {
                     return (run.goals, End::Budget(Budget::Time));
                 }
-                if smug_core::deadline::passed() {
+                if self.deadline.passed() {
                     return (run.goals, End::Budget(Budget::Deadline));
                 }
             }

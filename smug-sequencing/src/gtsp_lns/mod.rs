@@ -28,7 +28,7 @@ use rand::SeedableRng;
 use search::Search;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::{stage_rng, StageRng};
-use smug_core::{Clusters, CostMatrix, Sequencer, Termination, Tour, TourKind};
+use smug_core::{Clusters, CostMatrix, Deadline, Sequencer, Termination, Tour, TourKind};
 use tour::Problem;
 
 /// Parameters of [`GtspLns`].
@@ -105,6 +105,8 @@ impl GtspLnsParams {
 pub struct GtspLns {
     params: GtspLnsParams,
     rng: StageRng,
+    /// The run's deadline: the search stops at it with its best tour.
+    deadline: Deadline,
 }
 
 impl GtspLns {
@@ -113,7 +115,17 @@ impl GtspLns {
         params
             .validate()
             .map_err(|m| smug_core::Error::invalid_param("sequencer", format!("gtsp-lns: {m}")))?;
-        Ok(Self { params, rng })
+        Ok(Self {
+            params,
+            rng,
+            deadline: Deadline::new(),
+        })
+    }
+
+    /// Stops at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: Deadline) -> Self {
+        self.deadline = deadline;
+        self
     }
 
     /// A solver seeded like a pipeline with seed `seed` would seed it.
@@ -157,7 +169,7 @@ impl GtspLns {
                 self.params.termination(),
             ),
         };
-        let mut clock = rule.start();
+        let mut clock = rule.start_within(&self.deadline);
         let mut search = Search::new(&problem, &self.params, rng, first);
         let iterations = search.run(&mut clock);
         let order = problem.turned_to_start(search.best.0);
@@ -225,5 +237,7 @@ smug_core::register_plugin!(
     summary =
         "GLNS-style large-neighbourhood search for the generalized TSP (any size; also plain TSP)",
     params = GtspLnsParams,
-    build = |params, ctx| Ok(Box::new(GtspLns::new(params, ctx.rng("sequencer"))?)),
+    build = |params, ctx| Ok(Box::new(
+        GtspLns::new(params, ctx.rng("sequencer"))?.with_deadline(ctx.deadline())
+    )),
 );
