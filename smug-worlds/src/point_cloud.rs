@@ -34,6 +34,14 @@ pub struct PointCloudError {
     pub message: String,
 }
 
+/// An error about the point cloud at `path`.
+fn fail_at(path: &Path) -> impl Fn(String) -> PointCloudError + '_ {
+    move |message| PointCloudError {
+        path: path.to_path_buf(),
+        message,
+    }
+}
+
 /// How the points of one cell make its height.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -53,17 +61,16 @@ pub fn read_point_cloud(path: &Path) -> Result<Vec<[f64; 3]>, PointCloudError> {
     };
     let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
     let points = if bytes.starts_with(b"ply") {
-        read_ply(&bytes)
+        read_ply(&bytes, path)
     } else if is_pcd(&bytes) {
-        read_pcd(&bytes)
+        read_pcd(&bytes, path)
     } else {
-        Err(
+        Err(fail(
             "neither a PLY file (first line `ply`) nor a PCD file (a `# .PCD` or \
              `VERSION` header)"
                 .to_string(),
-        )
-    }
-    .map_err(fail)?;
+        ))
+    }?;
     Ok(points
         .into_iter()
         .filter(|p| p.iter().all(|v| v.is_finite()))
@@ -256,7 +263,11 @@ enum PlyFormat {
 
 /// Reads the header lines up to `end_header`; returns them (1-based line numbers) and
 /// the body's offset.
-fn header_lines(bytes: &[u8], end: &str) -> Result<(Vec<(usize, String)>, usize), String> {
+fn header_lines(
+    bytes: &[u8],
+    end: &str,
+    path: &Path,
+) -> Result<(Vec<(usize, String)>, usize), PointCloudError> {
     let mut lines = Vec::new();
     let mut reader = std::io::Cursor::new(bytes);
     let mut line = Vec::new();
@@ -264,9 +275,9 @@ fn header_lines(bytes: &[u8], end: &str) -> Result<(Vec<(usize, String)>, usize)
         line.clear();
         let n = reader
             .read_until(b'\n', &mut line)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| fail_at(path)(e.to_string()))?;
         if n == 0 {
-            return Err(format!("the header has no `{end}` line"));
+            return Err(fail_at(path)(format!("the header has no `{end}` line")));
         }
         let text = String::from_utf8_lossy(&line).trim().to_string();
         let number = lines.len() + 1;
@@ -276,13 +287,15 @@ fn header_lines(bytes: &[u8], end: &str) -> Result<(Vec<(usize, String)>, usize)
             return Ok((lines, reader.position() as usize));
         }
         if lines.len() > 10_000 {
-            return Err(format!("no `{end}` line in the first 10000 lines"));
+            return Err(fail_at(path)(format!(
+                "no `{end}` line in the first 10000 lines"
+            )));
         }
     }
 }
 
-fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
-    let (lines, body) = header_lines(bytes, "end_header")?;
+fn read_ply(bytes: &[u8], path: &Path) -> Result<Vec<[f64; 3]>, PointCloudError> {
+    let (lines, body) = header_lines(bytes, "end_header", path)?;
     let mut format = None;
     let mut elements: Vec<Element> = Vec::new();
     for (number, text) in &lines[1..] {
@@ -294,45 +307,50 @@ fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
                     "ascii" => PlyFormat::Ascii,
                     "binary_little_endian" => PlyFormat::Binary { little: true },
                     "binary_big_endian" => PlyFormat::Binary { little: false },
-                    _ => return Err(bad("unknown PLY format")),
+                    _ => return Err(fail_at(path)(bad("unknown PLY format"))),
                 })
             }
             ["element", name, count] => elements.push(Element {
                 name: name.to_string(),
-                count: count.parse().map_err(|_| bad("bad element count"))?,
+                count: count
+                    .parse()
+                    .map_err(|_| fail_at(path)(bad("bad element count")))?,
                 properties: Vec::new(),
             }),
             ["property", "list", count, kind, name] => {
                 let element = elements
                     .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
+                    .ok_or_else(|| fail_at(path)(bad("property before any element")))?;
                 element.properties.push(Property {
                     name: name.to_string(),
-                    kind: Scalar::ply(kind).ok_or_else(|| bad("unknown property type"))?,
+                    kind: Scalar::ply(kind)
+                        .ok_or_else(|| fail_at(path)(bad("unknown property type")))?,
                     list_count: Some(
-                        Scalar::ply(count).ok_or_else(|| bad("unknown list count type"))?,
+                        Scalar::ply(count)
+                            .ok_or_else(|| fail_at(path)(bad("unknown list count type")))?,
                     ),
                 });
             }
             ["property", kind, name] => {
                 let element = elements
                     .last_mut()
-                    .ok_or_else(|| bad("property before any element"))?;
+                    .ok_or_else(|| fail_at(path)(bad("property before any element")))?;
                 element.properties.push(Property {
                     name: name.to_string(),
-                    kind: Scalar::ply(kind).ok_or_else(|| bad("unknown property type"))?,
+                    kind: Scalar::ply(kind)
+                        .ok_or_else(|| fail_at(path)(bad("unknown property type")))?,
                     list_count: None,
                 });
             }
             ["comment", ..] | ["obj_info", ..] | ["end_header"] | [] => {}
-            _ => return Err(bad("unknown header line")),
+            _ => return Err(fail_at(path)(bad("unknown header line"))),
         }
     }
-    let format = format.ok_or("the header has no `format` line")?;
+    let format = format.ok_or_else(|| fail_at(path)("the header has no `format` line".into()))?;
     let vertex = elements
         .iter()
         .position(|e| e.name == "vertex")
-        .ok_or("no `vertex` element")?;
+        .ok_or_else(|| fail_at(path)("no `vertex` element".into()))?;
     let columns = xyz_columns(
         &elements[vertex]
             .properties
@@ -340,37 +358,42 @@ fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
             .map(|p| p.name.as_str())
             .collect::<Vec<_>>(),
         "vertex property",
+        path,
     )?;
     if elements[vertex].count > MAX_POINTS {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "{} vertices is more than the {MAX_POINTS} SMUG reads",
             elements[vertex].count
-        ));
+        )));
     }
     let data = &bytes[body..];
     match format {
         PlyFormat::Ascii => {
-            let text = std::str::from_utf8(data).map_err(|_| "the ASCII body is not text")?;
+            let text = std::str::from_utf8(data)
+                .map_err(|_| fail_at(path)("the ASCII body is not text".into()))?;
             let mut rows = text
                 .lines()
                 .enumerate()
                 .filter(|(_, l)| !l.trim().is_empty());
             let skip: u64 = elements[..vertex].iter().map(|e| e.count).sum();
             for _ in 0..skip {
-                rows.next().ok_or("the file ends before the vertices")?;
+                rows.next()
+                    .ok_or_else(|| fail_at(path)("the file ends before the vertices".into()))?;
             }
             let element = &elements[vertex];
             let mut points = Vec::with_capacity(element.count as usize);
             for k in 0..element.count {
                 let (n, row) = rows.next().ok_or_else(|| {
-                    format!("the file ends after {k} of {} vertices", element.count)
+                    fail_at(path)({
+                        format!("the file ends after {k} of {} vertices", element.count)
+                    })
                 })?;
                 let line = lines.len() + n + 1;
                 let values: Vec<f64> = row
                     .split_whitespace()
                     .map(|w| w.parse::<f64>())
                     .collect::<Result<_, _>>()
-                    .map_err(|_| format!("line {line}: not a number in `{row}`"))?;
+                    .map_err(|_| fail_at(path)(format!("line {line}: not a number in `{row}`")))?;
                 // Only scalar properties precede x, y, z in position when lists come
                 // last; with lists before them the columns shift, so walk the row.
                 let mut column = 0;
@@ -381,9 +404,9 @@ fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
                         None => 1,
                     };
                     if let Some(c) = columns.iter().position(|&c| c == p.name) {
-                        xyz[c] = *values
-                            .get(column)
-                            .ok_or_else(|| format!("line {line}: too few values in `{row}`"))?;
+                        xyz[c] = *values.get(column).ok_or_else(|| {
+                            fail_at(path)(format!("line {line}: too few values in `{row}`"))
+                        })?;
                     }
                     column += width;
                 }
@@ -395,7 +418,7 @@ fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
             let mut offset = 0usize;
             for element in &elements[..vertex] {
                 for _ in 0..element.count {
-                    offset = skip_binary_row(data, offset, &element.properties, little)?;
+                    offset = skip_binary_row(data, offset, &element.properties, little, path)?;
                 }
             }
             let element = &elements[vertex];
@@ -404,14 +427,16 @@ fn read_ply(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
                 let mut xyz = [f64::NAN; 3];
                 for p in &element.properties {
                     let start = offset;
-                    offset = skip_binary_row(data, offset, std::slice::from_ref(p), little)
+                    offset = skip_binary_row(data, offset, std::slice::from_ref(p), little, path)
                         .map_err(|_| {
+                        fail_at(path)({
                             format!(
                                 "the file ends in vertex {k} of {} (binary body of {} bytes)",
                                 element.count,
                                 data.len()
                             )
-                        })?;
+                        })
+                    })?;
                     if let Some(c) = columns.iter().position(|&c| c == p.name) {
                         if p.list_count.is_none() {
                             xyz[c] = p.kind.read(&data[start..], little);
@@ -431,8 +456,9 @@ fn skip_binary_row(
     mut offset: usize,
     properties: &[Property],
     little: bool,
-) -> Result<usize, String> {
-    let short = || "the file ends inside the binary body".to_string();
+    path: &Path,
+) -> Result<usize, PointCloudError> {
+    let short = || fail_at(path)("the file ends inside the binary body".into());
     for p in properties {
         let width = match p.list_count {
             None => p.kind.size(),
@@ -440,7 +466,10 @@ fn skip_binary_row(
                 let b = data.get(offset..offset + count.size()).ok_or_else(short)?;
                 let n = count.read(b, little);
                 if !(0.0..=1e9).contains(&n) {
-                    return Err(format!("list property `{}` has count {n}", p.name));
+                    return Err(fail_at(path)(format!(
+                        "list property `{}` has count {n}",
+                        p.name
+                    )));
                 }
                 offset += count.size();
                 n as usize * p.kind.size()
@@ -455,20 +484,22 @@ fn skip_binary_row(
 }
 
 /// The indices of `x`, `y`, `z` among `names`.
-fn xyz_columns<'a>(names: &[&'a str], what: &str) -> Result<[&'a str; 3], String> {
+fn xyz_columns<'a>(
+    names: &[&'a str],
+    what: &str,
+    path: &Path,
+) -> Result<[&'a str; 3], PointCloudError> {
     let mut out = [""; 3];
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        out[k] = names
-            .iter()
-            .find(|n| *n == axis)
-            .copied()
-            .ok_or_else(|| format!("no {what} `{axis}` (found: {})", names.join(", ")))?;
+        out[k] = names.iter().find(|n| *n == axis).copied().ok_or_else(|| {
+            fail_at(path)(format!("no {what} `{axis}` (found: {})", names.join(", ")))
+        })?;
     }
     Ok(out)
 }
 
-fn read_pcd(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
-    let (lines, body) = header_lines(bytes, "DATA")?;
+fn read_pcd(bytes: &[u8], path: &Path) -> Result<Vec<[f64; 3]>, PointCloudError> {
+    let (lines, body) = header_lines(bytes, "DATA", path)?;
     let mut fields: Vec<String> = Vec::new();
     let mut sizes: Vec<usize> = Vec::new();
     let mut types: Vec<String> = Vec::new();
@@ -479,10 +510,13 @@ fn read_pcd(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
     for (number, text) in &lines {
         let words: Vec<&str> = text.split_whitespace().collect();
         let bad = |what: &str| format!("line {number}: {what}: `{text}`");
-        let numbers = |words: &[&str]| -> Result<Vec<usize>, String> {
+        let numbers = |words: &[&str]| -> Result<Vec<usize>, PointCloudError> {
             words
                 .iter()
-                .map(|w| w.parse::<usize>().map_err(|_| bad("not a count")))
+                .map(|w| {
+                    w.parse::<usize>()
+                        .map_err(|_| fail_at(path)(bad("not a count")))
+                })
                 .collect()
         };
         match words.as_slice() {
@@ -493,55 +527,75 @@ fn read_pcd(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
             ["SIZE", rest @ ..] => sizes = numbers(rest)?,
             ["TYPE", rest @ ..] => types = rest.iter().map(|s| s.to_string()).collect(),
             ["COUNT", rest @ ..] => counts = numbers(rest)?,
-            ["WIDTH", w] => width = Some(w.parse::<u64>().map_err(|_| bad("bad WIDTH"))?),
-            ["HEIGHT", h] => height = Some(h.parse::<u64>().map_err(|_| bad("bad HEIGHT"))?),
-            ["POINTS", n] => points = Some(n.parse::<u64>().map_err(|_| bad("bad POINTS"))?),
+            ["WIDTH", w] => {
+                width = Some(
+                    w.parse::<u64>()
+                        .map_err(|_| fail_at(path)(bad("bad WIDTH")))?,
+                )
+            }
+            ["HEIGHT", h] => {
+                height = Some(
+                    h.parse::<u64>()
+                        .map_err(|_| fail_at(path)(bad("bad HEIGHT")))?,
+                )
+            }
+            ["POINTS", n] => {
+                points = Some(
+                    n.parse::<u64>()
+                        .map_err(|_| fail_at(path)(bad("bad POINTS")))?,
+                )
+            }
             ["DATA", kind] => {
                 data_kind = match *kind {
                     "ascii" => "ascii",
                     "binary" => "binary",
                     "binary_compressed" => {
-                        return Err(bad(
+                        return Err(fail_at(path)(bad(
                             "binary_compressed PCD is not supported; convert it with \
                              `pcl_convert_pcd_ascii_binary IN OUT 1` (binary) or 0 (ascii)",
-                        ))
+                        )))
                     }
-                    _ => return Err(bad("unknown DATA kind")),
+                    _ => return Err(fail_at(path)(bad("unknown DATA kind"))),
                 }
             }
-            _ => return Err(bad("unknown header line")),
+            _ => return Err(fail_at(path)(bad("unknown header line"))),
         }
     }
     if counts.is_empty() {
         counts = vec![1; fields.len()];
     }
     if sizes.len() != fields.len() || types.len() != fields.len() || counts.len() != fields.len() {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "FIELDS has {} entries but SIZE {}, TYPE {}, COUNT {}",
             fields.len(),
             sizes.len(),
             types.len(),
             counts.len()
-        ));
+        )));
     }
     let n = match (points, width, height) {
         (Some(n), _, _) => n,
         (None, Some(w), Some(h)) => w * h,
-        _ => return Err("the header has no POINTS (or WIDTH and HEIGHT)".into()),
+        _ => {
+            return Err(fail_at(path)(
+                "the header has no POINTS (or WIDTH and HEIGHT)".into(),
+            ))
+        }
     };
     if n > MAX_POINTS {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "{n} points is more than the {MAX_POINTS} SMUG reads"
-        ));
+        )));
     }
     let names: Vec<&str> = fields.iter().map(String::as_str).collect();
-    let xyz = xyz_columns(&names, "field")?;
+    let xyz = xyz_columns(&names, "field", path)?;
     let scalars: Vec<Scalar> = types
         .iter()
         .zip(&sizes)
         .zip(&fields)
         .map(|((t, &s), f)| {
-            Scalar::pcd(t, s).ok_or_else(|| format!("field `{f}` has TYPE {t} SIZE {s}"))
+            Scalar::pcd(t, s)
+                .ok_or_else(|| fail_at(path)(format!("field `{f}` has TYPE {t} SIZE {s}")))
         })
         .collect::<Result<_, _>>()?;
     // Column (value index in a row) and byte offset of each field.
@@ -563,34 +617,34 @@ fn read_pcd(bytes: &[u8]) -> Result<Vec<[f64; 3]>, String> {
         let mut text = String::new();
         std::io::Cursor::new(data)
             .read_to_string(&mut text)
-            .map_err(|_| "the ASCII body is not text")?;
+            .map_err(|_| fail_at(path)("the ASCII body is not text".into()))?;
         let mut rows = text.lines().filter(|l| !l.trim().is_empty());
         for k in 0..n {
             let row = rows
                 .next()
-                .ok_or_else(|| format!("the file ends after {k} of {n} points"))?;
+                .ok_or_else(|| fail_at(path)(format!("the file ends after {k} of {n} points")))?;
             let values: Vec<&str> = row.split_whitespace().collect();
             if values.len() != row_values {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "point {k}: {} values, the header's fields need {row_values}: `{row}`",
                     values.len()
-                ));
+                )));
             }
             let mut p = [0.0; 3];
             for (a, &f) in idx.iter().enumerate() {
                 p[a] = values[column[f]]
                     .parse::<f64>()
-                    .map_err(|_| format!("point {k}: not a number in `{row}`"))?;
+                    .map_err(|_| fail_at(path)(format!("point {k}: not a number in `{row}`")))?;
             }
             out.push(p);
         }
     } else {
         let need = n as usize * row_bytes;
         if data.len() < need {
-            return Err(format!(
+            return Err(fail_at(path)(format!(
                 "the binary body has {} bytes; {n} points of {row_bytes} bytes need {need}",
                 data.len()
-            ));
+            )));
         }
         for row in data[..need].chunks_exact(row_bytes) {
             let mut p = [0.0; 3];
