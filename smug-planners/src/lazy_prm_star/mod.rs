@@ -28,7 +28,7 @@ mod test_support;
 mod tests;
 mod warm;
 
-use self::checks::{timed_state_check, Checks, CountedMotions};
+use self::checks::{timed_state_check, Checks, CountedMotions, Counts};
 use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 pub use self::params::{LazyPrmStarParams, SearchMode};
@@ -41,30 +41,12 @@ use smug_core::{
     Bounds2, Budget, BuildContext, Deadline, Error, FreeRegions, InformedSet, MemoryLimit,
     MotionValidator, NoPathReason, Objective, Path, PlannerOutcome, PlannerStats,
     PointToPointPlanner, Pose2, Proof, Result, RunContext, Sampler, StateSpace,
-    StateValidityChecker, Termination, TimeBreakdown,
+    StateValidityChecker, Termination,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// Counters kept across queries.
-#[derive(Clone, Debug, Default)]
-struct Counts {
-    queries: u64,
-    samples: u64,
-    vertex_checks: u64,
-    edge_checks: u64,
-    searches: u64,
-    /// Attempts answered by repairing the previous search.
-    repairs: u64,
-    /// Queries answered "no path" at once: an endpoint was cut off.
-    cut_off_queries: u64,
-    /// Queries answered "no path exists" at once: the endpoints lie in different
-    /// components of the free cells (a disc on a grid).
-    proved_no_path: u64,
-    breakdown: TimeBreakdown,
-}
 
 /// LazyPRM* on a shared roadmap.
 pub struct LazyPrmStar {
