@@ -237,7 +237,13 @@ fn load_world(source: &WorldSource) -> anyhow::Result<World> {
                 ReduceArg::Max => Reduce::Max,
                 ReduceArg::Mean => Reduce::Mean,
             };
-            let layers = load_terrain(path, kind, source.cell_size, reduce)?;
+            let layers = load_terrain(
+                path,
+                kind,
+                source.cell_size,
+                reduce,
+                smug_core::MemoryLimit::default(),
+            )?;
             return layers_world(layers, path, source.mission.as_deref());
         }
         WorldSpec::Config(path) => {

@@ -3,6 +3,7 @@
 //! Cell `(i, j)` covers `[origin.x + i·res, origin.x + (i+1)·res) × [origin.y + j·res, …)`;
 //! its value is taken at the cell centre. Data is row-major: index `j·nx + i`.
 
+use crate::limits::MemoryLimit;
 use crate::pose::Bounds2;
 use serde::{Deserialize, Serialize};
 
@@ -51,8 +52,19 @@ pub struct GridGeometry {
 }
 
 impl GridGeometry {
-    /// A geometry; the resolution must be finite and > 0.
+    /// A geometry; the resolution must be finite and > 0, the grid within the default
+    /// memory limit (see [`new_within`](Self::new_within)).
     pub fn new(origin: [f64; 2], resolution: f64, size: [usize; 2]) -> Result<Self, GridError> {
+        Self::new_within(origin, resolution, size, MemoryLimit::default())
+    }
+
+    /// A geometry whose grid (4 bytes a cell) fits `memory`.
+    pub fn new_within(
+        origin: [f64; 2],
+        resolution: f64,
+        size: [usize; 2],
+        memory: MemoryLimit,
+    ) -> Result<Self, GridError> {
         if !(resolution.is_finite() && resolution > 0.0) {
             return Err(GridError::Resolution {
                 grid: "grid",
@@ -66,7 +78,7 @@ impl GridGeometry {
             });
         }
         let cells = size.iter().map(|&n| n as u128).product::<u128>();
-        crate::limits::check_allocation(&format!("a {}×{} grid", size[0], size[1]), cells, 4)?;
+        memory.check(&format!("a {}×{} grid", size[0], size[1]), cells, 4)?;
         Ok(Self {
             origin,
             resolution,
@@ -226,8 +238,19 @@ pub struct VoxelGeometry {
 }
 
 impl VoxelGeometry {
-    /// A geometry; the resolution must be finite and > 0.
+    /// A geometry; the resolution must be finite and > 0, the grid within the default
+    /// memory limit (see [`new_within`](Self::new_within)).
     pub fn new(origin: [f64; 3], resolution: f64, size: [usize; 3]) -> Result<Self, GridError> {
+        Self::new_within(origin, resolution, size, MemoryLimit::default())
+    }
+
+    /// A geometry whose grid (4 bytes a voxel) fits `memory`.
+    pub fn new_within(
+        origin: [f64; 3],
+        resolution: f64,
+        size: [usize; 3],
+        memory: MemoryLimit,
+    ) -> Result<Self, GridError> {
         if !(resolution.is_finite() && resolution > 0.0) {
             return Err(GridError::Resolution {
                 grid: "voxel",
@@ -242,7 +265,7 @@ impl VoxelGeometry {
         }
         let voxels = size.iter().map(|&n| n as u128).product::<u128>();
         let shown = format!("a {}×{}×{} voxel grid", size[0], size[1], size[2]);
-        crate::limits::check_allocation(&shown, voxels, 4)?;
+        memory.check(&shown, voxels, 4)?;
         Ok(Self {
             origin,
             resolution,

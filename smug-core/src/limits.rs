@@ -1,15 +1,51 @@
 //! The memory limit: inputs whose dense matrices, grids or roadmaps would need more than
 //! it are refused, naming what and how much, instead of exhausting the machine.
 //!
-//! The limit is process-wide (default 8 GB); a config's `[limits] memory_gb` sets it when
-//! its pipeline is assembled.
-
-use std::sync::atomic::{AtomicU64, Ordering};
+//! The limit is a value (default 8 GB) carried by each pipeline's
+//! [`RunContext`](crate::run_context::RunContext), set from its config's
+//! `[limits] memory_gb`; code that allocates is handed the limit it must respect.
 
 /// The default limit in bytes (8 GB).
 pub const DEFAULT_MEMORY_BYTES: u64 = 8_000_000_000;
 
-static MEMORY_BYTES: AtomicU64 = AtomicU64::new(DEFAULT_MEMORY_BYTES);
+/// The largest allocation of one structure, in bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MemoryLimit {
+    /// The limit in bytes.
+    pub bytes: u64,
+}
+
+impl Default for MemoryLimit {
+    fn default() -> Self {
+        Self {
+            bytes: DEFAULT_MEMORY_BYTES,
+        }
+    }
+}
+
+impl MemoryLimit {
+    /// A limit of `bytes`.
+    pub fn bytes(bytes: u64) -> Self {
+        Self { bytes }
+    }
+
+    /// `Ok` when `count` items of `bytes_each` bytes fit this limit; else an error
+    /// naming `what`, the count, the size it would need and the limit.
+    pub fn check(&self, what: &str, count: u128, bytes_each: u128) -> Result<(), MemoryLimitError> {
+        let needed = count.saturating_mul(bytes_each);
+        let limit = u128::from(self.bytes);
+        if needed <= limit {
+            return Ok(());
+        }
+        Err(MemoryLimitError {
+            what: what.to_string(),
+            count,
+            bytes_each,
+            needed,
+            limit,
+        })
+    }
+}
 
 /// The config's `[limits]` section.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -39,20 +75,10 @@ impl LimitsConfig {
         })
     }
 
-    /// Makes this the process's limit.
-    pub fn apply(&self) {
-        set_memory_limit((self.memory_gb * 1e9) as u64);
+    /// The memory limit this section sets.
+    pub fn memory(&self) -> MemoryLimit {
+        MemoryLimit::bytes((self.memory_gb * 1e9) as u64)
     }
-}
-
-/// Sets the process's limit in bytes.
-pub fn set_memory_limit(bytes: u64) {
-    MEMORY_BYTES.store(bytes, Ordering::Relaxed);
-}
-
-/// The process's limit in bytes.
-pub fn memory_limit() -> u64 {
-    MEMORY_BYTES.load(Ordering::Relaxed)
 }
 
 /// An allocation above the memory limit: what, how many of what size, and the limit.
@@ -76,21 +102,10 @@ pub struct MemoryLimitError {
     pub limit: u128,
 }
 
-/// `Ok` when `count` items of `bytes_each` bytes fit the limit; else an error naming
-/// `what`, the count, the size it would need and the limit.
+/// [`MemoryLimit::check`] against the default limit (8 GB), for structures built
+/// outside a pipeline.
 pub fn check_allocation(what: &str, count: u128, bytes_each: u128) -> Result<(), MemoryLimitError> {
-    let needed = count.saturating_mul(bytes_each);
-    let limit = memory_limit();
-    if needed <= u128::from(limit) {
-        return Ok(());
-    }
-    Err(MemoryLimitError {
-        what: what.to_string(),
-        count,
-        bytes_each,
-        needed,
-        limit: u128::from(limit),
-    })
+    MemoryLimit::default().check(what, count, bytes_each)
 }
 
 /// Bytes in B, kB, MB, GB, TB … with three significant digits.
@@ -125,6 +140,13 @@ mod tests {
         assert!(
             check_allocation("x", u128::MAX, u128::MAX).is_err(),
             "no overflow"
+        );
+        let small = MemoryLimit::bytes(1000);
+        assert!(small.check("a grid", 250, 4).is_ok());
+        assert!(small.check("a grid", 251, 4).is_err());
+        assert_eq!(
+            LimitsConfig { memory_gb: 0.2 }.memory(),
+            MemoryLimit::bytes(200_000_000)
         );
         assert_eq!(human(999), "999 B");
         assert_eq!(human(1_500_000), "1.500 MB");

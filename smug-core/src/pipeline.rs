@@ -2,7 +2,9 @@
 //! in dependency order, through a [`BuildContext`] that hands out what earlier stages built.
 
 use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
+use crate::deadline::Deadline;
 use crate::error::{Error, Result};
+use crate::limits::MemoryLimit;
 use crate::mission::Mission;
 use crate::objective::{Objective, PathLength};
 use crate::oracle::KnownAnswers;
@@ -12,6 +14,7 @@ use crate::registry::{
     SpaceStage, Stage, TraversabilityStage, ValidityStage, WorldStage,
 };
 use crate::rng::{stage_rng, StageRng};
+use crate::run_context::RunContext;
 use crate::space::{Se2Space, StateSpace};
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
@@ -67,6 +70,7 @@ pub struct BuildContext {
     motion_validator: Option<Arc<dyn MotionValidator>>,
     sampler: Option<PluginSection>,
     world_change: Option<Arc<WorldChange>>,
+    run: RunContext,
     building: String,
 }
 
@@ -86,6 +90,7 @@ impl BuildContext {
             motion_validator: None,
             sampler: None,
             world_change: None,
+            run: RunContext::default(),
             building: String::new(),
         }
     }
@@ -124,6 +129,29 @@ impl BuildContext {
     pub fn with_sampler(mut self, section: PluginSection) -> Self {
         self.sampler = Some(section);
         self
+    }
+
+    /// Sets the run context (deadline and memory limit) handed to the stages.
+    pub fn with_run(mut self, run: RunContext) -> Self {
+        self.run = run;
+        self
+    }
+
+    /// The run context: the deadline stages stop at, the memory limit they allocate
+    /// within.
+    pub fn run(&self) -> &RunContext {
+        &self.run
+    }
+
+    /// The run's deadline (a handle the stages keep; armed while a run with a
+    /// deadline plans).
+    pub fn deadline(&self) -> Deadline {
+        self.run.deadline.clone()
+    }
+
+    /// The run's memory limit.
+    pub fn memory(&self) -> MemoryLimit {
+        self.run.memory
     }
 
     /// Sets (or clears) what changed since the previous world.
@@ -307,8 +335,8 @@ impl Pipeline {
         given_estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
     ) -> Result<Self> {
         let config = loaded.config.clone();
-        config.limits.apply();
-        let mut ctx = BuildContext::new(config.seed, config.robot);
+        let mut ctx = BuildContext::new(config.seed, config.robot)
+            .with_run(RunContext::new(config.limits.memory()));
         ctx.sources = loaded.sources.clone();
         let mut pipeline = Pipeline {
             config: config.clone(),
@@ -450,6 +478,12 @@ impl Pipeline {
     /// The context the stages were built with (to build more, e.g. a fresh planner).
     pub fn context(&self) -> &BuildContext {
         &self.context
+    }
+
+    /// The run context every stage was handed: this pipeline's deadline and memory
+    /// limit (its own; other pipelines have theirs).
+    pub fn run(&self) -> &RunContext {
+        self.context.run()
     }
 
     /// The resolved pipeline as TOML: seed, robot, every stage with its parameters.

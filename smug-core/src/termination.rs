@@ -1,5 +1,6 @@
 //! Combinable termination rules: time budget, iteration budget, either-of.
 
+use crate::deadline::Deadline;
 use std::ops::BitOr;
 use std::time::{Duration, Instant};
 
@@ -53,12 +54,22 @@ impl Termination {
         }
     }
 
-    /// Starts the clock and the iteration counter.
+    /// Starts the clock and the iteration counter (no run deadline).
     pub fn start(&self) -> TerminationClock<'_> {
         TerminationClock {
             rule: self,
             started: Instant::now(),
             iterations: 0,
+            deadline: None,
+        }
+    }
+
+    /// [`start`](Self::start) within a run's `deadline`: the clock also says stop once
+    /// the deadline has passed.
+    pub fn start_within<'a>(&'a self, deadline: &'a Deadline) -> TerminationClock<'a> {
+        TerminationClock {
+            deadline: Some(deadline),
+            ..self.start()
         }
     }
 
@@ -97,6 +108,7 @@ pub struct TerminationClock<'a> {
     rule: &'a Termination,
     started: Instant,
     iterations: u64,
+    deadline: Option<&'a Deadline>,
 }
 
 impl TerminationClock<'_> {
@@ -120,10 +132,10 @@ impl TerminationClock<'_> {
         self.started.elapsed()
     }
 
-    /// True once the rule says stop, or the thread's run deadline has passed
-    /// ([`crate::deadline`]).
+    /// True once the rule says stop, or the run's deadline (when started within one)
+    /// has passed.
     pub fn is_done(&self) -> bool {
-        if crate::deadline::passed() {
+        if self.deadline.is_some_and(Deadline::passed) {
             return true;
         }
         // Avoid reading the clock for pure iteration budgets.
@@ -162,6 +174,15 @@ mod tests {
         clock.add_iterations(2);
         assert!(clock.is_done());
         assert!(rule.uses_time());
+    }
+
+    #[test]
+    fn a_clock_started_within_a_deadline_stops_at_it() {
+        let rule = Termination::iterations(1_000);
+        let deadline = Deadline::after(0.0);
+        assert!(rule.start_within(&deadline).is_done());
+        assert!(!rule.start().is_done(), "another clock does not see it");
+        assert!(!rule.start_within(&Deadline::new()).is_done());
     }
 
     #[test]

@@ -145,19 +145,20 @@ fn shape_text(shape: &[usize]) -> String {
     }
 }
 
-/// Checks that every value of a traversability layer is NaN or in `[0, 1]`.
-fn check_unit_range(what: &str, size: [usize; 2], data: &[f32]) -> Result<(), String> {
+/// Checks that every value of a traversability layer is NaN or in `[0, 1]`: else an
+/// input error naming `what` and the first value outside.
+fn check_unit_range(what: &str, size: [usize; 2], data: &[f32]) -> smug_core::Result<()> {
     match data
         .iter()
         .position(|v| !v.is_nan() && !(0.0..=1.0).contains(v))
     {
         None => Ok(()),
-        Some(k) => Err(format!(
+        Some(k) => Err(Error::InvalidInput(format!(
             "{what}: value {} at [{}, {}] (row, column) is outside [0, 1] (NaN = unknown)",
             data[k],
             k / size[0],
             k % size[0]
-        )),
+        ))),
     }
 }
 
@@ -203,7 +204,7 @@ impl TraversabilityEstimator for PyEstimator {
                     shape_text(&[ny, nx])
                 )));
             }
-            check_unit_range(what, size, &data).map_err(Error::InvalidInput)?;
+            check_unit_range(what, size, &data)?;
             Ok(GridLayer { geometry, data })
         })
     }
@@ -266,7 +267,7 @@ impl PyWorld {
             .map(|t| {
                 let (got, values) = float_grid("traversability", t)?;
                 same_shape("traversability", got)?;
-                check_unit_range("traversability", got, &values).map_err(input_error)?;
+                check_unit_range("traversability", got, &values).map_err(to_py)?;
                 Ok::<_, PyErr>(GridLayer {
                     geometry,
                     data: values,

@@ -439,3 +439,64 @@ def test_a_session_plans_as_plan_and_replans_in_place(tmp_path):
     more = dict(state, obstacles=[rock, {"center": (10.5, 1.0), "radius": 0.4, "height": 0.5}])
     session.replan(more)
     assert len(session.obstacles) == 2
+
+
+# --- run context: each pipeline its own limits and deadline --------------------------
+
+
+def many_targets_config(path: Path, targets: int = 40) -> Path:
+    """A flat 20 × 20 m world at 0.5 m (a 6.4 kB grid) with `targets` one-PoI targets:
+    the sequencer's cost matrix takes (targets + 1)² × 8 bytes (13.4 kB for 40)."""
+    lines = [
+        "seed = 1",
+        '[world]\ntype = "flat"',
+        '[world.params]\nname = "many-targets"\nsize = [20.0, 20.0]\nresolution = 0.5',
+        "[world.params.mission]\nstart = { x = 1.0, y = 1.0, yaw = 0.0 }",
+    ]
+    for k in range(targets):
+        x, y = 3.0 + 2.0 * (k % 8), 3.0 + 3.0 * (k // 8)
+        lines.append(
+            f'[[world.params.mission.targets]]\nid = "t{k}"\nposition = {{ x = {x}, y = {y} }}\n'
+            f"pois = [{{ x = {x}, y = {y - 0.5}, yaw = 0.0 }}]"
+        )
+    lines += [
+        '[validity]\ntype = "clearance-2d"',
+        '[motion]\ntype = "discrete"\nparams = { resolution = 0.1 }',
+        '[planner]\ntype = "visibility"',
+        '[sequencer]\ntype = "auto"',
+        '[selector]\ntype = "dp"',
+    ]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def test_two_pipelines_keep_their_own_limits_and_deadlines(tmp_path):
+    config = many_targets_config(tmp_path / "many.toml")
+    # Built first, with a 10 kB limit: the world fits, the 41 × 41 cost matrix does not.
+    limited = smug.Session(config, set={"limits.memory_gb": 1e-5})
+    # Built second, with the default limit (before the run context, its assembly
+    # reset the process-wide limit the first session planned within).
+    roomy = smug.Session(config)
+    with pytest.raises(smug.InputError, match=r"41×41 cost matrix.*10\.000 kB"):
+        limited.plan()
+    plan = roomy.plan()
+    assert len(plan.sequence) == 40
+    assert not plan.to_dict().get("deadline_reached", False)
+    # A limited pipeline built last does not limit the roomy one.
+    limited_again = smug.Session(config, set={"limits.memory_gb": 1e-5})
+    assert len(roomy.plan().sequence) == 40
+    with pytest.raises(smug.InputError, match="cost matrix"):
+        limited_again.plan()
+
+    # Deadlines: a pipeline with a deadline that passes at once, one without; planned
+    # in turn, each keeps its own.
+    hurried = smug.Session(config, set={"plan.deadline": 1e-6})
+    patient = smug.Session(config)
+    for _ in range(2):
+        try:
+            assert hurried.plan().to_dict()["deadline_reached"]
+        except smug.NoSolution as err:
+            assert "deadline" in str(err)
+        plan = patient.plan()
+        assert len(plan.sequence) == 40
+        assert not plan.to_dict().get("deadline_reached", False)

@@ -111,6 +111,13 @@ impl Auto {
         })
     }
 
+    /// The heuristics stop at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: smug_core::Deadline) -> Self {
+        self.heuristic = self.heuristic.with_deadline(deadline.clone());
+        self.clusters_heuristic = self.clusters_heuristic.with_deadline(deadline);
+        self
+    }
+
     /// Whether the clustered problem goes to `gtsp-exact`: it fits that solver's limits
     /// and needs at most `exact_cluster_work` DP steps.
     fn clusters_exactly(&self, costs: &CostMatrix, clusters: &Clusters) -> bool {
@@ -165,7 +172,9 @@ smug_core::register_plugin!(
     name = "auto",
     summary = "held-karp up to `threshold` nodes (default 16: 15 targets, a start and an end), local-search above; clustered (joint mode): gtsp-exact while small, gtsp-lns above",
     params = AutoParams,
-    build = |params, ctx| Ok(Box::new(Auto::new(params, ctx.rng("sequencer"))?)),
+    build = |params, ctx| Ok(Box::new(
+        Auto::new(params, ctx.rng("sequencer"))?.with_deadline(ctx.deadline())
+    )),
 );
 
 #[cfg(test)]

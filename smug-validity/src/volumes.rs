@@ -11,7 +11,7 @@ use crate::edt::squared_edt_3d;
 use crate::volumes_update::{update_distances, update_occupancy};
 use crate::ValidityError;
 use smug_core::mission::DiscObstacle;
-use smug_core::{VoxelGeometry, VoxelGrid, World};
+use smug_core::{MemoryLimit, VoxelGeometry, VoxelGrid, World};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
 
@@ -119,6 +119,16 @@ impl SharedVolumes {
     /// terrain (the ones already shared for it, else new ones). Fails, without deriving
     /// anything, when the world cannot give volumes (see [`Volumes::from_world`]).
     pub fn for_world(world: &Arc<World>, headroom: f64) -> Result<Self, ValidityError> {
+        Self::for_world_within(world, headroom, MemoryLimit::default())
+    }
+
+    /// [`for_world`](Self::for_world) with a voxel grid that must fit `memory` (a run's
+    /// limit).
+    pub fn for_world_within(
+        world: &Arc<World>,
+        headroom: f64,
+        memory: MemoryLimit,
+    ) -> Result<Self, ValidityError> {
         let derived_geometry = match (&world.occupancy, &world.esdf) {
             (Some(occupancy), Some(esdf)) if occupancy.geometry != esdf.geometry => {
                 return Err(ValidityError::Map(
@@ -126,7 +136,7 @@ impl SharedVolumes {
                 ))
             }
             (Some(_), Some(_)) => None,
-            _ => Some(occupancy_geometry(world, headroom)?),
+            _ => Some(occupancy_geometry(world, headroom, memory)?),
         };
         Ok(Self(shared_source(world, headroom, derived_geometry)))
     }
@@ -180,7 +190,7 @@ impl SharedVolumes {
     ) -> Option<Self> {
         let old = live_source(previous, headroom)?;
         let geometry = old.derived_geometry?;
-        if occupancy_geometry(world, headroom).ok()? != geometry {
+        if occupancy_geometry(world, headroom, MemoryLimit::default()).ok()? != geometry {
             return None;
         }
         let occupancy = match old.volumes.get() {
@@ -285,12 +295,17 @@ pub fn occupancy_from_elevation(
     world: &World,
     headroom: f64,
 ) -> Result<VoxelGrid<bool>, ValidityError> {
-    Ok(voxelise(world, occupancy_geometry(world, headroom)?))
+    let geometry = occupancy_geometry(world, headroom, MemoryLimit::default())?;
+    Ok(voxelise(world, geometry))
 }
 
 /// The voxel grid [`occupancy_from_elevation`] fills: the elevation's cells, from two
-/// voxels below the lowest terrain to `headroom` above the highest.
-fn occupancy_geometry(world: &World, headroom: f64) -> Result<VoxelGeometry, ValidityError> {
+/// voxels below the lowest terrain to `headroom` above the highest, within `memory`.
+fn occupancy_geometry(
+    world: &World,
+    headroom: f64,
+    memory: MemoryLimit,
+) -> Result<VoxelGeometry, ValidityError> {
     let elevation = &world.elevation;
     let (low, high) = elevation
         .data
@@ -316,7 +331,7 @@ fn occupancy_geometry(world: &World, headroom: f64) -> Result<VoxelGeometry, Val
             world.name
         )));
     }
-    VoxelGeometry::new([g.origin[0], g.origin[1], z0], res, [nx, ny, nz])
+    VoxelGeometry::new_within([g.origin[0], g.origin[1], z0], res, [nx, ny, nz], memory)
         .map_err(|e| ValidityError::Map(e.to_string()))
 }
 

@@ -162,7 +162,8 @@ pub(crate) fn shared_volumes(ctx: &BuildContext, robot: &RobotBox) -> Result<Sha
             return Ok(volumes);
         }
     }
-    SharedVolumes::for_world(&world, robot.headroom()).map_err(|e| Error::stage("validity", e))
+    SharedVolumes::for_world_within(&world, robot.headroom(), ctx.memory())
+        .map_err(|e| Error::stage("validity", e))
 }
 
 /// Builds the checker for the context's world and robot, deriving the volumes now

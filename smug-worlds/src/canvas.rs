@@ -2,7 +2,7 @@
 
 use rand::SeedableRng;
 use smug_core::rng::StageRng;
-use smug_core::{BuildContext, GridGeometry, GridLayer};
+use smug_core::{BuildContext, GridGeometry, GridLayer, MemoryLimit};
 
 /// The RNG of a procedural world: its own `seed` if given, else the config seed's
 /// `world` stream.
@@ -114,8 +114,12 @@ pub(crate) enum CanvasError {
     Grid(#[from] smug_core::GridError),
 }
 
-/// A geometry of `size` metres at `resolution`, origin at (0, 0).
-pub(crate) fn geometry(size: [f64; 2], resolution: f64) -> Result<GridGeometry, CanvasError> {
+/// A geometry of `size` metres at `resolution`, origin at (0, 0), within `memory`.
+pub(crate) fn geometry(
+    size: [f64; 2],
+    resolution: f64,
+    memory: MemoryLimit,
+) -> Result<GridGeometry, CanvasError> {
     if !(size[0] > 0.0 && size[1] > 0.0 && size[0].is_finite() && size[1].is_finite()) {
         return Err(CanvasError::Size(size));
     }
@@ -129,10 +133,11 @@ pub(crate) fn geometry(size: [f64; 2], resolution: f64) -> Result<GridGeometry, 
     if cells[0] * cells[1] > 1e8 {
         return Err(CanvasError::TooManyCells { size, resolution });
     }
-    GridGeometry::new(
+    GridGeometry::new_within(
         [0.0, 0.0],
         resolution,
         [cells[0].max(1.0) as usize, cells[1].max(1.0) as usize],
+        memory,
     )
     .map_err(CanvasError::from)
 }

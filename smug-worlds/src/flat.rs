@@ -2,7 +2,7 @@
 //! mission file) — small, exact worlds for tests, tutorials and wheeled robots.
 
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Error, GridGeometry, GridLayer, Mission, World};
+use smug_core::{BuildContext, Error, GridGeometry, GridLayer, MemoryLimit, Mission, World};
 use std::path::PathBuf;
 
 /// An axis-aligned box obstacle standing on the floor.
@@ -61,6 +61,15 @@ const MAX_CELLS: f64 = 1e8;
 
 /// Builds the world described by `params`, with `mission`.
 pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<World, Error> {
+    flat_world_within(params, mission, MemoryLimit::default())
+}
+
+/// [`flat_world`] with grids that must fit `memory` (a run's limit).
+pub fn flat_world_within(
+    params: &FlatParams,
+    mission: Mission,
+    memory: MemoryLimit,
+) -> Result<World, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     let [w, h] = params.size;
     if !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
@@ -76,10 +85,11 @@ pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<World, Error>
             params.size, params.resolution, cells[0], cells[1]
         )));
     }
-    let geometry = GridGeometry::new(
+    let geometry = GridGeometry::new_within(
         params.origin,
         params.resolution,
         [cells[0] as usize, cells[1] as usize],
+        memory,
     )
     .map_err(|e| bad(e.to_string()))?;
     if let Some(k) = params
@@ -140,7 +150,7 @@ smug_core::register_plugin!(
     params = FlatParams,
     build = |params, ctx| {
         let mission = mission_from(&params, ctx)?;
-        Ok(Box::new(flat_world(&params, mission)?))
+        Ok(Box::new(flat_world_within(&params, mission, ctx.memory())?))
     },
 );
 

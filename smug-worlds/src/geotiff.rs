@@ -19,7 +19,7 @@
 //! tag's value becomes NaN. The grid's origin is the lower-left corner of the lower-left
 //! pixel, and raster row 0 (north) is the grid's top row.
 
-use smug_core::{GridGeometry, GridLayer};
+use smug_core::{GridGeometry, GridLayer, MemoryLimit};
 use std::path::{Path, PathBuf};
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
@@ -35,6 +35,14 @@ pub struct GeoTiffError {
     pub path: PathBuf,
     /// What is wrong.
     pub message: String,
+}
+
+/// An error about the GeoTIFF at `path`.
+fn fail_at(path: &Path) -> impl Fn(String) -> GeoTiffError + '_ {
+    move |message| GeoTiffError {
+        path: path.to_path_buf(),
+        message,
+    }
 }
 
 /// How a raster point relates to its pixel (`GTRasterTypeGeoKey`).
@@ -62,6 +70,11 @@ const GT_MODEL_TYPE_GEO_KEY: u16 = 1024;
 
 /// Reads the GeoTIFF DEM at `path` (see the [module documentation](self)).
 pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
+    read_geotiff_within(path, MemoryLimit::default())
+}
+
+/// [`read_geotiff`] into a grid that must fit `memory` (a run's limit).
+pub fn read_geotiff_within(path: &Path, memory: MemoryLimit) -> Result<Dem, GeoTiffError> {
     let fail = |message: String| GeoTiffError {
         path: path.to_path_buf(),
         message,
@@ -91,8 +104,8 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
             "has {samples} samples per pixel; a DEM has one band (heights)"
         )));
     }
-    let raster_type = raster_type(&mut decoder).map_err(&fail)?;
-    let (corner, scale) = georeference(&mut decoder, raster_type).map_err(&fail)?;
+    let raster_type = raster_type(&mut decoder, path)?;
+    let (corner, scale) = georeference(&mut decoder, raster_type, path)?;
     let nodata = match decoder.find_tag(Tag::GdalNodata) {
         Ok(Some(value)) => {
             let text = value
@@ -107,7 +120,7 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         Ok(None) => None,
         Err(e) => return Err(fail(format!("bad GDAL_NODATA tag: {e}"))),
     };
-    let image = match read_lzw(&mut decoder, &bytes, [width, height]).map_err(&fail)? {
+    let image = match read_lzw(&mut decoder, &bytes, [width, height], path)? {
         Some(image) => image,
         None => {
             let mut limits = Limits::default();
@@ -119,7 +132,7 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
                 .map_err(|e| fail(format!("cannot decode the image: {e}")))?
         }
     };
-    let values = heights(image, nodata).map_err(&fail)?;
+    let values = heights(image, nodata, path)?;
     let expected = width as usize * height as usize;
     if values.len() != expected {
         return Err(fail(format!(
@@ -128,8 +141,9 @@ pub fn read_geotiff(path: &Path) -> Result<Dem, GeoTiffError> {
         )));
     }
     let origin = [corner[0], corner[1] - f64::from(height) * scale];
-    let geometry = GridGeometry::new(origin, scale, [width as usize, height as usize])
-        .map_err(|m| fail(format!("bad georeferencing: {m}")))?;
+    let geometry =
+        GridGeometry::new_within(origin, scale, [width as usize, height as usize], memory)
+            .map_err(|m| fail(format!("bad georeferencing: {m}")))?;
     let (nx, ny) = (width as usize, height as usize);
     let elevation = GridLayer::from_fn(geometry, |i, j| values[(ny - 1 - j) * nx + i]);
     Ok(Dem {
@@ -144,14 +158,15 @@ const COMPRESSION_LZW: u16 = 5;
 fn u64_tags<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
     tag: Tag,
-) -> Result<Option<Vec<u64>>, String> {
+    path: &Path,
+) -> Result<Option<Vec<u64>>, GeoTiffError> {
     match decoder.find_tag(tag) {
         Ok(Some(value)) => value
             .into_u64_vec()
             .map(Some)
-            .map_err(|e| format!("bad {tag:?} tag: {e}")),
+            .map_err(|e| fail_at(path)(format!("bad {tag:?} tag: {e}"))),
         Ok(None) => Ok(None),
-        Err(e) => Err(format!("bad {tag:?} tag: {e}")),
+        Err(e) => Err(fail_at(path)(format!("bad {tag:?} tag: {e}"))),
     }
 }
 
@@ -159,11 +174,12 @@ fn u16_tag<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
     tag: Tag,
     default: u16,
-) -> Result<u16, String> {
+    path: &Path,
+) -> Result<u16, GeoTiffError> {
     decoder
         .find_tag_unsigned::<u16>(tag)
         .map(|v| v.unwrap_or(default))
-        .map_err(|e| format!("bad {tag:?} tag: {e}"))
+        .map_err(|e| fail_at(path)(format!("bad {tag:?} tag: {e}")))
 }
 
 /// Decodes an LZW-compressed image (strips or tiles, no predictor or horizontal
@@ -176,13 +192,14 @@ fn read_lzw<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
     file: &[u8],
     [width, height]: [u32; 2],
-) -> Result<Option<DecodingResult>, String> {
-    if u16_tag(decoder, Tag::Compression, 1)? != COMPRESSION_LZW {
+    path: &Path,
+) -> Result<Option<DecodingResult>, GeoTiffError> {
+    if u16_tag(decoder, Tag::Compression, 1, path)? != COMPRESSION_LZW {
         return Ok(None);
     }
-    let predictor = u16_tag(decoder, Tag::Predictor, 1)?;
-    let bits = u16_tag(decoder, Tag::BitsPerSample, 1)?;
-    let format = u16_tag(decoder, Tag::SampleFormat, 1)?;
+    let predictor = u16_tag(decoder, Tag::Predictor, 1, path)?;
+    let bits = u16_tag(decoder, Tag::BitsPerSample, 1, path)?;
+    let format = u16_tag(decoder, Tag::SampleFormat, 1, path)?;
     if !matches!(bits, 8 | 16 | 32 | 64) || !matches!(format, 1..=3) {
         return Ok(None);
     }
@@ -194,38 +211,43 @@ fn read_lzw<R: std::io::Read + std::io::Seek>(
         Ok(Some(tw)) => {
             let th = decoder
                 .find_tag_unsigned::<u32>(Tag::TileLength)
-                .map_err(|e| format!("bad TileLength tag: {e}"))?
-                .ok_or("has TileWidth but no TileLength")?;
+                .map_err(|e| fail_at(path)(format!("bad TileLength tag: {e}")))?
+                .ok_or_else(|| fail_at(path)("has TileWidth but no TileLength".to_string()))?;
             (true, [tw, th])
         }
         Ok(None) => {
             let rows = decoder
                 .find_tag_unsigned::<u32>(Tag::RowsPerStrip)
-                .map_err(|e| format!("bad RowsPerStrip tag: {e}"))?
+                .map_err(|e| fail_at(path)(format!("bad RowsPerStrip tag: {e}")))?
                 .unwrap_or(height);
             (false, [width, rows.min(height)])
         }
-        Err(e) => return Err(format!("bad TileWidth tag: {e}")),
+        Err(e) => return Err(fail_at(path)(format!("bad TileWidth tag: {e}"))),
     };
     if chunk[0] == 0 || chunk[1] == 0 || u64::from(chunk[0]) * u64::from(chunk[1]) > MAX_PIXELS {
-        return Err(format!("bad chunk size {}×{}", chunk[0], chunk[1]));
+        return Err(fail_at(path)(format!(
+            "bad chunk size {}×{}",
+            chunk[0], chunk[1]
+        )));
     }
     let (offsets, counts) = if tiled {
         (Tag::TileOffsets, Tag::TileByteCounts)
     } else {
         (Tag::StripOffsets, Tag::StripByteCounts)
     };
-    let offsets = u64_tags(decoder, offsets)?.ok_or("has no chunk offsets")?;
-    let counts = u64_tags(decoder, counts)?.ok_or("has no chunk byte counts")?;
+    let offsets = u64_tags(decoder, offsets, path)?
+        .ok_or_else(|| fail_at(path)("has no chunk offsets".to_string()))?;
+    let counts = u64_tags(decoder, counts, path)?
+        .ok_or_else(|| fail_at(path)("has no chunk byte counts".to_string()))?;
     let across = width.div_ceil(chunk[0]) as usize;
     let down = height.div_ceil(chunk[1]) as usize;
     if offsets.len() < across * down || counts.len() < across * down {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "has {} chunk offsets and {} byte counts for {} chunks",
             offsets.len(),
             counts.len(),
             across * down
-        ));
+        )));
     }
     let little = decoder.byte_order() == tiff::tags::ByteOrder::LittleEndian;
     let size = bits as usize / 8;
@@ -238,14 +260,16 @@ fn read_lzw<R: std::io::Read + std::io::Seek>(
             let (start, count) = (offsets[k] as usize, counts[k] as usize);
             let compressed = file
                 .get(start..start.saturating_add(count))
-                .ok_or_else(|| format!("chunk {k} lies beyond the end of the file"))?;
+                .ok_or_else(|| {
+                    fail_at(path)(format!("chunk {k} lies beyond the end of the file"))
+                })?;
             let mut bytes = Vec::new();
             let result = weezl::decode::Decoder::with_tiff_size_switch(weezl::BitOrder::Msb, 8)
                 .into_vec(&mut bytes)
                 .decode(compressed);
             result
                 .status
-                .map_err(|e| format!("chunk {k}: bad LZW data: {e}"))?;
+                .map_err(|e| fail_at(path)(format!("chunk {k}: bad LZW data: {e}")))?;
             let (cw, x0, y0) = (
                 chunk[0] as usize,
                 cx * chunk[0] as usize,
@@ -258,11 +282,11 @@ fn read_lzw<R: std::io::Read + std::io::Seek>(
                 (chunk[1] as usize).min(h - y0)
             };
             if bytes.len() < cw * rows * size {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "chunk {k} decodes to {} bytes; {cw}×{rows} samples of {size} bytes need {}",
                     bytes.len(),
                     cw * rows * size
-                ));
+                )));
             }
             let mask = if bits == 64 {
                 u64::MAX
@@ -306,13 +330,14 @@ fn read_lzw<R: std::io::Read + std::io::Seek>(
 /// The raster type from the GeoKey directory (`PixelIsArea` when absent).
 fn raster_type<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
-) -> Result<RasterType, String> {
+    path: &Path,
+) -> Result<RasterType, GeoTiffError> {
     let keys = match decoder.find_tag(Tag::GeoKeyDirectoryTag) {
         Ok(Some(value)) => value
             .into_u16_vec()
-            .map_err(|e| format!("bad GeoKeyDirectory tag: {e}"))?,
+            .map_err(|e| fail_at(path)(format!("bad GeoKeyDirectory tag: {e}")))?,
         Ok(None) => return Ok(RasterType::PixelIsArea),
-        Err(e) => return Err(format!("bad GeoKeyDirectory tag: {e}")),
+        Err(e) => return Err(fail_at(path)(format!("bad GeoKeyDirectory tag: {e}"))),
     };
     // Header: version, revision, minor, number of keys; then 4 shorts per key:
     // id, location (0 = the value is inline), count, value.
@@ -322,20 +347,20 @@ fn raster_type<R: std::io::Read + std::io::Seek>(
         .clone()
         .any(|key| key[0] == GT_MODEL_TYPE_GEO_KEY && key[1] == 0 && key[3] == 2)
     {
-        return Err(
+        return Err(fail_at(path)(
             "is in geographic coordinates (degrees), SMUG plans in metres: \
                     reproject it to a projected CRS first (e.g. `gdalwarp -t_srs EPSG:326NN`)"
                 .into(),
-        );
+        ));
     }
     for key in entries {
         if key[0] == GT_RASTER_TYPE_GEO_KEY && key[1] == 0 {
             return match key[3] {
                 1 => Ok(RasterType::PixelIsArea),
                 2 => Ok(RasterType::PixelIsPoint),
-                other => Err(format!(
+                other => Err(fail_at(path)(format!(
                     "GTRasterTypeGeoKey is {other}; expected 1 (PixelIsArea) or 2 (PixelIsPoint)"
-                )),
+                ))),
             };
         }
     }
@@ -346,14 +371,15 @@ fn f64_tag<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
     tag: Tag,
     name: &str,
-) -> Result<Option<Vec<f64>>, String> {
+    path: &Path,
+) -> Result<Option<Vec<f64>>, GeoTiffError> {
     match decoder.find_tag(tag) {
         Ok(Some(value)) => value
             .into_f64_vec()
             .map(Some)
-            .map_err(|e| format!("bad {name} tag: {e}")),
+            .map_err(|e| fail_at(path)(format!("bad {name} tag: {e}"))),
         Ok(None) => Ok(None),
-        Err(e) => Err(format!("bad {name} tag: {e}")),
+        Err(e) => Err(fail_at(path)(format!("bad {name} tag: {e}"))),
     }
 }
 
@@ -361,63 +387,69 @@ fn f64_tag<R: std::io::Read + std::io::Seek>(
 fn georeference<R: std::io::Read + std::io::Seek>(
     decoder: &mut Decoder<R>,
     raster_type: RasterType,
-) -> Result<([f64; 2], f64), String> {
-    let scale = f64_tag(decoder, Tag::ModelPixelScaleTag, "ModelPixelScale")?;
-    let tiepoint = f64_tag(decoder, Tag::ModelTiepointTag, "ModelTiepoint")?;
-    let transform = f64_tag(decoder, Tag::ModelTransformationTag, "ModelTransformation")?;
+    path: &Path,
+) -> Result<([f64; 2], f64), GeoTiffError> {
+    let scale = f64_tag(decoder, Tag::ModelPixelScaleTag, "ModelPixelScale", path)?;
+    let tiepoint = f64_tag(decoder, Tag::ModelTiepointTag, "ModelTiepoint", path)?;
+    let transform = f64_tag(
+        decoder,
+        Tag::ModelTransformationTag,
+        "ModelTransformation",
+        path,
+    )?;
     // Raster point (i, j) ↦ (x0 + i·sx, y0 − j·sy).
     let (x0, y0, sx, sy) = match (scale, tiepoint, transform) {
         (Some(scale), Some(tie), _) => {
             if scale.len() < 2 || tie.len() < 6 {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "ModelPixelScale has {} values (needs 3) or ModelTiepoint {} (needs 6)",
                     scale.len(),
                     tie.len()
-                ));
+                )));
             }
             if tie.len() > 6 {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "ModelTiepoint holds {} tiepoints; SMUG reads north-up DEMs with one",
                     tie.len() / 6
-                ));
+                )));
             }
             let (sx, sy) = (scale[0], scale[1]);
             (tie[3] - tie[0] * sx, tie[4] + tie[1] * sy, sx, sy)
         }
         (_, _, Some(m)) => {
             if m.len() != 16 {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "ModelTransformation has {} values; it needs 16",
                     m.len()
-                ));
+                )));
             }
             if m[1] != 0.0 || m[4] != 0.0 {
-                return Err(format!(
+                return Err(fail_at(path)(format!(
                     "ModelTransformation rotates or shears the raster (terms {} and {}); \
                      SMUG reads north-up DEMs",
                     m[1], m[4]
-                ));
+                )));
             }
             (m[3], m[7], m[0], -m[5])
         }
         _ => {
-            return Err(
+            return Err(fail_at(path)(
                 "no georeferencing: needs ModelPixelScale and ModelTiepoint, or \
                  ModelTransformation"
                     .into(),
-            )
+            ))
         }
     };
     if ![x0, y0, sx, sy].iter().all(|v| v.is_finite()) || sx <= 0.0 || sy <= 0.0 {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "the pixel size must be finite and > 0 with north up, got ({sx}, {}) from ({x0}, {y0})",
             -sy
-        ));
+        )));
     }
     if (sx - sy).abs() > 1e-9 * sx {
-        return Err(format!(
+        return Err(fail_at(path)(format!(
             "pixels are {sx} × {sy}: SMUG's grids have square cells (resample the DEM)"
-        ));
+        )));
     }
     let half = match raster_type {
         RasterType::PixelIsArea => 0.0,
@@ -427,7 +459,11 @@ fn georeference<R: std::io::Read + std::io::Seek>(
 }
 
 /// The samples as heights, NaN for the nodata value.
-fn heights(image: DecodingResult, nodata: Option<f64>) -> Result<Vec<f32>, String> {
+fn heights(
+    image: DecodingResult,
+    nodata: Option<f64>,
+    path: &Path,
+) -> Result<Vec<f32>, GeoTiffError> {
     fn convert<T: Copy>(
         samples: Vec<T>,
         nodata: Option<T>,
@@ -471,11 +507,11 @@ fn heights(image: DecodingResult, nodata: Option<f64>) -> Result<Vec<f32>, Strin
         DecodingResult::I32(v) => convert(v, exact(nodata), |x| x as f32, eq),
         DecodingResult::U32(v) => convert(v, exact(nodata), |x| x as f32, eq),
         DecodingResult::I64(_) | DecodingResult::U64(_) | DecodingResult::F16(_) => {
-            return Err(
+            return Err(fail_at(path)(
                 "64-bit integer and 16-bit float samples are not supported; \
                  use float32, float64 or int16"
                     .into(),
-            )
+            ))
         }
     })
 }

@@ -6,7 +6,7 @@ use crate::canvas::{geometry, raise_rectangle, world_rng};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{Error, GridLayer, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Target, World};
 
 /// Parameters of the indoor world.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -126,6 +126,15 @@ fn room_sides(room: &Rect) -> [Side; 4] {
 
 /// Builds the indoor world from `params` with randomness from `rng`.
 pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<World, Error> {
+    indoor_world_within(params, rng, MemoryLimit::default())
+}
+
+/// [`indoor_world`] with grids that must fit `memory` (a run's limit).
+pub fn indoor_world_within(
+    params: &IndoorParams,
+    rng: &mut StageRng,
+    memory: MemoryLimit,
+) -> Result<World, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     if params.size.is_nan() || params.size < 8.0 {
         return Err(bad(format!(
@@ -134,7 +143,7 @@ pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<World, 
         )));
     }
     let s = params.size;
-    let g = geometry([s, s], params.resolution).map_err(|e| bad(e.to_string()))?;
+    let g = geometry([s, s], params.resolution, memory).map_err(|e| bad(e.to_string()))?;
     let mut floor = GridLayer::filled(g, 0.0);
     let h = params.wall_height;
     let half = s / 2.0;
@@ -343,9 +352,10 @@ smug_core::register_plugin!(
     name = "indoor",
     summary = "procedural indoor world: four rooms with doors, shelves, gauges (ToIs) on the walls",
     params = IndoorParams,
-    build = |params, ctx| Ok(Box::new(indoor_world(
+    build = |params, ctx| Ok(Box::new(indoor_world_within(
         &params,
-        &mut world_rng(params.seed, ctx)
+        &mut world_rng(params.seed, ctx),
+        ctx.memory(),
     )?)),
 );
 

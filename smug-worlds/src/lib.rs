@@ -22,10 +22,10 @@ pub mod point_cloud;
 pub mod render;
 
 pub use export::{export_world, export_world_with, ExportError, ExportOptions};
-pub use geotiff::{read_geotiff, Dem, GeoTiffError};
+pub use geotiff::{read_geotiff, read_geotiff_within, Dem, GeoTiffError};
 pub use grid_gen::{generate, GridFamily, GridGenError, GridParams};
 pub use map_file::{load_map, MapFileError, MapLayers, MapParams, MapYaml};
 pub use mission_file::{load_mission, MissionFileError};
 pub use movingai::{convert_movingai, scenario_to_world, MovingAiError};
-pub use point_cloud::{rasterise, read_point_cloud, PointCloudError, Reduce};
+pub use point_cloud::{rasterise, rasterise_within, read_point_cloud, PointCloudError, Reduce};
 pub use render::{render_svg, RenderOptions};

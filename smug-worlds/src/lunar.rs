@@ -7,7 +7,7 @@ use crate::canvas::{add_feature, geometry, raise_feature, world_rng};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{Error, GridLayer, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Target, World};
 use std::f64::consts::{PI, TAU};
 
 /// Parameters of the lunar world.
@@ -167,6 +167,15 @@ fn pois_around(center: [f64; 2], distance: f64, count: usize, offset: f64) -> Ve
 
 /// Builds the lunar world from `params` with randomness from `rng`.
 pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<World, Error> {
+    lunar_world_within(params, rng, MemoryLimit::default())
+}
+
+/// [`lunar_world`] with grids that must fit `memory` (a run's limit).
+pub fn lunar_world_within(
+    params: &LunarParams,
+    rng: &mut StageRng,
+    memory: MemoryLimit,
+) -> Result<World, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     if params.pois_per_target == 0
         || params.inspection_distance.is_nan()
@@ -176,7 +185,7 @@ pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<World, Er
             "pois_per_target and inspection_distance must be > 0".into()
         ));
     }
-    let g = geometry(params.size, params.resolution).map_err(|e| bad(e.to_string()))?;
+    let g = geometry(params.size, params.resolution, memory).map_err(|e| bad(e.to_string()))?;
     let mut terrain = GridLayer::filled(g, 0.0);
     base_terrain(&mut terrain, rng);
     let start = params.start.unwrap_or(Pose2::new(2.0, 2.0, PI / 4.0));
@@ -329,9 +338,10 @@ smug_core::register_plugin!(
     name = "lunar",
     summary = "procedural lunar world: slopes, craters, boulders, stones (ToIs) with PoI circles",
     params = LunarParams,
-    build = |params, ctx| Ok(Box::new(lunar_world(
+    build = |params, ctx| Ok(Box::new(lunar_world_within(
         &params,
-        &mut world_rng(params.seed, ctx)
+        &mut world_rng(params.seed, ctx),
+        ctx.memory(),
     )?)),
 );
 

@@ -39,15 +39,15 @@ pub fn load_mission(path: &Path) -> Result<Mission, MissionFileError> {
         path: shown.clone(),
         source,
     })?;
-    let parsed: Result<Mission, String> = if path.extension().is_some_and(|e| e == "json") {
-        serde_json::from_str(&text).map_err(|e| e.to_string())
-    } else {
-        toml::from_str(&text).map_err(|e| e.to_string().trim().replace('\n', " "))
-    };
-    let mission = parsed.map_err(|message| MissionFileError::Parse {
+    let parse = |message: String| MissionFileError::Parse {
         path: shown.clone(),
         message,
-    })?;
+    };
+    let mission: Mission = if path.extension().is_some_and(|e| e == "json") {
+        serde_json::from_str(&text).map_err(|e| parse(e.to_string()))?
+    } else {
+        toml::from_str(&text).map_err(|e| parse(e.to_string().trim().replace('\n', " ")))?
+    };
     mission
         .validate()
         .map_err(|source| MissionFileError::Invalid {

@@ -11,7 +11,6 @@ use super::layout::{register_poses, Layout};
 use super::options::{PlanMode, PlanOptions};
 use super::sequential::sequence;
 use super::Mission;
-use crate::deadline;
 use crate::error::{Error, Result};
 use crate::evaluation::plan_metrics;
 use crate::oracle::PathOracle;
@@ -130,21 +129,23 @@ fn order_then_select(
 }
 
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
-/// the options' deadline when they set one ([`crate::deadline`]).
+/// the options' deadline when they set one (armed on the pipeline's own
+/// [`Deadline`](crate::deadline::Deadline), which its stages hold).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let Some(seconds) = options.deadline else {
         return plan_unbounded(pipeline, options);
     };
     let built_s: f64 = pipeline.build_times_s.values().sum();
-    let _deadline = deadline::set(Some(seconds - built_s));
+    let deadline = pipeline.run().deadline.clone();
+    let _armed = deadline.arm(Some(seconds - built_s));
     match plan_unbounded(pipeline, options) {
         Ok(mut plan) => {
-            plan.deadline_reached = deadline::reached();
+            plan.deadline_reached = deadline.reached();
             Ok(plan)
         }
         Err(Error::DeadlinePassed { during, .. }) => Err(Error::DeadlinePassed { seconds, during }),
         // An anytime search cut short can look like a missing path: say what happened.
-        Err(_) if deadline::reached() => Err(Error::DeadlinePassed {
+        Err(_) if deadline.reached() => Err(Error::DeadlinePassed {
             seconds,
             during: "path planning".into(),
         }),
@@ -189,7 +190,8 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
         .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
         .with_known(pipeline.answers.take().unwrap_or_default())
-        .with_progress(pipeline.progress.clone());
+        .with_progress(pipeline.progress.clone())
+        .with_run(pipeline.run().clone());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
     if keep_answers {
         pipeline.answers = Some(oracle.take_known_answers());

@@ -171,7 +171,7 @@ pub(super) fn lazy_solve(
 
 /// The matrix of planned costs where known and lower bounds elsewhere.
 fn lazy_matrix(oracle: &PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
-    CostMatrix::from_fn(nodes.len(), |i, j| {
+    CostMatrix::from_fn_within(nodes.len(), oracle.run().memory, |i, j| {
         if i == j {
             0.0
         } else {

@@ -33,10 +33,20 @@ impl CostMatrix {
         Ok(Self { n, data })
     }
 
-    /// A matrix with entries `cost(i, j)`.
-    pub fn from_fn(n: usize, mut cost: impl FnMut(usize, usize) -> f64) -> Result<Self> {
+    /// A matrix with entries `cost(i, j)`, within the default memory limit.
+    pub fn from_fn(n: usize, cost: impl FnMut(usize, usize) -> f64) -> Result<Self> {
+        Self::from_fn_within(n, crate::limits::MemoryLimit::default(), cost)
+    }
+
+    /// A matrix with entries `cost(i, j)` whose entries (8 bytes each) fit `memory`.
+    pub fn from_fn_within(
+        n: usize,
+        memory: crate::limits::MemoryLimit,
+        mut cost: impl FnMut(usize, usize) -> f64,
+    ) -> Result<Self> {
         let entries = (n as u128) * (n as u128);
-        crate::limits::check_allocation(&format!("a {n}×{n} cost matrix"), entries, 8)
+        memory
+            .check(&format!("a {n}×{n} cost matrix"), entries, 8)
             .map_err(|e| Error::InvalidInput(e.to_string()))?;
         let data = (0..n * n).map(|k| cost(k / n, k % n)).collect();
         Self::from_rows(n, data)

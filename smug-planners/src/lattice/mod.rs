@@ -127,6 +127,8 @@ pub(crate) struct Shared {
     radius: f64,
     shot_radius: f64,
     caches: caches::Caches,
+    /// The run's deadline: searches stop at it.
+    deadline: smug_core::Deadline,
 }
 
 /// The lattice planner.
@@ -150,6 +152,12 @@ fn invalid(key: &str, message: impl std::fmt::Display) -> Error {
 }
 
 impl LatticePlanner {
+    /// Searches stop at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: smug_core::Deadline) -> Self {
+        self.shared.deadline = deadline;
+        self
+    }
+
     /// The planner on `bounds` for the model `space` (which must be curvature-limited),
     /// costs by `objective`, validity by `states` and `motions`.
     pub fn new(
@@ -221,6 +229,7 @@ impl LatticePlanner {
                 motions,
                 radius,
                 shot_radius,
+                deadline: smug_core::Deadline::new(),
             },
             searchers: Mutex::new(Vec::new()),
             counts: Counts::default(),
@@ -377,14 +386,10 @@ impl PointToPointPlanner for LatticePlanner {
         }
         let (shared, pool) = (&self.shared, &self.searchers);
         let max = shared.params.max_expansions;
-        let deadline = smug_core::deadline::carry();
         let answered: Vec<(search::Answers, Counts)> = rows
             .par_iter()
             .with_max_len(1)
-            .map(|(start, goals)| {
-                let _deadline = smug_core::deadline::adopt(deadline);
-                Self::search_with_pool(shared, pool, start, goals, max)
-            })
+            .map(|(start, goals)| Self::search_with_pool(shared, pool, start, goals, max))
             .collect();
         let mut outcomes = Vec::with_capacity(rows.len());
         for ((answers, counts), (_, goals)) in answered.into_iter().zip(rows) {
@@ -452,14 +457,15 @@ impl PointToPointPlanner for LatticePlanner {
 
 fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
     let world = ctx.world()?;
-    LatticePlanner::new(
+    Ok(LatticePlanner::new(
         params,
         world.bounds(),
         ctx.space(),
         ctx.objective(),
         ctx.state_validity()?,
         ctx.motion_validator()?,
-    )
+    )?
+    .with_deadline(ctx.deadline()))
 }
 
 smug_core::register_plugin!(

@@ -326,7 +326,7 @@ impl Worker<'_> {
                 if started.elapsed().as_secs_f64() > self.sh.params.time_limit {
                     return (run.goals, End::Budget(Budget::Time));
                 }
-                if smug_core::deadline::passed() {
+                if self.sh.deadline.passed() {
                     return (run.goals, End::Budget(Budget::Deadline));
                 }
             }

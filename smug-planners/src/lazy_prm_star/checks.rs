@@ -1,10 +1,28 @@
 //! The validity checks LazyPRM*'s searches and post-processing run, counted and timed.
 
-use super::Counts;
 use crate::roadmap::{Evaluator, Roadmap, Validity};
+use smug_core::TimeBreakdown;
 use smug_core::{MotionCheck, MotionValidator, Pose2, StateValidityChecker};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::time::Instant;
+
+/// Counters kept across queries.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Counts {
+    pub(super) queries: u64,
+    pub(super) samples: u64,
+    pub(super) vertex_checks: u64,
+    pub(super) edge_checks: u64,
+    pub(super) searches: u64,
+    /// Attempts answered by repairing the previous search.
+    pub(super) repairs: u64,
+    /// Queries answered "no path" at once: an endpoint was cut off.
+    pub(super) cut_off_queries: u64,
+    /// Queries answered "no path exists" at once: the endpoints lie in different
+    /// components of the free cells (a disc on a grid).
+    pub(super) proved_no_path: u64,
+    pub(super) breakdown: TimeBreakdown,
+}
 
 /// A state check, counted and timed as vertex checking.
 pub(super) fn timed_state_check(

@@ -28,7 +28,7 @@ mod test_support;
 mod tests;
 mod warm;
 
-use self::checks::{timed_state_check, Checks, CountedMotions};
+use self::checks::{timed_state_check, Checks, CountedMotions, Counts};
 use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 pub use self::params::{LazyPrmStarParams, SearchMode};
@@ -38,32 +38,15 @@ use rayon::prelude::*;
 use smug_core::pose::angle_distance;
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    Bounds2, Budget, BuildContext, Error, FreeRegions, InformedSet, MotionValidator, NoPathReason,
-    Objective, Path, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Proof, Result,
-    Sampler, StateSpace, StateValidityChecker, Termination, TimeBreakdown,
+    Bounds2, Budget, BuildContext, Deadline, Error, FreeRegions, InformedSet, MemoryLimit,
+    MotionValidator, NoPathReason, Objective, Path, PlannerOutcome, PlannerStats,
+    PointToPointPlanner, Pose2, Proof, Result, RunContext, Sampler, StateSpace,
+    StateValidityChecker, Termination,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// Counters kept across queries.
-#[derive(Clone, Debug, Default)]
-struct Counts {
-    queries: u64,
-    samples: u64,
-    vertex_checks: u64,
-    edge_checks: u64,
-    searches: u64,
-    /// Attempts answered by repairing the previous search.
-    repairs: u64,
-    /// Queries answered "no path" at once: an endpoint was cut off.
-    cut_off_queries: u64,
-    /// Queries answered "no path exists" at once: the endpoints lie in different
-    /// components of the free cells (a disc on a grid).
-    proved_no_path: u64,
-    breakdown: TimeBreakdown,
-}
 
 /// LazyPRM* on a shared roadmap.
 pub struct LazyPrmStar {
@@ -93,6 +76,8 @@ pub struct LazyPrmStar {
     regions: Option<Option<FreeRegions>>,
     /// Which budget ended the latest query without a path.
     last_budget: Budget,
+    /// The run's deadline: queries stop at it, keeping their best path.
+    deadline: Deadline,
 }
 
 /// Bytes a roadmap vertex takes with its share of edges (measured order of magnitude:
@@ -100,27 +85,44 @@ pub struct LazyPrmStar {
 const BYTES_PER_VERTEX: u128 = 512;
 
 /// Refuses sample counts whose roadmap would not fit the memory limit.
-fn check_roadmap_size(params: &LazyPrmStarParams) -> Result<()> {
+fn check_roadmap_size(params: &LazyPrmStarParams, memory: MemoryLimit) -> Result<()> {
     for (key, count) in [
         ("initial_samples", params.initial_samples),
         ("max_samples", params.max_samples),
     ] {
         let what = format!("a roadmap of {key} = {count} vertices");
-        smug_core::limits::check_allocation(&what, count.into(), BYTES_PER_VERTEX)
+        memory
+            .check(&what, count.into(), BYTES_PER_VERTEX)
             .map_err(|message| Error::invalid_param("planner", message.to_string()))?;
     }
     Ok(())
 }
 
 impl LazyPrmStar {
-    /// A planner over the given stages in `bounds`.
+    /// A planner over the given stages in `bounds`, outside any run (no deadline, the
+    /// default memory limit).
     pub fn new(
+        params: LazyPrmStarParams,
+        sampler: Box<dyn Sampler>,
+        states: Arc<dyn StateValidityChecker>,
+        motions: Arc<dyn MotionValidator>,
+        stages: (Arc<dyn StateSpace>, Arc<dyn Objective>),
+        bounds: Bounds2,
+    ) -> Result<Self> {
+        let run = RunContext::default();
+        Self::new_in(params, sampler, states, motions, stages, bounds, &run)
+    }
+
+    /// A planner over the given stages in `bounds` within `run`: its roadmap must fit
+    /// the run's memory limit, its queries stop at the run's deadline.
+    pub fn new_in(
         params: LazyPrmStarParams,
         sampler: Box<dyn Sampler>,
         states: Arc<dyn StateValidityChecker>,
         motions: Arc<dyn MotionValidator>,
         (space, objective): (Arc<dyn StateSpace>, Arc<dyn Objective>),
         bounds: Bounds2,
+        run: &RunContext,
     ) -> Result<Self> {
         if !(params.improvement.is_finite() && (0.0..1.0).contains(&params.improvement)) {
             return Err(Error::invalid_param(
@@ -164,7 +166,7 @@ impl LazyPrmStar {
                 ),
             ));
         }
-        check_roadmap_size(&params)?;
+        check_roadmap_size(&params, run.memory)?;
         let (w_t, _) = space.lower_bound_weights();
         Ok(Self {
             params,
@@ -192,6 +194,7 @@ impl LazyPrmStar {
             warm: warm::Warm::default(),
             regions: None,
             last_budget: Budget::Samples,
+            deadline: run.deadline.clone(),
         })
     }
 
@@ -291,13 +294,14 @@ const EXPANSION_STREAM: &str = "planner-expansion";
 
 fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
-    Ok(LazyPrmStar::new(
+    Ok(LazyPrmStar::new_in(
         params,
         ctx.new_sampler()?,
         ctx.state_validity()?,
         ctx.motion_validator()?,
         (ctx.space(), ctx.objective()),
         bounds,
+        ctx.run(),
     )?
     .with_expansion_rng(ctx.rng(EXPANSION_STREAM)))
 }

@@ -21,7 +21,8 @@ impl LazyPrmStar {
     ) -> Option<GraphPath> {
         let budget =
             Termination::from_budgets(self.params.time_limit, Some(self.params.max_samples));
-        let mut clock = budget.start();
+        let deadline = self.deadline.clone();
+        let mut clock = budget.start_within(&deadline);
         let mut best = if self.roadmap.maybe_connected(s, g) {
             self.attempt(s, g, f64::INFINITY, 0)
         } else {
@@ -144,7 +145,7 @@ impl LazyPrmStar {
         }
         if best.is_none() {
             self.cut_off_pocket(s, g);
-            self.last_budget = if smug_core::deadline::passed() {
+            self.last_budget = if deadline.passed() {
                 Budget::Deadline
             } else if self
                 .params

@@ -2,52 +2,11 @@
 
 mod brute;
 
-use super::geometry::{circle_tangents, point_tangents, Grid, Pt};
+use super::geometry::Grid;
 use super::*;
-use brute::{brute_force_disc, brute_force_point};
+use brute::{brute_force_disc, brute_force_point, DiscCheck};
 use proptest::prelude::*;
 use smug_core::PathLength;
-use std::collections::BinaryHeap;
-
-/// A disc of radius `r` on a grid at 1 m per cell, checked by brute force.
-struct DiscCheck {
-    nx: usize,
-    ny: usize,
-    blocked: Vec<bool>,
-    r: f64,
-}
-
-impl DiscCheck {
-    fn is_blocked(&self, i: i64, j: i64) -> bool {
-        i < 0
-            || j < 0
-            || i >= self.nx as i64
-            || j >= self.ny as i64
-            || self.blocked[j as usize * self.nx + i as usize]
-    }
-
-    /// Distance from `(x, y)` to the nearest blocked cell or the outside, every cell.
-    fn distance(&self, x: f64, y: f64) -> f64 {
-        let mut best = x.min(y).min(self.nx as f64 - x).min(self.ny as f64 - y);
-        for j in 0..self.ny as i64 {
-            for i in 0..self.nx as i64 {
-                if self.is_blocked(i, j) {
-                    let dx = (i as f64 - x).max(0.0).max(x - i as f64 - 1.0);
-                    let dy = (j as f64 - y).max(0.0).max(y - j as f64 - 1.0);
-                    best = best.min(dx.hypot(dy));
-                }
-            }
-        }
-        best
-    }
-}
-
-impl StateValidityChecker for DiscCheck {
-    fn is_valid(&self, s: &Pose2) -> bool {
-        let d = self.distance(s.x, s.y);
-        d >= self.r && d > 0.0
-    }
-}
 
 fn disc(nx: usize, ny: usize, blocked: &[bool], r: f64) -> DiscOnGrid {
     DiscOnGrid {

@@ -1,8 +1,8 @@
 //! The large-neighbourhood search loop: remove clusters, reinsert them, polish, accept
 //! by simulated annealing; restart from the best tour after each epoch.
 
+use super::params::GtspLnsParams;
 use super::tour::Problem;
-use super::GtspLnsParams;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use smug_core::rng::StageRng;

@@ -32,7 +32,7 @@ use search::Search;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::termination::TerminationClock;
-use smug_core::{CostMatrix, Sequencer, Termination, Tour, TourKind};
+use smug_core::{CostMatrix, Deadline, Sequencer, Termination, Tour, TourKind};
 
 /// Below this many nodes the local search hands over to Held-Karp (exact and instant).
 const EXACT_BELOW: usize = 13;
@@ -128,6 +128,8 @@ pub struct SearchStats {
 pub struct LocalSearch {
     params: LocalSearchParams,
     rng: StageRng,
+    /// The run's deadline: the search stops at it with its best tour.
+    deadline: Deadline,
 }
 
 impl LocalSearch {
@@ -136,7 +138,17 @@ impl LocalSearch {
         params.validate().map_err(|m| {
             smug_core::Error::invalid_param("sequencer", format!("local-search: {m}"))
         })?;
-        Ok(Self { params, rng })
+        Ok(Self {
+            params,
+            rng,
+            deadline: Deadline::new(),
+        })
+    }
+
+    /// Stops at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: Deadline) -> Self {
+        self.deadline = deadline;
+        self
     }
 
     /// A solver seeded like a pipeline with seed `seed` would seed it.
@@ -173,7 +185,7 @@ impl LocalSearch {
 
     fn iterated_local_search(&self, costs: &CostMatrix, kind: TourKind) -> (Tour, SearchStats) {
         let rule = self.params.termination();
-        let mut clock = rule.start();
+        let mut clock = rule.start_within(&self.deadline);
         let dist = Dist::new(costs);
         let neighbours = Neighbours::new(&dist, self.params.neighbours);
         let end = match kind {
@@ -291,5 +303,7 @@ smug_core::register_plugin!(
     name = "local-search",
     summary = "iterated LK-style/Or-opt local search (any size; asymmetric and open paths ok)",
     params = LocalSearchParams,
-    build = |params, ctx| Ok(Box::new(LocalSearch::new(params, ctx.rng("sequencer"))?)),
+    build = |params, ctx| Ok(Box::new(
+        LocalSearch::new(params, ctx.rng("sequencer"))?.with_deadline(ctx.deadline())
+    )),
 );

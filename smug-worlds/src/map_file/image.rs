@@ -39,23 +39,37 @@ pub(super) enum Colour {
     Reject,
 }
 
-pub(super) fn decode_gray(path: &Path, colour: Colour) -> Result<GrayImage, String> {
+/// Decodes the image `what` at `path` named by the map file `yaml`.
+fn decode_gray(
+    yaml: &Path,
+    what: &'static str,
+    path: &Path,
+    colour: Colour,
+) -> Result<GrayImage, MapFileError> {
+    let fail = |message: String| MapFileError::Image {
+        yaml: yaml.to_path_buf(),
+        what,
+        image: path.to_path_buf(),
+        message,
+    };
     let reader = image::ImageReader::open(path)
-        .map_err(|e| format!("cannot read: {e}"))?
+        .map_err(|e| fail(format!("cannot read: {e}")))?
         .with_guessed_format()
-        .map_err(|e| format!("cannot read: {e}"))?;
+        .map_err(|e| fail(format!("cannot read: {e}")))?;
     if reader.format().is_none() {
-        return Err("unknown image format (PGM or PNG expected)".into());
+        return Err(fail("unknown image format (PGM or PNG expected)".into()));
     }
-    let decoded = reader.decode().map_err(|e| format!("cannot decode: {e}"))?;
+    let decoded = reader
+        .decode()
+        .map_err(|e| fail(format!("cannot decode: {e}")))?;
     let (width, height) = (decoded.width(), decoded.height());
     if width == 0 || height == 0 {
-        return Err("the image is empty".into());
+        return Err(fail("the image is empty".into()));
     }
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
-        return Err(format!(
+        return Err(fail(format!(
             "{width}×{height} pixels is more than the {MAX_PIXELS} a map may have"
-        ));
+        )));
     }
     use image::DynamicImage as D;
     let is_colour = !matches!(
@@ -63,10 +77,10 @@ pub(super) fn decode_gray(path: &Path, colour: Colour) -> Result<GrayImage, Stri
         D::ImageLuma8(_) | D::ImageLumaA8(_) | D::ImageLuma16(_) | D::ImageLumaA16(_)
     );
     if is_colour && colour == Colour::Reject {
-        return Err(format!(
+        return Err(fail(format!(
             "must be a grayscale image, got {:?} pixels",
             decoded.color()
-        ));
+        )));
     }
     let has_alpha = decoded.color().has_alpha();
     let (samples, max, alpha): (Vec<u16>, u16, Vec<bool>) = match decoded {
@@ -149,12 +163,7 @@ pub(super) fn open_image(
     path: &Path,
     colour: Colour,
 ) -> Result<GrayImage, MapFileError> {
-    decode_gray(path, colour).map_err(|message| MapFileError::Image {
-        yaml: yaml.to_path_buf(),
-        what,
-        image: path.to_path_buf(),
-        message,
-    })
+    decode_gray(yaml, what, path, colour)
 }
 
 pub(super) fn optional_image(

@@ -6,7 +6,7 @@ use super::image::{
     Colour,
 };
 use super::yaml::{MapMode, MapYaml};
-use smug_core::{GridGeometry, GridLayer, Mission, World};
+use smug_core::{GridGeometry, GridLayer, MemoryLimit, Mission, World};
 use std::path::{Path, PathBuf};
 
 /// The layers read from a map file.
@@ -69,6 +69,15 @@ pub fn check_mission_inside(
 /// traversability images when given. Occupied cells rise `obstacle_height` metres above
 /// the ground.
 pub fn load_map(yaml_path: &Path, obstacle_height: f64) -> Result<MapLayers, MapFileError> {
+    load_map_within(yaml_path, obstacle_height, MemoryLimit::default())
+}
+
+/// [`load_map`] with a grid that must fit `memory` (a run's limit).
+pub fn load_map_within(
+    yaml_path: &Path,
+    obstacle_height: f64,
+    memory: MemoryLimit,
+) -> Result<MapLayers, MapFileError> {
     if !(obstacle_height.is_finite() && obstacle_height >= 0.0) {
         return Err(MapFileError::Invalid {
             path: yaml_path.to_path_buf(),
@@ -101,10 +110,11 @@ pub fn load_map(yaml_path: &Path, obstacle_height: f64) -> Result<MapLayers, Map
             });
         }
     }
-    let geometry = GridGeometry::new(
+    let geometry = GridGeometry::new_within(
         [yaml.origin[0], yaml.origin[1]],
         yaml.resolution,
         [occupancy.width as usize, occupancy.height as usize],
+        memory,
     )
     .map_err(|e| MapFileError::Invalid {
         path: yaml_path.to_path_buf(),

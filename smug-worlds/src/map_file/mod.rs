@@ -59,7 +59,7 @@ mod yaml;
 
 pub use crate::limits::MAX_PIXELS;
 pub use error::MapFileError;
-pub use layers::{check_mission_inside, file_stem, load_map, MapLayers};
+pub use layers::{check_mission_inside, file_stem, load_map, load_map_within, MapLayers};
 pub use plugin::MapParams;
 pub use terrain::{load_terrain, TerrainError, TerrainKind};
 pub use yaml::{

@@ -1,6 +1,6 @@
 //! The `map` world plugin: a map YAML, a DEM or a point cloud, and a mission.
 
-use super::layers::{file_stem, load_map, MapLayers};
+use super::layers::{file_stem, load_map_within, MapLayers};
 use super::terrain::{load_terrain, TerrainKind};
 use super::yaml::{DEFAULT_CELL_SIZE, DEFAULT_OBSTACLE_HEIGHT};
 use serde::{Deserialize, Serialize};
@@ -106,13 +106,13 @@ fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Erro
             Some(_) => TerrainKind::Dem,
             None => TerrainKind::PointCloud,
         };
-        let layers = load_terrain(&path, kind, params.cell_size, params.reduce)
+        let layers = load_terrain(&path, kind, params.cell_size, params.reduce, ctx.memory())
             .map_err(|e| Error::stage("world", e))?;
         (path, layers)
     } else {
         let yaml = ctx.resolve_path(&params.yaml);
-        let layers =
-            load_map(&yaml, params.obstacle_height).map_err(|e| Error::stage("world", e))?;
+        let layers = load_map_within(&yaml, params.obstacle_height, ctx.memory())
+            .map_err(|e| Error::stage("world", e))?;
         (yaml, layers)
     };
     let mission = map_mission(params, &layers, &yaml, ctx)?;

@@ -37,18 +37,20 @@ pub enum TerrainError {
 }
 
 /// The elevation of a GeoTIFF DEM, or of a point cloud rasterised into cells of
-/// `cell_size` with `reduce` (see [`crate::geotiff`] and [`crate::point_cloud`]).
+/// `cell_size` with `reduce` (see [`crate::geotiff`] and [`crate::point_cloud`]), in a
+/// grid that must fit `memory`.
 pub fn load_terrain(
     path: &Path,
     kind: TerrainKind,
     cell_size: f64,
     reduce: crate::point_cloud::Reduce,
+    memory: smug_core::MemoryLimit,
 ) -> Result<MapLayers, TerrainError> {
     let elevation = match kind {
-        TerrainKind::Dem => crate::geotiff::read_geotiff(path)?.elevation,
+        TerrainKind::Dem => crate::geotiff::read_geotiff_within(path, memory)?.elevation,
         TerrainKind::PointCloud => {
             let points = crate::point_cloud::read_point_cloud(path)?;
-            crate::point_cloud::rasterise(&points, cell_size, reduce, path)?
+            crate::point_cloud::rasterise_within(&points, cell_size, reduce, path, memory)?
         }
     };
     Ok(MapLayers::from_elevation(elevation))

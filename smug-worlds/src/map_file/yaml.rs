@@ -277,10 +277,26 @@ fn one_line(text: &str) -> String {
 mod tests {
     use super::*;
 
-    fn yaml(text: &str) -> Result<MapYaml, String> {
-        let parsed: MapYaml = serde_norway::from_str(text).map_err(|e| e.to_string())?;
-        parsed.check().map_err(|e| e.to_string())?;
+    /// The map YAML `text`, or the reason it is refused: a parser's or a check's error.
+    fn yaml(text: &str) -> Result<MapYaml, YamlTextError> {
+        let parsed: MapYaml = serde_norway::from_str(text)?;
+        parsed.check()?;
         Ok(parsed)
+    }
+
+    /// Why a map YAML text is refused.
+    #[derive(Debug, thiserror::Error)]
+    enum YamlTextError {
+        #[error(transparent)]
+        Parse(#[from] serde_norway::Error),
+        #[error(transparent)]
+        Check(#[from] MapYamlError),
+    }
+
+    impl YamlTextError {
+        fn contains(&self, needle: &str) -> bool {
+            self.to_string().contains(needle)
+        }
     }
 
     #[test]

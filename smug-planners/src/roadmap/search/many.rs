@@ -1,46 +1,9 @@
 //! One-to-many shortest valid paths on the roadmap: one lazy Dijkstra search from a
 //! source that stops once every goal it was asked for is settled.
 
-use super::{AStar, Evaluator, GraphPath, Marks, Roadmap, Validity, NO_PARENT};
-use crate::nn::{from_total_order_key, total_order_key};
-use std::cmp::Ordering;
-
-/// An open-list entry of the lazy Dijkstra search (24 bytes): the cost so far as an
-/// integer ordered like `f64::total_cmp`, the vertex, and the vertex and edge it is
-/// reached through. Smallest cost first, then smaller vertex id: a strict order, so
-/// every correct priority queue pops the same sequence.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) struct Reached {
-    g_key: u64,
-    v: u32,
-    parent: (u32, u32),
-}
-
-impl Reached {
-    fn new(g: f64, v: u32, parent: (u32, u32)) -> Self {
-        Self {
-            g_key: total_order_key(g),
-            v,
-            parent,
-        }
-    }
-}
-
-impl Ord for Reached {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .g_key
-            .cmp(&self.g_key)
-            .then(other.v.cmp(&self.v))
-            .then(other.parent.cmp(&self.parent))
-    }
-}
-
-impl PartialOrd for Reached {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
+use super::records::{Marks, Reached, VertexRecord, NO_PARENT};
+use super::{AStar, Evaluator, GraphPath, Roadmap, Validity};
+use crate::nn::from_total_order_key;
 
 impl AStar {
     /// The cheapest valid path from `start` to each of `goals` (`None` where no valid
@@ -113,7 +76,7 @@ impl AStar {
     fn prepare_without_heuristic(&mut self, map: &Roadmap) -> Marks {
         let n = map.vertex_count();
         if self.records.len() < n {
-            self.records.resize(n, super::VertexRecord::default());
+            self.records.resize(n, VertexRecord::default());
         }
         self.heap.clear();
         self.settled = None;

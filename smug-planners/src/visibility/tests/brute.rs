@@ -2,7 +2,49 @@
 //! point visibility graph with exact rational line of sight, the disc's graph of every
 //! tangent between every pair of corners.
 
-use super::*;
+use crate::visibility::geometry::{circle_tangents, point_tangents, Grid, Pt};
+use smug_core::{Pose2, StateValidityChecker};
+use std::collections::BinaryHeap;
+
+/// A disc of radius `r` on a grid at 1 m per cell, checked by brute force.
+pub(super) struct DiscCheck {
+    pub(super) nx: usize,
+    pub(super) ny: usize,
+    pub(super) blocked: Vec<bool>,
+    pub(super) r: f64,
+}
+
+impl DiscCheck {
+    pub(super) fn is_blocked(&self, i: i64, j: i64) -> bool {
+        i < 0
+            || j < 0
+            || i >= self.nx as i64
+            || j >= self.ny as i64
+            || self.blocked[j as usize * self.nx + i as usize]
+    }
+
+    /// Distance from `(x, y)` to the nearest blocked cell or the outside, every cell.
+    pub(super) fn distance(&self, x: f64, y: f64) -> f64 {
+        let mut best = x.min(y).min(self.nx as f64 - x).min(self.ny as f64 - y);
+        for j in 0..self.ny as i64 {
+            for i in 0..self.nx as i64 {
+                if self.is_blocked(i, j) {
+                    let dx = (i as f64 - x).max(0.0).max(x - i as f64 - 1.0);
+                    let dy = (j as f64 - y).max(0.0).max(y - j as f64 - 1.0);
+                    best = best.min(dx.hypot(dy));
+                }
+            }
+        }
+        best
+    }
+}
+
+impl StateValidityChecker for DiscCheck {
+    fn is_valid(&self, s: &Pose2) -> bool {
+        let d = self.distance(s.x, s.y);
+        d >= self.r && d > 0.0
+    }
+}
 
 /// Dijkstra on an explicit graph.
 fn dijkstra(n: usize, edges: &[(usize, usize, f64)], s: usize, g: usize) -> Option<f64> {
@@ -205,7 +247,7 @@ pub(super) fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Optio
     let cs = check.distance(s[0], s[1]).min(need);
     let cg = check.distance(g[0], g[1]).min(need);
     if clear(s, g, cs.min(cg)) {
-        edges.push((0, 1, super::geometry::dist(s, g)));
+        edges.push((0, 1, crate::visibility::geometry::dist(s, g)));
     }
     let corners = grid.corners.clone();
     for (a, ca) in corners.iter().enumerate() {
@@ -215,7 +257,11 @@ pub(super) fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Optio
                     let p = ca.point(rc, rel);
                     if clear(p, pt, c_end) {
                         points.push((Some(a), rel));
-                        edges.push((end, points.len() - 1, super::geometry::dist(p, pt)));
+                        edges.push((
+                            end,
+                            points.len() - 1,
+                            crate::visibility::geometry::dist(p, pt),
+                        ));
                     }
                 }
             }
@@ -230,7 +276,7 @@ pub(super) fn brute_force_disc(check: &DiscCheck, s: Pt, g: Pt, r: f64) -> Optio
                     points.push((Some(a), ra));
                     points.push((Some(b), rb));
                     let n = points.len();
-                    edges.push((n - 2, n - 1, super::geometry::dist(pa, pb)));
+                    edges.push((n - 2, n - 1, crate::visibility::geometry::dist(pa, pb)));
                 }
             }
         }

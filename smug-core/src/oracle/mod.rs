@@ -3,136 +3,21 @@
 //! Sequencing and PoI selection only talk to the oracle. It owns the point-to-point
 //! planner, so every query of a mission shares one roadmap.
 
+use crate::deadline::Deadline;
 use crate::error::{Error, Result};
 use crate::objective::Objective;
 use crate::path::Path;
 use crate::pose::Pose2;
-use crate::space::StateSpace;
-use crate::stages::{
-    Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PointToPointPlanner,
-    PoseBits,
-};
-use serde::{Deserialize, Serialize};
+use crate::run_context::RunContext;
+use crate::stages::{NoPathReason, PlannerOutcome, PointToPointPlanner};
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// The oracle's answer for a pair of poses.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PlannedPath {
-    /// What the planner returned (paths oriented from the asked `i` to `j`).
-    pub outcome: PlannerOutcome,
-    /// The exact path's cost, `INFINITY` when there is none.
-    pub cost: f64,
-}
+mod answers;
+#[cfg(test)]
+mod tests;
 
-impl PlannedPath {
-    /// The exact path, if the pair is connected.
-    pub fn path(&self) -> Option<&Path> {
-        self.outcome.exact_path()
-    }
-
-    fn reversed(&self) -> Self {
-        let outcome = match &self.outcome {
-            PlannerOutcome::Exact(path) => PlannerOutcome::Exact(path.reversed()),
-            // An approximate path ends short of the goal: it does not reverse into one
-            // from the other end, and it is not a path between the pair anyway.
-            PlannerOutcome::Approximate { .. } => {
-                PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Unspecified))
-            }
-            PlannerOutcome::InvalidStart => PlannerOutcome::InvalidGoal,
-            PlannerOutcome::InvalidGoal => PlannerOutcome::InvalidStart,
-            PlannerOutcome::NoPath(reason) => PlannerOutcome::NoPath(*reason),
-        };
-        Self {
-            outcome,
-            cost: self.cost,
-        }
-    }
-}
-
-/// Oracle counters.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct OracleStats {
-    /// Calls to the point-to-point planner.
-    pub paths_planned: u64,
-    /// Answers served from the cache.
-    pub cache_hits: u64,
-    /// Pairs served from the [`KnownAnswers`] of earlier missions, without planning.
-    #[serde(default)]
-    pub known_hits: u64,
-}
-
-/// Exact paths between poses kept from earlier missions (the memory of a
-/// [`crate::mission::MissionSession`]), keyed by the poses' bits, so that an answer is
-/// found again whatever index the poses get in the next mission's oracle.
-#[derive(Clone, Debug, Default)]
-pub struct KnownAnswers {
-    paths: HashMap<(PoseBits, PoseBits), Arc<PlannedPath>>,
-}
-
-impl KnownAnswers {
-    /// Number of pose pairs (each direction counts).
-    pub fn len(&self) -> usize {
-        self.paths.len()
-    }
-
-    /// True when nothing is known.
-    pub fn is_empty(&self) -> bool {
-        self.paths.is_empty()
-    }
-
-    /// The known path from `a` to `b`, if any.
-    pub fn get(&self, a: &Pose2, b: &Pose2) -> Option<&Arc<PlannedPath>> {
-        self.paths.get(&((*a).into(), (*b).into()))
-    }
-
-    /// Keeps `planned` as the answer from `a` to `b` when it is an exact path.
-    pub fn insert(&mut self, a: &Pose2, b: &Pose2, planned: Arc<PlannedPath>) {
-        if planned.path().is_some() {
-            self.paths.insert(((*a).into(), (*b).into()), planned);
-        }
-    }
-
-    /// Checks again, with `motions` (built for the updated world), every path with a
-    /// state in one of `changed` or a motion that may pass through one (see
-    /// [`ChangedDisc::may_touch`]): kept if every motion is still valid, dropped if not.
-    /// Returns `(checked, dropped)`.
-    pub fn recheck_touched(
-        &mut self,
-        space: &dyn StateSpace,
-        changed: &[ChangedDisc],
-        motions: &dyn MotionValidator,
-    ) -> (usize, usize) {
-        if changed.is_empty() {
-            return (0, 0);
-        }
-        let (mut checked, before) = (0, self.paths.len());
-        self.paths.retain(|_, planned| {
-            let Some(path) = planned.path() else {
-                return false;
-            };
-            let inside = path
-                .states
-                .iter()
-                .any(|s| changed.iter().any(|d| d.contains(s)));
-            let crossing = path.states.windows(2).any(|w| {
-                let length = space.motion_extent(&w[0], &w[1]).length;
-                changed.iter().any(|d| d.may_touch(&w[0], &w[1], length))
-            });
-            if !(inside || crossing) {
-                return true;
-            }
-            checked += 1;
-            match path.states.as_slice() {
-                [only] => motions.is_valid_motion(only, only),
-                states => states
-                    .windows(2)
-                    .all(|w| motions.is_valid_motion(&w[0], &w[1])),
-            }
-        });
-        (checked, before - self.paths.len())
-    }
-}
+pub use answers::{KnownAnswers, OracleStats, PlannedPath};
 
 /// Told the number of paths planned so far after each plan (a progress display; it must
 /// not change what is planned).
@@ -148,6 +33,7 @@ pub struct PathOracle {
     symmetric: bool,
     stats: OracleStats,
     known: KnownAnswers,
+    run: RunContext,
 }
 
 impl PathOracle {
@@ -163,7 +49,21 @@ impl PathOracle {
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
             progress: None,
+            run: RunContext::default(),
         }
+    }
+
+    /// Runs within `run`: plans nothing more once its deadline's hard stop has passed,
+    /// builds cost matrices within its memory limit (default: a deadline that is never
+    /// armed, the default limit).
+    pub fn with_run(mut self, run: RunContext) -> Self {
+        self.run = run;
+        self
+    }
+
+    /// The run context the oracle plans within.
+    pub fn run(&self) -> &RunContext {
+        &self.run
     }
 
     /// Tells `progress` the number of paths planned after each plan.
@@ -357,7 +257,7 @@ impl PathOracle {
         if asked.is_empty() {
             return Ok(());
         }
-        refuse_after_deadline()?;
+        refuse_after_deadline(&self.run.deadline)?;
         let queries: Vec<(Pose2, Vec<Pose2>)> = asked
             .iter()
             .map(|(i, js)| (self.poses[*i], js.iter().map(|&j| self.poses[j]).collect()))
@@ -470,7 +370,7 @@ impl PathOracle {
     }
 
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
-        refuse_after_deadline()?;
+        refuse_after_deadline(&self.run.deadline)?;
         self.stats.paths_planned += 1;
         self.report_progress();
         let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
@@ -480,9 +380,9 @@ impl PathOracle {
 }
 
 /// No new path is planned once the run's hard stop has passed (the deadline's seconds
-/// are filled in by whoever set it).
-fn refuse_after_deadline() -> Result<()> {
-    if crate::deadline::hard_stop_passed() {
+/// are filled in by whoever armed it).
+fn refuse_after_deadline(deadline: &Deadline) -> Result<()> {
+    if deadline.hard_stop_passed() {
         return Err(Error::DeadlinePassed {
             seconds: f64::NAN,
             during: "path planning".into(),
@@ -499,203 +399,5 @@ impl std::fmt::Debug for PathOracle {
             .field("symmetric", &self.symmetric)
             .field("stats", &self.stats)
             .finish()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::objective::PathLength;
-    use crate::stages::{PlannerStats, Proof};
-
-    /// Connects everything with the straight line, except into pose index 2's position.
-    struct StraightLine {
-        objective: PathLength,
-        calls: u64,
-    }
-
-    impl PointToPointPlanner for StraightLine {
-        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
-            self.calls += 1;
-            if goal.x == 9.0 || start.x == 9.0 {
-                return Ok(PlannerOutcome::NoPath(NoPathReason::Proved(
-                    Proof::Disconnected,
-                )));
-            }
-            Ok(PlannerOutcome::Exact(Path::new(
-                vec![*start, *goal],
-                &self.objective,
-            )))
-        }
-
-        fn stats(&self) -> PlannerStats {
-            PlannerStats {
-                queries: self.calls,
-                ..Default::default()
-            }
-        }
-    }
-
-    fn oracle() -> PathOracle {
-        let objective = PathLength::default();
-        let mut oracle = PathOracle::new(
-            Arc::new(objective.clone()),
-            Box::new(StraightLine {
-                objective,
-                calls: 0,
-            }),
-        );
-        oracle.add_pose(Pose2::new(0.0, 0.0, 0.0));
-        oracle.add_pose(Pose2::new(3.0, 4.0, 1.0));
-        oracle.add_pose(Pose2::new(9.0, 0.0, 0.0));
-        oracle
-    }
-
-    /// Answers each query with the straight line times a factor that shrinks by a
-    /// tenth with every query of the pair, down to 1 (a roadmap that densifies).
-    struct Densifying {
-        objective: PathLength,
-        asked: HashMap<(u64, u64), u32>,
-    }
-
-    impl PointToPointPlanner for Densifying {
-        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
-            let key = (start.x.to_bits(), goal.x.to_bits());
-            let times = self.asked.entry(key).or_default();
-            *times += 1;
-            let mut path = Path::new(vec![*start, *goal], &self.objective);
-            path.cost *= (1.3 - 0.1 * f64::from(*times)).max(1.0);
-            Ok(PlannerOutcome::Exact(path))
-        }
-
-        fn stats(&self) -> PlannerStats {
-            PlannerStats::default()
-        }
-    }
-
-    #[test]
-    fn refine_keeps_the_cheaper_path_both_ways_and_plans_unplanned_pairs() {
-        let objective = PathLength::default();
-        let planner = Densifying {
-            objective: objective.clone(),
-            asked: HashMap::new(),
-        };
-        let mut o = PathOracle::new(Arc::new(objective), Box::new(planner));
-        o.add_pose(Pose2::new(0.0, 0.0, 0.0));
-        o.add_pose(Pose2::new(3.0, 4.0, 0.0));
-        // Unplanned: planned now (factor 1.2), not reported as an improvement.
-        assert!(!o.refine(0, 1).unwrap());
-        assert!((o.planned_cost(0, 1).unwrap() - 6.0).abs() < 1e-12);
-        // Planned again at 1.1 and 1.0: cheaper each time, the reverse pair follows.
-        assert!(o.refine(0, 1).unwrap());
-        assert!(o.refine(0, 1).unwrap());
-        assert!((o.planned_cost(1, 0).unwrap() - 5.0).abs() < 1e-12);
-        assert_eq!(o.path(1, 0).unwrap().path().unwrap().states[0], *o.pose(1));
-        // No cheaper path: the cached one stays.
-        assert!(!o.refine(0, 1).unwrap());
-        assert!((o.planned_cost(0, 1).unwrap() - 5.0).abs() < 1e-12);
-        assert_eq!(o.stats().paths_planned, 4);
-    }
-
-    #[test]
-    fn plans_once_and_reuses_reversed_paths() {
-        let mut o = oracle();
-        assert!(!o.is_planned(0, 1));
-        let lb = o.lower_bound(0, 1);
-        assert_eq!(o.cost(0, 1).unwrap(), lb);
-        assert!(o.is_planned(1, 0));
-        let back = o.path(1, 0).unwrap();
-        assert_eq!(back.path().unwrap().states[0], *o.pose(1));
-        assert_eq!(o.stats().paths_planned, 1);
-        assert_eq!(o.stats().cache_hits, 1);
-        assert_eq!(o.planner().stats().queries, 1);
-    }
-
-    #[test]
-    fn unreachable_pairs_cost_infinity_and_self_pairs_are_free() {
-        let mut o = oracle();
-        assert_eq!(o.cost(0, 2).unwrap(), f64::INFINITY);
-        assert_eq!(o.planned_cost(2, 0), Some(f64::INFINITY));
-        assert_eq!(o.cost(1, 1).unwrap(), 0.0);
-        assert_eq!(o.stats().paths_planned, 1);
-        assert_eq!(o.cost_or_bound(0, 1), o.lower_bound(0, 1));
-    }
-
-    #[test]
-    fn plan_from_plans_each_missing_pair_once_and_serves_it_after() {
-        let mut o = oracle();
-        o.cost(0, 1).unwrap();
-        o.plan_from(0, &[1, 2, 2, 0]).unwrap();
-        assert_eq!(o.stats().paths_planned, 2);
-        assert_eq!(o.cost(2, 0).unwrap(), f64::INFINITY);
-        assert_eq!(o.cost(0, 1).unwrap(), o.lower_bound(0, 1));
-        assert_eq!(o.stats().paths_planned, 2);
-    }
-
-    /// Every motion valid except those ending right of x = 5.
-    struct LeftOfFive;
-
-    impl MotionValidator for LeftOfFive {
-        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
-            a.x <= 5.0 && b.x <= 5.0
-        }
-
-        fn check_motion(&self, _: &Pose2, _: &Pose2) -> crate::stages::MotionCheck {
-            unreachable!("not used")
-        }
-    }
-
-    #[test]
-    fn known_answers_are_served_without_planning_and_rechecked_near_changes() {
-        let mut first = oracle();
-        first.cost(0, 1).unwrap();
-        first.cost(0, 2).unwrap();
-        let mut known = first.take_known_answers();
-        // 0 → 1 both ways; 0 → 2 has no path: not kept.
-        assert_eq!(known.len(), 2);
-        let mut again = oracle().with_known(known.clone());
-        let (a, b) = (*again.pose(0), *again.pose(1));
-        // Registered at other indices: found by the poses.
-        let j = again.add_pose(b);
-        let i = again.add_pose(a);
-        assert!(again.is_planned(i, j));
-        assert_eq!(
-            again.planned_cost(i, j),
-            Some(first.planned_cost(0, 1).unwrap())
-        );
-        assert_eq!(again.cost(j, i).unwrap(), first.planned_cost(1, 0).unwrap());
-        assert_eq!(again.stats().paths_planned, 0);
-        assert_eq!(again.stats().known_hits, 1);
-        // A change far away keeps them; one on the way checks them again.
-        let space = crate::space::Se2Space::default();
-        let far = ChangedDisc {
-            center: [-20.0, -20.0],
-            radius: 1.0,
-        };
-        assert_eq!(known.recheck_touched(&space, &[far], &LeftOfFive), (0, 0));
-        let near = ChangedDisc {
-            center: [1.5, 2.0],
-            radius: 0.5,
-        };
-        assert_eq!(known.recheck_touched(&space, &[near], &LeftOfFive), (2, 0));
-        let mut moved = KnownAnswers::default();
-        let far_right = Pose2::new(6.0, 4.0, 0.0);
-        let path = Path::new(vec![a, far_right], &PathLength::default());
-        let planned = Arc::new(PlannedPath {
-            cost: path.cost,
-            outcome: PlannerOutcome::Exact(path),
-        });
-        moved.insert(&a, &far_right, planned);
-        assert_eq!(moved.recheck_touched(&space, &[near], &LeftOfFive), (1, 1));
-        assert!(moved.is_empty());
-    }
-
-    #[test]
-    fn asymmetric_oracle_plans_both_directions() {
-        let mut o = oracle().with_symmetry(false);
-        o.cost(0, 1).unwrap();
-        assert!(!o.is_planned(1, 0));
-        o.cost(1, 0).unwrap();
-        assert_eq!(o.stats().paths_planned, 2);
     }
 }

@@ -1,0 +1,196 @@
+//! Tests of the path oracle with a straight-line planner.
+
+use super::*;
+use crate::objective::PathLength;
+use crate::stages::{ChangedDisc, MotionValidator, PlannerStats, Proof};
+
+/// Connects everything with the straight line, except into pose index 2's position.
+struct StraightLine {
+    objective: PathLength,
+    calls: u64,
+}
+
+impl PointToPointPlanner for StraightLine {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        self.calls += 1;
+        if goal.x == 9.0 || start.x == 9.0 {
+            return Ok(PlannerOutcome::NoPath(NoPathReason::Proved(
+                Proof::Disconnected,
+            )));
+        }
+        Ok(PlannerOutcome::Exact(Path::new(
+            vec![*start, *goal],
+            &self.objective,
+        )))
+    }
+
+    fn stats(&self) -> PlannerStats {
+        PlannerStats {
+            queries: self.calls,
+            ..Default::default()
+        }
+    }
+}
+
+fn oracle() -> PathOracle {
+    let objective = PathLength::default();
+    let mut oracle = PathOracle::new(
+        Arc::new(objective.clone()),
+        Box::new(StraightLine {
+            objective,
+            calls: 0,
+        }),
+    );
+    oracle.add_pose(Pose2::new(0.0, 0.0, 0.0));
+    oracle.add_pose(Pose2::new(3.0, 4.0, 1.0));
+    oracle.add_pose(Pose2::new(9.0, 0.0, 0.0));
+    oracle
+}
+
+/// Answers each query with the straight line times a factor that shrinks by a
+/// tenth with every query of the pair, down to 1 (a roadmap that densifies).
+struct Densifying {
+    objective: PathLength,
+    asked: HashMap<(u64, u64), u32>,
+}
+
+impl PointToPointPlanner for Densifying {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        let key = (start.x.to_bits(), goal.x.to_bits());
+        let times = self.asked.entry(key).or_default();
+        *times += 1;
+        let mut path = Path::new(vec![*start, *goal], &self.objective);
+        path.cost *= (1.3 - 0.1 * f64::from(*times)).max(1.0);
+        Ok(PlannerOutcome::Exact(path))
+    }
+
+    fn stats(&self) -> PlannerStats {
+        PlannerStats::default()
+    }
+}
+
+#[test]
+fn refine_keeps_the_cheaper_path_both_ways_and_plans_unplanned_pairs() {
+    let objective = PathLength::default();
+    let planner = Densifying {
+        objective: objective.clone(),
+        asked: HashMap::new(),
+    };
+    let mut o = PathOracle::new(Arc::new(objective), Box::new(planner));
+    o.add_pose(Pose2::new(0.0, 0.0, 0.0));
+    o.add_pose(Pose2::new(3.0, 4.0, 0.0));
+    // Unplanned: planned now (factor 1.2), not reported as an improvement.
+    assert!(!o.refine(0, 1).unwrap());
+    assert!((o.planned_cost(0, 1).unwrap() - 6.0).abs() < 1e-12);
+    // Planned again at 1.1 and 1.0: cheaper each time, the reverse pair follows.
+    assert!(o.refine(0, 1).unwrap());
+    assert!(o.refine(0, 1).unwrap());
+    assert!((o.planned_cost(1, 0).unwrap() - 5.0).abs() < 1e-12);
+    assert_eq!(o.path(1, 0).unwrap().path().unwrap().states[0], *o.pose(1));
+    // No cheaper path: the cached one stays.
+    assert!(!o.refine(0, 1).unwrap());
+    assert!((o.planned_cost(0, 1).unwrap() - 5.0).abs() < 1e-12);
+    assert_eq!(o.stats().paths_planned, 4);
+}
+
+#[test]
+fn plans_once_and_reuses_reversed_paths() {
+    let mut o = oracle();
+    assert!(!o.is_planned(0, 1));
+    let lb = o.lower_bound(0, 1);
+    assert_eq!(o.cost(0, 1).unwrap(), lb);
+    assert!(o.is_planned(1, 0));
+    let back = o.path(1, 0).unwrap();
+    assert_eq!(back.path().unwrap().states[0], *o.pose(1));
+    assert_eq!(o.stats().paths_planned, 1);
+    assert_eq!(o.stats().cache_hits, 1);
+    assert_eq!(o.planner().stats().queries, 1);
+}
+
+#[test]
+fn unreachable_pairs_cost_infinity_and_self_pairs_are_free() {
+    let mut o = oracle();
+    assert_eq!(o.cost(0, 2).unwrap(), f64::INFINITY);
+    assert_eq!(o.planned_cost(2, 0), Some(f64::INFINITY));
+    assert_eq!(o.cost(1, 1).unwrap(), 0.0);
+    assert_eq!(o.stats().paths_planned, 1);
+    assert_eq!(o.cost_or_bound(0, 1), o.lower_bound(0, 1));
+}
+
+#[test]
+fn plan_from_plans_each_missing_pair_once_and_serves_it_after() {
+    let mut o = oracle();
+    o.cost(0, 1).unwrap();
+    o.plan_from(0, &[1, 2, 2, 0]).unwrap();
+    assert_eq!(o.stats().paths_planned, 2);
+    assert_eq!(o.cost(2, 0).unwrap(), f64::INFINITY);
+    assert_eq!(o.cost(0, 1).unwrap(), o.lower_bound(0, 1));
+    assert_eq!(o.stats().paths_planned, 2);
+}
+
+/// Every motion valid except those ending right of x = 5.
+struct LeftOfFive;
+
+impl MotionValidator for LeftOfFive {
+    fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+        a.x <= 5.0 && b.x <= 5.0
+    }
+
+    fn check_motion(&self, _: &Pose2, _: &Pose2) -> crate::stages::MotionCheck {
+        unreachable!("not used")
+    }
+}
+
+#[test]
+fn known_answers_are_served_without_planning_and_rechecked_near_changes() {
+    let mut first = oracle();
+    first.cost(0, 1).unwrap();
+    first.cost(0, 2).unwrap();
+    let mut known = first.take_known_answers();
+    // 0 → 1 both ways; 0 → 2 has no path: not kept.
+    assert_eq!(known.len(), 2);
+    let mut again = oracle().with_known(known.clone());
+    let (a, b) = (*again.pose(0), *again.pose(1));
+    // Registered at other indices: found by the poses.
+    let j = again.add_pose(b);
+    let i = again.add_pose(a);
+    assert!(again.is_planned(i, j));
+    assert_eq!(
+        again.planned_cost(i, j),
+        Some(first.planned_cost(0, 1).unwrap())
+    );
+    assert_eq!(again.cost(j, i).unwrap(), first.planned_cost(1, 0).unwrap());
+    assert_eq!(again.stats().paths_planned, 0);
+    assert_eq!(again.stats().known_hits, 1);
+    // A change far away keeps them; one on the way checks them again.
+    let space = crate::space::Se2Space::default();
+    let far = ChangedDisc {
+        center: [-20.0, -20.0],
+        radius: 1.0,
+    };
+    assert_eq!(known.recheck_touched(&space, &[far], &LeftOfFive), (0, 0));
+    let near = ChangedDisc {
+        center: [1.5, 2.0],
+        radius: 0.5,
+    };
+    assert_eq!(known.recheck_touched(&space, &[near], &LeftOfFive), (2, 0));
+    let mut moved = KnownAnswers::default();
+    let far_right = Pose2::new(6.0, 4.0, 0.0);
+    let path = Path::new(vec![a, far_right], &PathLength::default());
+    let planned = Arc::new(PlannedPath {
+        cost: path.cost,
+        outcome: PlannerOutcome::Exact(path),
+    });
+    moved.insert(&a, &far_right, planned);
+    assert_eq!(moved.recheck_touched(&space, &[near], &LeftOfFive), (1, 1));
+    assert!(moved.is_empty());
+}
+
+#[test]
+fn asymmetric_oracle_plans_both_directions() {
+    let mut o = oracle().with_symmetry(false);
+    o.cost(0, 1).unwrap();
+    assert!(!o.is_planned(1, 0));
+    o.cost(1, 0).unwrap();
+    assert_eq!(o.stats().paths_planned, 2);
+}

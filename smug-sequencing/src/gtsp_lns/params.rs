@@ -1,0 +1,74 @@
+//! The parameters of the GTSP large-neighbourhood search and their checks.
+
+use crate::error::ParamError;
+use crate::local_search::{check_search_budget, search_termination};
+use serde::{Deserialize, Serialize};
+use smug_core::Termination;
+
+/// Parameters of [`GtspLns`](super::GtspLns).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GtspLnsParams {
+    /// Wall-time budget in seconds; 0 = none (then the result depends only on the seed).
+    pub time_limit_s: f64,
+    /// Budget of removal/insertion iterations; 0 = no limit.
+    pub max_iterations: u64,
+    /// Most clusters one iteration removes, as a fraction of all clusters (at least 10).
+    pub max_removal_fraction: f64,
+    /// Insertion costs are raised by random amounts up to a level drawn in `[0, noise)`
+    /// average legs per iteration.
+    pub noise: f64,
+    /// Initial annealing temperature as a fraction of an average leg.
+    pub temperature: f64,
+    /// Iterations per epoch (then a restart from the best tour); 0 = `max(200, 10 m)`.
+    pub epoch_iterations: u64,
+    /// Move-opt runs on tours within this fraction above the best cost.
+    pub move_opt_within: f64,
+    /// Perturbation rounds of the TSP local search that reorders the chosen nodes.
+    pub reorder_iterations: u64,
+    /// Iteration budget of a warm-started solve (from the previous round's tour in the
+    /// joint mode's lazy loop, whose matrix differs only where paths were planned
+    /// since); 0 = `max_iterations`. The time budget applies as it is.
+    pub warm_iterations: u64,
+}
+
+impl Default for GtspLnsParams {
+    /// An iteration budget and no time limit, so that a seed fixes the result.
+    fn default() -> Self {
+        Self {
+            time_limit_s: 0.0,
+            max_iterations: 2000,
+            max_removal_fraction: 0.3,
+            noise: 0.5,
+            temperature: 1.0,
+            epoch_iterations: 0,
+            move_opt_within: 0.02,
+            reorder_iterations: 50,
+            warm_iterations: 500,
+        }
+    }
+}
+
+impl GtspLnsParams {
+    /// The stopping rule: the time budget, the iteration budget, or both.
+    pub fn termination(&self) -> Termination {
+        search_termination(self.time_limit_s, self.max_iterations)
+    }
+
+    /// Checks the values; the message names the offending parameter.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check_search_budget(self.time_limit_s, self.max_iterations)?;
+        let fractions = [
+            ("max_removal_fraction", self.max_removal_fraction, 1.0),
+            ("noise", self.noise, f64::MAX),
+            ("temperature", self.temperature, f64::MAX),
+            ("move_opt_within", self.move_opt_within, f64::MAX),
+        ];
+        for (name, value, most) in fractions {
+            if !(value >= 0.0 && value <= most) {
+                return Err(ParamError::OutOfRange { name, value, most });
+            }
+        }
+        Ok(())
+    }
+}
