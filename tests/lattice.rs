@@ -365,8 +365,7 @@ fn rows_searched_side_by_side_equal_rows_searched_alone_bit_for_bit() {
 }
 
 #[test]
-fn a_poi_in_a_closed_box_is_left_out_and_named_for_a_reversing_car_too() {
-    // Reeds–Shepp is symmetric: the start's reach decides both ways.
+fn a_poi_in_a_closed_box_is_never_chosen_and_its_legs_are_proved_for_a_reversing_car_too() {
     let boxed = "{ x = 13.5, y = 2.5, yaw = 0.0 }";
     let config = CONFIG
         .replace(
@@ -383,16 +382,37 @@ fn a_poi_in_a_closed_box_is_left_out_and_named_for_a_reversing_car_too() {
     let mut p = Pipeline::assemble(&loaded).unwrap();
     let options = p.config.plan;
     let plan = smug_core::mission::plan_mission(&mut p, options).unwrap();
-    assert_eq!(plan.dead_ends.len(), 1, "{:?}", plan.dead_ends);
-    let dead = &plan.dead_ends[0];
-    assert_eq!((dead.target.as_str(), dead.index), ("box", 0));
-    assert!(
-        dead.why.contains("cannot be reached from the start"),
-        "{}",
-        dead.why
-    );
     let chosen = plan.pois.iter().find(|c| c.target == "box").unwrap();
     assert_eq!(chosen.index, 1);
+    assert!(
+        plan.stats
+            .legs_without_path
+            .contains_key("proved:exhausted"),
+        "{:?}",
+        plan.stats.legs_without_path
+    );
+}
+
+#[test]
+fn a_goal_proved_unreachable_once_is_not_searched_for_again_from_the_same_region() {
+    let mut p = pipeline(&["space.type=reeds-shepp"]);
+    let planner = p.planner.as_mut().unwrap();
+    let boxed = Pose2::new(13.5, 2.5, 0.0);
+    let expansions =
+        |planner: &dyn smug_core::PointToPointPlanner| planner.stats().counters["expansions"];
+    let first = planner.plan(&Pose2::new(1.5, 1.5, 0.0), &boxed).unwrap();
+    let after_first = expansions(planner.as_ref());
+    assert!(after_first > 1000, "the first search exhausts the map");
+    let again = planner.plan(&Pose2::new(2.5, 9.5, 0.0), &boxed).unwrap();
+    let after_again = expansions(planner.as_ref());
+    let proved = PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Exhausted));
+    assert_eq!((first, again), (proved.clone(), proved));
+    assert_eq!(after_again, after_first, "the kept proof answers at once");
+    // A goal the proof does not cover is still searched for.
+    let open = planner
+        .plan(&Pose2::new(2.5, 9.5, 0.0), &Pose2::new(7.7, 3.0, 0.0))
+        .unwrap();
+    assert!(open.exact_path().is_some());
 }
 
 #[test]

@@ -1,11 +1,9 @@
-//! PoIs a model cannot use: ones the start cannot reach (a pocket of the map cut off
-//! by slopes and stones), and for directed models ones from which the end cannot be
-//! reached (a forward-only car facing a stone up close cannot leave; one whose only way
-//! in is blocked cannot enter). Left in, they make some visiting orders infeasible, the
-//! PoI selection fail, a target's stand-in for sequencing meaningless and every search
-//! towards them exhaust the map; dropped before sequencing (only where the planner
-//! proves it), every remaining PoI is joined to every other through the start, so
-//! every order has a route.
+//! PoIs a directed model cannot use: ones the start cannot reach, and ones from which
+//! the end cannot be reached (a forward-only car facing a stone up close cannot leave;
+//! one whose only way in is blocked cannot enter). Left in, they make some visiting
+//! orders infeasible and the PoI selection fail; dropped before sequencing (only where
+//! the planner proves it), every remaining PoI is joined to every other through the
+//! start, so every order has a route.
 
 use super::assembly::original_index;
 use super::layout::Layout;
@@ -20,11 +18,11 @@ use crate::world::World;
 const PROOF_EFFORT: u64 = 20_000;
 
 /// Drops from `layout` the PoIs of `targets` that the start provably cannot reach or
-/// (directed models only: for a symmetric one the start's reach decides both ways)
-/// that provably cannot reach the end, for planners that prove dead ends cheaply
-/// (others are not asked: their plans do not change). Plans the start's row of paths
-/// to every PoI (one search where the planner answers many; the sequencer and
-/// selector reuse it).
+/// that provably cannot reach the end, for directed models (symmetric ones: the
+/// start's reach decides both ways, checked later for whole targets) and planners that
+/// prove dead ends cheaply (others are not asked: their plans do not change). Plans the start's
+/// row of paths to every PoI (one search where the planner answers many; the sequencer
+/// and selector reuse it).
 pub(super) fn drop_dead_ends(
     oracle: &mut PathOracle,
     mission: &Mission,
@@ -32,7 +30,7 @@ pub(super) fn drop_dead_ends(
     layout: &mut Layout,
     targets: &[usize],
 ) -> Result<Vec<DeadEndPoi>> {
-    if !oracle.proves_dead_ends() {
+    if oracle.is_symmetric() || !oracle.proves_dead_ends() {
         return Ok(Vec::new());
     }
     let all: Vec<usize> = targets
@@ -72,9 +70,6 @@ fn closed_way(oracle: &mut PathOracle, layout: &Layout, p: usize) -> Result<Opti
         if reason.is_proved() {
             return Ok(Some(format!("cannot be reached from the start: {reason}")));
         }
-    }
-    if oracle.is_symmetric() {
-        return Ok(None);
     }
     if let Some(reason) = oracle.prove_unreachable(p, layout.end, PROOF_EFFORT)? {
         return Ok(Some(format!("the end cannot be reached from it: {reason}")));

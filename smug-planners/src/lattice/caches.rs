@@ -8,6 +8,7 @@
 //! finds never depends on which entries other searches filled first.
 
 use super::primitives::StateId;
+use smug_core::Pose2;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU32, AtomicU8, Ordering::Relaxed};
 use std::sync::{Arc, Mutex};
@@ -21,6 +22,17 @@ pub(crate) type ShotKey = (StateId, [u64; 3]);
 /// A goal set's heuristic: the goals' positions as bits, and the distances per point.
 type KeptHeuristic = (Vec<u64>, Arc<Vec<f32>>);
 
+/// How many proofs of unreachable goals are kept.
+const PROOFS_KEPT: usize = 8;
+
+/// A proof that goals cannot be reached: the lattice poses an exhausted search closed
+/// (a bitmap) and the goals (poses as bits) it found no way to from any of them.
+type KeptProof = (Vec<u64>, Vec<[u64; 3]>);
+
+fn pose_bits(p: &Pose2) -> [u64; 3] {
+    [p.x.to_bits(), p.y.to_bits(), p.yaw.to_bits()]
+}
+
 /// The planner's caches.
 pub(crate) struct Caches {
     /// Per lattice pose: 0 unknown, 1 valid, 2 invalid.
@@ -33,6 +45,8 @@ pub(crate) struct Caches {
     shots: Mutex<HashMap<ShotKey, bool>>,
     /// Obstacle-aware heuristics of recent goal sets, the latest last.
     heuristics: Mutex<Vec<KeptHeuristic>>,
+    /// Proofs of unreachable goals from recent exhausted searches, the latest last.
+    proofs: Mutex<Vec<KeptProof>>,
 }
 
 impl Caches {
@@ -43,6 +57,7 @@ impl Caches {
             edge: (0..poses * stride).map(|_| AtomicU32::new(0)).collect(),
             shots: Mutex::new(HashMap::new()),
             heuristics: Mutex::new(Vec::new()),
+            proofs: Mutex::new(Vec::new()),
         }
     }
 
@@ -113,5 +128,27 @@ impl Caches {
             kept.remove(0);
         }
         kept.push((key, values));
+    }
+
+    /// True when a kept proof shows `goal` unreachable from every pose of `joined`
+    /// (all of them closed by the search that proved it).
+    pub(crate) fn proved_unreachable(&self, joined: &[StateId], goal: &Pose2) -> bool {
+        let bits = pose_bits(goal);
+        let kept = self.proofs.lock().expect("proof cache");
+        kept.iter().any(|(closed, goals)| {
+            goals.contains(&bits)
+                && joined
+                    .iter()
+                    .all(|&id| closed[id as usize / 64] & (1 << (id % 64)) != 0)
+        })
+    }
+
+    /// Keeps the proof that `goals` cannot be reached from the poses of `closed`.
+    pub(crate) fn keep_proof(&self, closed: Vec<u64>, goals: &[Pose2]) {
+        let mut kept = self.proofs.lock().expect("proof cache");
+        if kept.len() >= PROOFS_KEPT {
+            kept.remove(0);
+        }
+        kept.push((closed, goals.iter().map(pose_bits).collect()));
     }
 }

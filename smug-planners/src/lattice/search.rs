@@ -61,6 +61,17 @@ impl Buffers {
         (node.stamp == self.generation).then_some(node.g)
     }
 
+    /// The poses closed in this search, as a bitmap.
+    fn closed_set(&self) -> Vec<u64> {
+        let mut bits = vec![0u64; self.nodes.len().div_ceil(64)];
+        for (i, node) in self.nodes.iter().enumerate() {
+            if node.closed == self.generation {
+                bits[i / 64] |= 1 << (i % 64);
+            }
+        }
+        bits
+    }
+
     /// True when a verified way to pose `i` is queued or closed that pops before a
     /// way from `parent` by `prim` and `reverse` at cost `g` would: by cost, then as
     /// [`Item::rank`] breaks ties (so that what is queued never changes what pops).
@@ -163,6 +174,9 @@ pub(super) struct Goal {
     pub(super) pose: Pose2,
     /// Settled: the search's cost and the lattice pose (or start) its shot leaves from.
     pub(super) reached: Option<(f64, u32)>,
+    /// Proved unreachable before the search (by an earlier search's exhaustion): the
+    /// search does not wait for it.
+    pub(super) proved_out: bool,
 }
 
 /// How a search ended.
@@ -176,8 +190,11 @@ enum End {
 struct Run {
     heap: BinaryHeap<Entry>,
     goals: Vec<Goal>,
+    /// Goals neither settled nor proved unreachable.
     open_goals: usize,
     h2d: Option<Arc<Vec<f32>>>,
+    /// The start's curves onto the lattice (taken when the start is expanded).
+    joins: Vec<(u32, f64, bool)>,
 }
 
 impl Run {
@@ -235,6 +252,7 @@ impl Worker<'_> {
                 asked.push(Goal {
                     pose: *goal,
                     reached: None,
+                    proved_out: false,
                 });
             }
         }
@@ -292,12 +310,18 @@ impl Worker<'_> {
     fn run(&mut self, start: &Pose2, goals: Vec<Goal>, max_expansions: u64) -> (Vec<Goal>, End) {
         self.me.buffers.next_generation();
         let open_goals = goals.len();
+        let joins = self.start_successors(start);
         let mut run = Run {
             heap: BinaryHeap::new(),
             goals,
             open_goals,
             h2d: None,
+            joins,
         };
+        self.apply_kept_proofs(start, &mut run);
+        if run.open_goals == 0 {
+            return (run.goals, End::AllReached);
+        }
         if self.sh.params.obstacle_heuristic {
             run.h2d = Some(self.goal_heuristic(&run.goals));
         }
@@ -356,7 +380,48 @@ impl Worker<'_> {
                 }
             }
         }
+        self.keep_proof(&run);
         (run.goals, End::Exhausted)
+    }
+
+    /// Marks the goals an earlier exhausted search proved unreachable from every
+    /// lattice pose the start joins (and that no direct shot from the start reaches):
+    /// everything this search can reach, that one reached, and it found no way to
+    /// them. The search still orders its expansions by every goal (so its answers for
+    /// the others are the same), it only stops without waiting for these.
+    fn apply_kept_proofs(&mut self, start: &Pose2, run: &mut Run) {
+        let joined: Vec<u32> = run.joins.iter().map(|j| j.0).collect();
+        if joined.is_empty() {
+            return;
+        }
+        for k in 0..run.goals.len() {
+            let pose = run.goals[k].pose;
+            if !self.sh.caches.proved_unreachable(&joined, &pose) {
+                continue;
+            }
+            let direct = start.xy_distance(&pose) <= self.sh.shot_radius
+                && self.shot_valid(START, start, &pose);
+            if !direct {
+                run.goals[k].proved_out = true;
+                run.open_goals -= 1;
+            }
+        }
+    }
+
+    /// After an exhausted search: keeps the proof that its unreached goals cannot be
+    /// reached from any lattice pose it closed.
+    fn keep_proof(&self, run: &Run) {
+        let unreached: Vec<Pose2> = run
+            .goals
+            .iter()
+            .filter(|g| g.reached.is_none() && !g.proved_out)
+            .map(|g| g.pose)
+            .collect();
+        if unreached.is_empty() {
+            return;
+        }
+        let closed = self.me.buffers.closed_set();
+        self.sh.caches.keep_proof(closed, &unreached);
     }
 
     /// Closes a popped node (its cost and parent final); false when it was already
@@ -437,7 +502,7 @@ impl Worker<'_> {
             }
         }
         if id == START {
-            for (to, cost, reverse) in self.start_successors(start) {
+            for (to, cost, reverse) in std::mem::take(&mut run.joins) {
                 let ng = g + self.step_cost(START, cost, reverse);
                 self.queue(run, to, START, ng, 0, reverse, true);
             }
@@ -550,7 +615,9 @@ impl Worker<'_> {
         if self.shot_valid(from, &pose, &target) {
             let cost = g + self.sh.objective.motion_cost(&pose, &target);
             run.goals[goal].reached = Some((cost, from));
-            run.open_goals -= 1;
+            if !run.goals[goal].proved_out {
+                run.open_goals -= 1;
+            }
         }
     }
 }
