@@ -12,7 +12,7 @@ use std::time::Instant;
 
 /// The robots measured by default: `name=profile[+KEY=VALUE…]`, profiles from
 /// `configs/robots/`.
-const ROBOTS: &str = "anymal=anymal,wheeled=wheeled,rover=rover,rover-lattice=rover+planner.type=\"lattice\",dubins-lattice=rover+space.type=\"dubins\"+space.params.turning_radius=1.5+planner.type=\"lattice\"";
+const ROBOTS: &str = "anymal=anymal,wheeled=wheeled,rover=rover,rover-prm=rover+planner.type=\"lazy-prm-star\",dubins=rover+space.type=\"dubins\"+space.params.turning_radius=1.5";
 
 /// Arguments of `smug bench robots`.
 #[derive(clap::Args, Debug)]
@@ -31,6 +31,10 @@ pub struct BenchRobotsArgs {
     /// Seeds per world and robot (1..=N).
     #[arg(long, default_value_t = 10)]
     runs: u64,
+    /// A new world per seed (default: the world of seed 1 for every run; the planner's
+    /// seed still changes). Worlds without a `seed` parameter are the same anyway.
+    #[arg(long)]
+    vary_world: bool,
     /// Override a config key (every run).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
@@ -89,14 +93,17 @@ pub fn run(args: BenchRobotsArgs) -> crate::Result<()> {
         .collect::<crate::Result<_>>()?;
     let mut runs = Vec::new();
     for world in &args.worlds {
-        // The world of seed 1 for every run (the planner's seed changes): a procedural
-        // world of another seed may put the start where a big robot cannot stand.
-        let mut set = args.set.clone();
-        if crate::objectives::world_is_seeded(world) {
-            set.insert(0, "world.params.seed=1".to_string());
-        }
+        // By default the world of seed 1 for every run (the planner's seed changes); with
+        // `--vary-world` the world of each seed (a robot that cannot start there is a
+        // row of its own).
+        let seeded = crate::objectives::world_is_seeded(world);
         for robot in &robots {
             for seed in 1..=args.runs {
+                let mut set = args.set.clone();
+                if seeded {
+                    let world_seed = if args.vary_world { seed } else { 1 };
+                    set.insert(0, format!("world.params.seed={world_seed}"));
+                }
                 let run = plan_once(world, robot, seed, &set)?;
                 eprintln!(
                     "{} {} seed {seed}: {} in {:.2} s",
@@ -176,12 +183,16 @@ fn report(args: &BenchRobotsArgs, robots: &[Robot], runs: &[Run]) -> String {
     let mut out = String::from("# Robots: every profile on each world\n\n");
     let _ = writeln!(
         out,
-        "{} seeds per world and robot, the world of seed 1 each time (the planner's seed \
-         changes); cost: mean over the seeds that planned. Wall: config, assembly and \
+        "{} seeds per world and robot, {}; cost: mean over the seeds that planned. Wall: config, assembly and \
          planning in one process, seconds; × ref: the mean over seeds of the \
          wall time divided by `{}`'s on the same world and seed. Dropped PoIs: invalid \
          for the robot / dead ends (proved). Robots: {}.\n",
         args.runs,
+        if args.vary_world {
+            "the world of each seed (procedural worlds)"
+        } else {
+            "the world of seed 1 each time (the planner's seed changes)"
+        },
         robots.first().map_or("", |r| r.name.as_str()),
         args.robots.join(", ")
     );
