@@ -9,7 +9,9 @@
 
 #![warn(missing_docs)]
 
+mod builtins;
 pub mod config;
+pub mod context;
 pub mod deadline;
 pub mod error;
 pub mod evaluation;
@@ -33,6 +35,7 @@ pub mod stages;
 pub mod termination;
 #[cfg(feature = "testing")]
 pub mod testing;
+pub mod timing;
 pub mod world;
 
 pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
