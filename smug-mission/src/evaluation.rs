@@ -2,16 +2,16 @@
 //! objective (so plans made with different objectives can be compared), and the
 //! traversability along it.
 
-use crate::config::PluginSection;
-use crate::grid::GridLayer;
-use crate::objective::integrate_motion;
-use crate::pipeline::BuildContext;
-use crate::pose::Pose2;
-use crate::registry::{ObjectiveStage, Stage};
-use crate::world::World;
+use smug_core::config::PluginSection;
+use smug_core::grid::GridLayer;
+use smug_core::objective::integrate_motion;
+use smug_core::pipeline::BuildContext;
+use smug_core::pose::Pose2;
+use smug_core::registry::{ObjectiveStage, Stage};
+use smug_core::world::World;
 use std::collections::BTreeMap;
 
-pub use crate::plan::{PlanMetrics, RISKY_TRAVERSABILITY};
+pub use smug_core::plan::{PlanMetrics, RISKY_TRAVERSABILITY};
 
 /// The metrics of the path through `states` (joined by the space's motions of `ctx`),
 /// made with `ctx`'s objective, registered as `objective`.

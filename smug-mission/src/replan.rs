@@ -3,17 +3,18 @@
 //! the failed PoIs, on the world with the newly seen obstacles, through the config's
 //! pipeline ([`assemble_replan`] then [`replan_mission`]).
 
-use super::obstacles::{add_obstacles, MaskedEstimator};
-use super::state::MissionState;
-use super::{plan_mission, Mission, PlanOptions, Target};
-use crate::config::{LoadedConfig, RobotConfig};
-use crate::error::{Error, Result};
-use crate::pipeline::{BuildContext, DroppedPoi, Pipeline};
-use crate::plan::Plan;
-pub use crate::plan::{ReplanInfo, SkippedTarget};
-use crate::registry::TraversabilityStage;
-use crate::stages::{ChangedDisc, Fingerprint};
-use crate::world::World;
+use crate::run::plan_mission;
+use smug_core::config::{LoadedConfig, RobotConfig};
+use smug_core::error::{Error, Result};
+use smug_core::mission::MissionState;
+use smug_core::mission::{add_obstacles, MaskedEstimator};
+use smug_core::mission::{Mission, PlanOptions, Target};
+use smug_core::pipeline::{BuildContext, DroppedPoi, Pipeline};
+use smug_core::plan::Plan;
+pub use smug_core::plan::{ReplanInfo, SkippedTarget};
+use smug_core::registry::TraversabilityStage;
+use smug_core::stages::{ChangedDisc, Fingerprint};
+use smug_core::world::World;
 use std::sync::Arc;
 
 /// The state leaves nothing to visit: every target is visited or skipped.
