@@ -285,7 +285,7 @@ const OPEN: &str = "{ x = 2.5, y = 3.0, yaw = 3.1416 }";
 fn a_poi_a_forward_only_car_cannot_leave_is_left_out_and_named() {
     let mut p = dead_end_mission(&format!("{STUCK}, {OPEN}"));
     let options = p.config.plan;
-    let plan = smug_core::mission::plan_mission(&mut p, options).unwrap();
+    let plan = smug_mission::plan_mission(&mut p, options).unwrap();
     assert_eq!(plan.dead_ends.len(), 1, "{:?}", plan.dead_ends);
     let dead = &plan.dead_ends[0];
     assert_eq!((dead.target.as_str(), dead.index), ("wall", 0));
@@ -302,7 +302,7 @@ fn a_poi_a_forward_only_car_cannot_leave_is_left_out_and_named() {
 fn a_target_whose_every_poi_is_a_dead_end_is_named_and_why() {
     let mut p = dead_end_mission(STUCK);
     let options = p.config.plan;
-    let err = smug_core::mission::plan_mission(&mut p, options).unwrap_err();
+    let err = smug_mission::plan_mission(&mut p, options).unwrap_err();
     let message = err.to_string();
     assert!(message.contains("`wall`"), "{message}");
     assert!(
@@ -311,7 +311,7 @@ fn a_target_whose_every_poi_is_a_dead_end_is_named_and_why() {
     );
     match err {
         smug_core::Error::Stage { source, .. } => {
-            assert!(source.is::<smug_core::mission::Unreachable>())
+            assert!(source.is::<smug_mission::Unreachable>())
         }
         other => panic!("{other}"),
     }

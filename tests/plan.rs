@@ -1,7 +1,8 @@
 //! The end-to-end plan is valid: every waypoint passes the validity checker, every
 //! segment the motion validator, one PoI per ToI, from the start back to the start.
 
-use smug_core::{plan_mission, LoadedConfig, Pipeline, PlanOptions};
+use smug_core::{LoadedConfig, Pipeline, PlanOptions};
+use smug_mission::plan_mission;
 use std::path::Path;
 
 mod support;

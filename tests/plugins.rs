@@ -95,7 +95,7 @@ fn a_config_plans_with_the_out_of_tree_objective() {
     ];
     let loaded = LoadedConfig::from_file(&config, &set).unwrap();
     let mut pipeline = Pipeline::assemble(&loaded).unwrap();
-    let plan = smug_core::plan_mission(&mut pipeline, loaded.config.plan).unwrap();
+    let plan = smug_mission::plan_mission(&mut pipeline, loaded.config.plan).unwrap();
     assert_eq!(plan.metrics.objective, "example-steepness");
     let evaluated = plan.metrics.costs["example-steepness"];
     assert!(

@@ -8,10 +8,10 @@ mod replan_checks;
 
 use proptest::prelude::*;
 use replan_checks::{check_replan, state_strategy};
-use smug_core::mission::{
-    assemble_replan, replan_mission, DiscObstacle, MissionState, NoTargetLeft, Unreachable,
-};
-use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, Plan};
+use smug_core::mission::{DiscObstacle, MissionState};
+use smug_core::{Error, LoadedConfig, Pipeline, Plan};
+use smug_mission::plan_mission;
+use smug_mission::{assemble_replan, replan_mission, NoTargetLeft, Unreachable};
 
 use smug_app as _;
 
@@ -134,7 +134,7 @@ fn a_replan_after_the_three_events_is_valid_for_every_kind_of_pipeline() {
 /// obstacle's neighbourhood was checked again, and the rest of the roadmap reused.
 #[test]
 fn a_replan_on_the_warm_roadmap_after_the_three_events_is_valid() {
-    use smug_core::mission::changed_discs;
+    use smug_mission::changed_discs;
     for name in ["lunar.toml", "lunar-wheeled.toml", "flat-dubins.toml"] {
         let loaded = config(name, &[]);
         let (plan, pipeline) = original(&loaded);

@@ -10,11 +10,10 @@ mod replan_checks;
 
 use proptest::prelude::*;
 use replan_checks::{check_replan, state_strategy};
-use smug_core::mission::{
-    assemble_replan, replan_mission, DiscObstacle, MissionSession, MissionState, NoTargetLeft,
-    StateError, Unreachable,
-};
-use smug_core::{plan_mission, Error, GridLayer, LoadedConfig, Pipeline, Plan, Pose2, World};
+use smug_core::mission::{DiscObstacle, MissionState, StateError};
+use smug_core::{Error, GridLayer, LoadedConfig, Pipeline, Plan, Pose2, World};
+use smug_mission::plan_mission;
+use smug_mission::{assemble_replan, replan_mission, MissionSession, NoTargetLeft, Unreachable};
 
 use smug_app as _;
 

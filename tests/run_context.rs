@@ -2,7 +2,8 @@
 //! sees the other's (the run context is carried by each pipeline, nothing is
 //! process-wide).
 
-use smug_core::{plan_mission, Error, LoadedConfig, Pipeline, PlanOptions};
+use smug_core::{Error, LoadedConfig, Pipeline, PlanOptions};
+use smug_mission::plan_mission;
 use std::fmt::Write as _;
 use std::path::Path;
 

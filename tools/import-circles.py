@@ -9,7 +9,8 @@ name), names an item defined in the other file. Names are followed through `use`
 declarations (re-exports and globs included) to the file that defines them, so a path
 through a facade (`crate::stages::Sampler`) counts as a dependency of the file that
 defines `Sampler`, not of `stages/mod.rs`. A `pub use` (a re-export) is not itself a
-dependency of the re-exporting file's code; `mod` declarations are not imports.
+dependency of the re-exporting file unless its own code uses the name; `mod`
+declarations are not imports.
 
 Prints every strongly connected component of more than one file, per crate, and exits
 with status 1 when there is one; prints nothing and exits 0 otherwise.
@@ -229,8 +230,13 @@ class Crate:
         graph: dict[Path, set[Path]] = {m.file: set() for m in self.modules.values()}
         self.why: dict[tuple[Path, Path], str] = {}
         for module in self.modules.values():
-            paths = [segs for segs, _, reexport in module.uses if not reexport]
             body = USE.sub(" ", module.text)
+            # A re-export is a dependency too when the file's own code uses the name.
+            paths = [
+                segs
+                for segs, name, reexport in module.uses
+                if not reexport or (name != "*" and re.search(rf"\b{re.escape(name)}\b", body))
+            ]
             paths += [p.split("::") for p in INLINE.findall(body)]
             for segs in paths:
                 if segs[-1] == "*":

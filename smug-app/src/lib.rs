@@ -37,3 +37,6 @@ pub use outcome::{one_line, NoSolution, Outcome};
 pub use plan::{load_config, plan, Planned};
 pub use replan::{replan, ReplanRequest};
 pub use roadmap::{load_roadmap, save_roadmap};
+/// The long-lived mission session (plan, then replan in place as the robot goes), for
+/// the front ends: through the application layer, like every other command.
+pub use smug_mission::{MissionSession, WorldUpdate};

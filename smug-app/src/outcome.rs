@@ -1,7 +1,7 @@
 //! One outcome for every planning command: solved, or no solution and why; errors are
 //! [`AppError`](crate::AppError)s beside it.
 
-use smug_core::mission::{NoTargetLeft, Unreachable};
+use smug_mission::{NoTargetLeft, Unreachable};
 
 /// What a planning command found.
 #[derive(Debug)]

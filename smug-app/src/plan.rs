@@ -1,7 +1,8 @@
 //! Planning a mission from a config, as `smug plan` and `smug.plan` do.
 
 use crate::{AppError, Outcome, Result};
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan, TraversabilityEstimator, World};
+use smug_core::{LoadedConfig, Pipeline, Plan, TraversabilityEstimator, World};
+use smug_mission::plan_mission;
 use std::path::Path;
 use std::sync::Arc;
 

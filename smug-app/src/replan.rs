@@ -3,8 +3,9 @@
 
 use crate::plan::Planned;
 use crate::{AppError, Outcome, Result};
-use smug_core::mission::{assemble_replan_fingerprinted, replan_mission, MissionState};
+use smug_core::mission::MissionState;
 use smug_core::LoadedConfig;
+use smug_mission::{assemble_replan_fingerprinted, replan_mission};
 use std::path::Path;
 
 /// What to replan from.

@@ -2,8 +2,9 @@
 //! loaded before a replan (`smug replan --roadmap`).
 
 use crate::{one_line, AppError, Result};
-use smug_core::mission::{changed_discs, MissionState};
+use smug_core::mission::MissionState;
 use smug_core::{Fingerprint, LoadedConfig, Pipeline, World};
+use smug_mission::changed_discs;
 use std::path::Path;
 
 /// Writes the planner's roadmap after a mission to `file`, fingerprinted for `loaded`

@@ -6,7 +6,8 @@ use crate::output::write_report;
 
 use serde::Serialize;
 use smug_core::registry::{ObjectiveStage, Stage};
-use smug_core::{plan_mission, LoadedConfig, Pipeline};
+use smug_core::{LoadedConfig, Pipeline};
+use smug_mission::plan_mission;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;

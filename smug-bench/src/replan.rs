@@ -10,10 +10,10 @@
 use crate::output::write_report;
 
 use serde::Serialize;
-use smug_core::mission::{
-    assemble_replan, changed_discs, replan_mission, DiscObstacle, MissionSession, MissionState,
-};
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
+use smug_core::mission::{DiscObstacle, MissionState};
+use smug_core::{LoadedConfig, Pipeline, Plan};
+use smug_mission::plan_mission;
+use smug_mission::{assemble_replan, changed_discs, replan_mission, MissionSession};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;

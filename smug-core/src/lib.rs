@@ -9,10 +9,11 @@
 
 #![warn(missing_docs)]
 
+mod builtins;
 pub mod config;
+pub mod context;
 pub mod deadline;
 pub mod error;
-pub mod evaluation;
 pub mod grid;
 pub mod limits;
 pub mod mission;
@@ -23,7 +24,6 @@ pub mod path;
 pub mod pipeline;
 pub mod plan;
 pub mod pose;
-pub mod post_process;
 pub mod queries;
 pub mod registry;
 pub mod rng;
@@ -33,6 +33,7 @@ pub mod stages;
 pub mod termination;
 #[cfg(feature = "testing")]
 pub mod testing;
+pub mod timing;
 pub mod world;
 
 pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
@@ -40,7 +41,7 @@ pub use deadline::Deadline;
 pub use error::{ConfigError, Error, Origin, RegistryError, Result};
 pub use grid::{GridError, GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};
 pub use limits::MemoryLimit;
-pub use mission::{plan_mission, PlanOptions};
+pub use mission::PlanOptions;
 pub use mission::{Mission, Target};
 pub use objective::{Objective, PathLength};
 pub use oracle::{PathOracle, PlannedPath};

@@ -1,34 +1,30 @@
 //! Assembling a pipeline from config: each stage is built by its registered plugin,
 //! in dependency order, through a [`BuildContext`] that hands out what earlier stages built.
 
-use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, RobotConfig, SourceMap};
-use crate::deadline::Deadline;
+use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection};
 use crate::error::{Error, Result};
-use crate::limits::MemoryLimit;
 use crate::mission::Mission;
-use crate::objective::{Objective, PathLength};
+use crate::objective::Objective;
 use crate::oracle::KnownAnswers;
 use crate::pose::Pose2;
 use crate::registry::{
-    Built, MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
+    MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
     SpaceStage, Stage, TraversabilityStage, ValidityStage, WorldStage,
 };
-use crate::rng::{stage_rng, StageRng};
 use crate::run_context::RunContext;
-use crate::space::{Se2Space, StateSpace};
+use crate::space::StateSpace;
 use crate::stages::{
-    MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
+    MotionValidator, PoiSelector, PointToPointPlanner, Sequencer, StateValidityChecker,
     TraversabilityEstimator,
 };
 use crate::world::World;
-use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
 #[path = "pipeline_rebuild.rs"]
 mod rebuild;
-pub use rebuild::WorldChange;
+pub use crate::context::{BuildContext, WorldChange};
 
 /// The message for a config that still has the `[cost]` section of earlier versions.
 const REMOVED_COST: &str =
@@ -55,205 +51,6 @@ fn check_robot_fits(loaded: &LoadedConfig, world: &World) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// What a plugin's builder may use: the seed, the robot, and the stages built before it.
-#[derive(Clone)]
-pub struct BuildContext {
-    seed: u64,
-    robot: RobotConfig,
-    sources: Arc<SourceMap>,
-    space: Arc<dyn StateSpace>,
-    objective: Arc<dyn Objective>,
-    world: Option<Arc<World>>,
-    state_validity: Option<Arc<dyn StateValidityChecker>>,
-    motion_validator: Option<Arc<dyn MotionValidator>>,
-    sampler: Option<PluginSection>,
-    world_change: Option<Arc<WorldChange>>,
-    run: RunContext,
-    building: String,
-}
-
-impl BuildContext {
-    /// A context with the default space (`se2`) and objective (`path-length`) and
-    /// nothing else built (for tests and programmatic assembly; add stages with the
-    /// `with_*` methods).
-    pub fn new(seed: u64, robot: RobotConfig) -> Self {
-        Self {
-            seed,
-            robot,
-            sources: Arc::new(SourceMap::default()),
-            space: Arc::new(Se2Space::default()),
-            objective: Arc::new(PathLength::default()),
-            world: None,
-            state_validity: None,
-            motion_validator: None,
-            sampler: None,
-            world_change: None,
-            run: RunContext::default(),
-            building: String::new(),
-        }
-    }
-
-    /// Sets the state space (motion model).
-    pub fn with_space(mut self, space: Arc<dyn StateSpace>) -> Self {
-        self.space = space;
-        self
-    }
-
-    /// Sets the objective.
-    pub fn with_objective(mut self, objective: Arc<dyn Objective>) -> Self {
-        self.objective = objective;
-        self
-    }
-
-    /// Sets the world.
-    pub fn with_world(mut self, world: Arc<World>) -> Self {
-        self.world = Some(world);
-        self
-    }
-
-    /// Sets the state validity checker.
-    pub fn with_state_validity(mut self, checker: Arc<dyn StateValidityChecker>) -> Self {
-        self.state_validity = Some(checker);
-        self
-    }
-
-    /// Sets the motion validator.
-    pub fn with_motion_validator(mut self, validator: Arc<dyn MotionValidator>) -> Self {
-        self.motion_validator = Some(validator);
-        self
-    }
-
-    /// Sets the sampler section planners build their samplers from.
-    pub fn with_sampler(mut self, section: PluginSection) -> Self {
-        self.sampler = Some(section);
-        self
-    }
-
-    /// Sets the run context (deadline and memory limit) handed to the stages.
-    pub fn with_run(mut self, run: RunContext) -> Self {
-        self.run = run;
-        self
-    }
-
-    /// The run context: the deadline stages stop at, the memory limit they allocate
-    /// within.
-    pub fn run(&self) -> &RunContext {
-        &self.run
-    }
-
-    /// The run's deadline (a handle the stages keep; armed while a run with a
-    /// deadline plans).
-    pub fn deadline(&self) -> Deadline {
-        self.run.deadline.clone()
-    }
-
-    /// The run's memory limit.
-    pub fn memory(&self) -> MemoryLimit {
-        self.run.memory
-    }
-
-    /// Sets (or clears) what changed since the previous world.
-    pub fn with_world_change(mut self, change: Option<Arc<WorldChange>>) -> Self {
-        self.world_change = change;
-        self
-    }
-
-    /// What changed since the world the stages were built for before, if the context
-    /// rebuilds them after a change.
-    pub fn world_change(&self) -> Option<&WorldChange> {
-        self.world_change.as_deref()
-    }
-
-    /// The run's seed.
-    pub fn seed(&self) -> u64 {
-        self.seed
-    }
-
-    /// The robot's base box.
-    pub fn robot(&self) -> &RobotConfig {
-        &self.robot
-    }
-
-    /// `path` resolved against the main config file's directory (absolute paths stay).
-    pub fn resolve_path(&self, path: &std::path::Path) -> std::path::PathBuf {
-        self.sources.base_dir().join(path)
-    }
-
-    /// A reproducible RNG for `stream`, derived from the seed.
-    pub fn rng(&self, stream: &str) -> StageRng {
-        stage_rng(self.seed, stream)
-    }
-
-    /// The state space (motion model).
-    pub fn space(&self) -> Arc<dyn StateSpace> {
-        self.space.clone()
-    }
-
-    /// The objective.
-    pub fn objective(&self) -> Arc<dyn Objective> {
-        self.objective.clone()
-    }
-
-    /// The world, or an error naming the stage that needs it.
-    pub fn world(&self) -> Result<Arc<World>> {
-        self.world.clone().ok_or_else(|| self.missing("world"))
-    }
-
-    /// The state validity checker, or an error naming the stage that needs it.
-    pub fn state_validity(&self) -> Result<Arc<dyn StateValidityChecker>> {
-        self.state_validity
-            .clone()
-            .ok_or_else(|| self.missing("validity"))
-    }
-
-    /// The motion validator, or an error naming the stage that needs it.
-    pub fn motion_validator(&self) -> Result<Arc<dyn MotionValidator>> {
-        self.motion_validator
-            .clone()
-            .ok_or_else(|| self.missing("motion"))
-    }
-
-    /// A new sampler built from the config's `[sampler]` section.
-    pub fn new_sampler(&self) -> Result<Box<dyn Sampler>> {
-        let section = self
-            .sampler
-            .as_ref()
-            .ok_or_else(|| self.missing("sampler"))?;
-        Ok(self.build::<SamplerStage>(section)?.object)
-    }
-
-    /// The typed parameters of `section`; errors name the key and its line.
-    pub fn params<P: DeserializeOwned>(&self, section: &PluginSection) -> Result<P> {
-        let prefix = KeyPath::dotted(&section.key).join("params");
-        Ok(self
-            .sources
-            .deserialize(&prefix, toml::Value::Table(section.params.clone()))?)
-    }
-
-    /// Builds `section` with the plugin it names; an unknown name is an error that
-    /// lists the known ones and points at the `type` line.
-    pub fn build<S: Stage>(&self, section: &PluginSection) -> Result<Built<S>> {
-        let plugin = S::registry()?.get(&section.kind).map_err(|err| {
-            let key = KeyPath::dotted(&section.key).join("type");
-            self.sources.key_error(&key, err.to_string())
-        })?;
-        let mut ctx = self.clone();
-        ctx.building = section.key.clone();
-        (plugin.build)(section, &ctx)
-    }
-
-    fn missing(&self, needed: &'static str) -> Error {
-        Error::MissingStage {
-            stage: if self.building.is_empty() {
-                "this command".into()
-            } else {
-                format!("[{}]", self.building)
-            },
-            needed,
-        }
-    }
 }
 
 /// One assembled stage: which plugin, with which resolved parameters.

@@ -2,29 +2,16 @@
 //! world (what a [`MissionSession`](crate::mission::MissionSession) does per new
 //! obstacle), and what plugins are told about the change.
 
-use super::{BuildContext, Pipeline};
+use super::Pipeline;
 use crate::config::PluginSection;
+use crate::context::{BuildContext, WorldChange};
 use crate::error::Result;
-use crate::mission::DiscObstacle;
 use crate::objective::Objective;
 use crate::registry::{MotionStage, ObjectiveStage, Stage, ValidityStage};
 use crate::stages::{MotionValidator, StateValidityChecker};
 use crate::world::World;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// How the context's world came from the one the stages were built for before: that
-/// world with obstacles added (set while a
-/// [`MissionSession`](crate::mission::MissionSession) rebuilds the stages). A plugin may
-/// update what it derived from the previous world instead of deriving it again, as
-/// long as the result is the same.
-#[derive(Clone, Debug)]
-pub struct WorldChange {
-    /// The world before.
-    pub previous: Arc<World>,
-    /// The obstacles added to it, in order.
-    pub obstacles: Vec<DiscObstacle>,
-}
 
 impl Pipeline {
     /// Puts `world` (this pipeline's world with obstacles added) in place of the world

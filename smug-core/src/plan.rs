@@ -5,36 +5,7 @@ use crate::pose::{Pose2, Waypoint};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
-/// Where the point-to-point planning time went (the paper's Table III columns), seconds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct TimeBreakdown {
-    /// Graph search.
-    pub astar_s: f64,
-    /// Drawing samples and connecting them into the roadmap.
-    pub sampling_s: f64,
-    /// Lazy edge (motion) validation.
-    pub edge_checking_s: f64,
-    /// Lazy vertex (state) validation.
-    pub vertex_checking_s: f64,
-    /// Everything else inside the planner.
-    pub misc_s: f64,
-}
-
-impl TimeBreakdown {
-    /// Sum of all parts.
-    pub fn total_s(&self) -> f64 {
-        self.astar_s + self.sampling_s + self.edge_checking_s + self.vertex_checking_s + self.misc_s
-    }
-
-    /// Component-wise sum.
-    pub fn add(&mut self, other: &TimeBreakdown) {
-        self.astar_s += other.astar_s;
-        self.sampling_s += other.sampling_s;
-        self.edge_checking_s += other.edge_checking_s;
-        self.vertex_checking_s += other.vertex_checking_s;
-        self.misc_s += other.misc_s;
-    }
-}
+pub use crate::timing::TimeBreakdown;
 
 /// Counters and timings of a planning run.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -112,7 +83,7 @@ pub struct Plan {
     pub cost: f64,
     /// Length, cost under every objective, and traversability along the plan.
     #[serde(default)]
-    pub metrics: crate::evaluation::PlanMetrics,
+    pub metrics: PlanMetrics,
     /// Targets left out (unreachable, with `skip_unreachable = true`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub skipped: Vec<String>,
@@ -128,5 +99,53 @@ pub struct Plan {
     pub stats: PlanStats,
     /// Set on a replan: the mission state it started from and what it left out.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub replan: Option<crate::mission::ReplanInfo>,
+    pub replan: Option<ReplanInfo>,
+}
+
+/// Traversability below this counts as risky ground in [`PlanMetrics::risky_length_m`].
+pub const RISKY_TRAVERSABILITY: f64 = 0.5;
+
+/// A plan's length, costs under each objective and the ground it crosses.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlanMetrics {
+    /// The objective the plan was made with.
+    pub objective: String,
+    /// Length in the plane along the space's motions, metres.
+    pub length_m: f64,
+    /// Height climbed (Σ max(0, Δz) along the path, sampled every half cell), metres.
+    pub climb_m: f64,
+    /// Cost under each registered objective: the planning one with its configured
+    /// parameters, the others with their defaults (those the world cannot support,
+    /// e.g. without a traversability layer, are left out).
+    pub costs: BTreeMap<String, f64>,
+    /// Lowest traversability along the path (`None` without a traversability layer).
+    pub traversability_min: Option<f64>,
+    /// Length-weighted mean traversability along the path.
+    pub traversability_mean: Option<f64>,
+    /// Length spent where traversability is below [`RISKY_TRAVERSABILITY`], metres.
+    pub risky_length_m: Option<f64>,
+}
+
+/// What marks a plan as a replan: the state it started from and what it left out.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReplanInfo {
+    /// The state file, when the state came from one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state_file: Option<String>,
+    /// The mission state the replan started from.
+    pub state: crate::mission::MissionState,
+    /// Targets not visited by this plan (besides the visited ones), with the reason.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub skipped: Vec<SkippedTarget>,
+}
+
+/// A target the replan leaves out.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SkippedTarget {
+    /// Target id.
+    pub target: String,
+    /// Why, e.g. "every PoI failed".
+    pub reason: String,
 }

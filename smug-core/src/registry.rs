@@ -2,10 +2,11 @@
 //! per stage; lookup tables are built once, reject duplicate names, and name the known
 //! plugins when asked for an unknown one.
 
+use crate::config::KeyPath;
 use crate::config::PluginSection;
+use crate::context::BuildContext;
 use crate::error::{RegistryError, Result};
 use crate::objective::Objective;
-use crate::pipeline::BuildContext;
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
     TraversabilityEstimator,
@@ -219,6 +220,31 @@ pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
     ])
 }
 
+/// Building stages by name through the registry (beside it: the context only
+/// carries what builders use).
+impl BuildContext {
+    /// A new sampler built from the config's `[sampler]` section.
+    pub fn new_sampler(&self) -> Result<Box<dyn Sampler>> {
+        let section = self
+            .sampler
+            .as_ref()
+            .ok_or_else(|| self.missing("sampler"))?;
+        Ok(self.build::<SamplerStage>(section)?.object)
+    }
+
+    /// Builds `section` with the plugin it names; an unknown name is an error that
+    /// lists the known ones and points at the `type` line.
+    pub fn build<S: Stage>(&self, section: &PluginSection) -> Result<Built<S>> {
+        let plugin = S::registry()?.get(&section.kind).map_err(|err| {
+            let key = KeyPath::dotted(&section.key).join("type");
+            self.sources.key_error(&key, err.to_string())
+        })?;
+        let mut ctx = self.clone();
+        ctx.building = section.key.clone();
+        (plugin.build)(section, &ctx)
+    }
+}
+
 /// Registers a plugin for a stage. The parameters type must implement
 /// `Deserialize + Serialize + Default` and should carry `#[serde(deny_unknown_fields)]`;
 /// the builder is a non-capturing closure `|params, ctx| -> Result<Box<Object>>`.
@@ -242,13 +268,13 @@ macro_rules! register_plugin {
 
             fn __smug_build(
                 section: &$crate::config::PluginSection,
-                ctx: &$crate::pipeline::BuildContext,
+                ctx: &$crate::context::BuildContext,
             ) -> $crate::Result<$crate::registry::Built<$stage>> {
                 let params: $params = ctx.params(section)?;
                 let resolved = $crate::registry::params_table(&params);
                 let builder: fn(
                     $params,
-                    &$crate::pipeline::BuildContext,
+                    &$crate::context::BuildContext,
                 ) -> $crate::Result<
                     ::std::boxed::Box<<$stage as $crate::registry::Stage>::Object>,
                 > = $build;

@@ -26,7 +26,9 @@ mod write;
 
 pub use octile::{octile_distances, octile_length, SQRT_2};
 pub use scen_gen::{generate_scenarios, ScenarioGenError};
-pub use write::{format_map, format_scenarios, grid_to_map_yaml, write_map, write_scenarios};
+pub use write::{
+    convert_movingai, format_map, format_scenarios, grid_to_map_yaml, write_map, write_scenarios,
+};
 
 use crate::export::ExportError;
 use std::path::{Path, PathBuf};
@@ -375,25 +377,6 @@ fn read_text(path: &Path) -> Result<String, MovingAiError> {
         path: path.to_path_buf(),
         source,
     })
-}
-
-/// Converts the MovingAI map `map` into `out_yaml` and a PGM beside it (same stem),
-/// at `resolution` metres per cell with origin `[0, 0]` (see the
-/// [module documentation](self) for the coordinates). Passable cells are free,
-/// blocked ones occupied. Returns the PGM's path.
-pub fn convert_movingai(
-    map: &Path,
-    out_yaml: &Path,
-    resolution: f64,
-) -> Result<PathBuf, MovingAiError> {
-    check_resolution(resolution, map)?;
-    let grid = read_map(map)?;
-    grid_to_map_yaml(
-        &grid,
-        out_yaml,
-        resolution,
-        &format!("converted from MovingAI map {}", map.display()),
-    )
 }
 
 /// Fails unless `resolution` is a finite number > 0; `path` names the input in errors.

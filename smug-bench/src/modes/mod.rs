@@ -11,7 +11,8 @@ use crate::output::write_report;
 use report::{report, Summary};
 pub use runs::{Mission, Mode, Run, MISSIONS, MODES};
 use serde::Serialize;
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
+use smug_core::{LoadedConfig, Pipeline, Plan};
+use smug_mission::plan_mission;
 use std::path::PathBuf;
 
 /// Arguments of `smug bench modes`.

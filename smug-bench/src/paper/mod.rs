@@ -7,7 +7,8 @@ pub mod runs;
 use crate::output::write_report;
 pub use runs::{Experiment, PaperBench, Run, SCALABILITY, SELECTORS, VALIDITY};
 
-use smug_core::{plan_mission, LoadedConfig, Pipeline, Plan};
+use smug_core::{LoadedConfig, Pipeline, Plan};
+use smug_mission::plan_mission;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `smug bench paper`.

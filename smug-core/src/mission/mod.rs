@@ -1,26 +1,13 @@
 //! Missions: start, optional end, targets of interest with their poses of interest, and
-//! how a mission is planned through a pipeline ([`plan_mission`]).
+//! what a run needs to know about it (options, state, obstacles); planning it is
+//! `smug-mission`'s.
 
-mod assembly;
-mod dead_ends;
-mod joint;
-mod layout;
 mod obstacles;
 mod options;
-mod replan;
-mod run;
-mod sequential;
-mod session;
 mod state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
 pub use options::{PlanMode, PlanOptions, Representative, SequencingCosts};
-pub use replan::{
-    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
-    ReplanInfo, SkippedTarget,
-};
-pub use run::{plan_mission, Unreachable};
-pub use session::{MissionSession, WorldUpdate};
 pub use state::{MissionState, StateError};
 
 use crate::pose::{Bounds2, Point3, Pose2};

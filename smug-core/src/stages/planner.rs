@@ -3,9 +3,9 @@
 use crate::error::Result;
 use crate::path::Path;
 use crate::pipeline::BuildContext;
-use crate::plan::TimeBreakdown;
 use crate::pose::Pose2;
 use crate::stages::roadmap_file::{ChangedDisc, RoadmapSnapshot};
+use crate::timing::TimeBreakdown;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 

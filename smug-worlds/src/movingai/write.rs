@@ -2,7 +2,7 @@
 //! [`super::parse_map`] and [`super::parse_scenarios`]) and of a grid as map_server
 //! YAML + PGM.
 
-use super::{check_resolution, MovingAiError, MovingAiMap, Scenario};
+use super::{check_resolution, read_map, MovingAiError, MovingAiMap, Scenario};
 use crate::export::{write_map_yaml, write_pgm, ExportError, FREE_VALUE, OCCUPIED_VALUE};
 use crate::map_file::MapYaml;
 use std::fmt::Write as _;
@@ -99,4 +99,23 @@ fn write_text(path: &Path, text: &str) -> Result<(), MovingAiError> {
         }
         .into()
     })
+}
+
+/// Converts the MovingAI map `map` into `out_yaml` and a PGM beside it (same stem),
+/// at `resolution` metres per cell with origin `[0, 0]` (see the
+/// [module documentation](super) for the coordinates). Passable cells are free,
+/// blocked ones occupied. Returns the PGM's path.
+pub fn convert_movingai(
+    map: &Path,
+    out_yaml: &Path,
+    resolution: f64,
+) -> Result<PathBuf, MovingAiError> {
+    check_resolution(resolution, map)?;
+    let grid = read_map(map)?;
+    grid_to_map_yaml(
+        &grid,
+        out_yaml,
+        resolution,
+        &format!("converted from MovingAI map {}", map.display()),
+    )
 }

@@ -2,39 +2,16 @@
 //! objective (so plans made with different objectives can be compared), and the
 //! traversability along it.
 
-use crate::config::PluginSection;
-use crate::grid::GridLayer;
-use crate::objective::integrate_motion;
-use crate::pipeline::BuildContext;
-use crate::pose::Pose2;
-use crate::registry::{ObjectiveStage, Stage};
-use crate::world::World;
-use serde::{Deserialize, Serialize};
+use smug_core::config::PluginSection;
+use smug_core::grid::GridLayer;
+use smug_core::objective::integrate_motion;
+use smug_core::pipeline::BuildContext;
+use smug_core::pose::Pose2;
+use smug_core::registry::{ObjectiveStage, Stage};
+use smug_core::world::World;
 use std::collections::BTreeMap;
 
-/// Traversability below this counts as risky ground in [`PlanMetrics::risky_length_m`].
-pub const RISKY_TRAVERSABILITY: f64 = 0.5;
-
-/// A plan's length, costs under each objective and the ground it crosses.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct PlanMetrics {
-    /// The objective the plan was made with.
-    pub objective: String,
-    /// Length in the plane along the space's motions, metres.
-    pub length_m: f64,
-    /// Height climbed (Σ max(0, Δz) along the path, sampled every half cell), metres.
-    pub climb_m: f64,
-    /// Cost under each registered objective: the planning one with its configured
-    /// parameters, the others with their defaults (those the world cannot support,
-    /// e.g. without a traversability layer, are left out).
-    pub costs: BTreeMap<String, f64>,
-    /// Lowest traversability along the path (`None` without a traversability layer).
-    pub traversability_min: Option<f64>,
-    /// Length-weighted mean traversability along the path.
-    pub traversability_mean: Option<f64>,
-    /// Length spent where traversability is below [`RISKY_TRAVERSABILITY`], metres.
-    pub risky_length_m: Option<f64>,
-}
+pub use smug_core::plan::{PlanMetrics, RISKY_TRAVERSABILITY};
 
 /// The metrics of the path through `states` (joined by the space's motions of `ctx`),
 /// made with `ctx`'s objective, registered as `objective`.

@@ -15,18 +15,19 @@
 //! obstacles after them are the new ones. A state that drops or changes an applied
 //! obstacle is refused (`obstacles[k]` named); a world without it needs a new session.
 
-use super::obstacles::{add_obstacles, mask_layer, DiscObstacle};
-use super::replan::replan_mission;
-use super::state::{MissionState, StateError};
-use super::{plan_mission, Mission, PlanOptions};
-use crate::config::{LoadedConfig, RobotConfig};
-use crate::error::{Error, Result};
-use crate::oracle::KnownAnswers;
-use crate::pipeline::{DroppedPoi, Pipeline, WorldChange};
-use crate::plan::Plan;
-use crate::registry::{PlannerStage, TraversabilityStage};
-use crate::stages::{CellRect, ChangedDisc, TraversabilityEstimator};
-use crate::world::World;
+use crate::replan::replan_mission;
+use crate::run::plan_mission;
+use smug_core::config::{LoadedConfig, RobotConfig};
+use smug_core::error::{Error, Result};
+use smug_core::mission::{add_obstacles, mask_layer, DiscObstacle};
+use smug_core::mission::{Mission, PlanOptions};
+use smug_core::mission::{MissionState, StateError};
+use smug_core::oracle::KnownAnswers;
+use smug_core::pipeline::{DroppedPoi, Pipeline, WorldChange};
+use smug_core::plan::Plan;
+use smug_core::registry::{PlannerStage, TraversabilityStage};
+use smug_core::stages::{CellRect, ChangedDisc, TraversabilityEstimator};
+use smug_core::world::World;
 use std::sync::Arc;
 use std::time::Instant;
 

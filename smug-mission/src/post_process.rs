@@ -2,12 +2,12 @@
 //! concatenated, headings turned to the direction of travel (holonomic models), curved
 //! motions sampled (car-like models, with the gear), heights from the terrain.
 
-use crate::pipeline::Pipeline;
-use crate::plan::Plan;
-use crate::pose::{wrap_angle, Pose2, Waypoint};
-use crate::space::StateSpace;
-use crate::stages::{MotionValidator, StateValidityChecker};
-use crate::world::World;
+use smug_core::pipeline::Pipeline;
+use smug_core::plan::Plan;
+use smug_core::pose::{wrap_angle, Pose2, Waypoint};
+use smug_core::space::StateSpace;
+use smug_core::stages::{MotionValidator, StateValidityChecker};
+use smug_core::world::World;
 
 /// Spacing of the waypoints sampled along a curved model's motions, in space distance.
 pub const CURVE_WAYPOINT_STEP: f64 = 0.1;

@@ -1,14 +1,14 @@
 //! The sequential mode's first step: the visiting order of the targets from path
 //! costs between one representative pose per target (full or lazy cost matrix).
 
-use super::layout::Layout;
-use super::options::{Representative, SequencingCosts};
-use super::Mission;
-use crate::error::{Error, Result};
-use crate::oracle::PathOracle;
-use crate::pipeline::Pipeline;
-use crate::pose::Pose2;
-use crate::stages::{CostMatrix, Sequencer, Tour, TourKind};
+use crate::layout::Layout;
+use smug_core::error::{Error, Result};
+use smug_core::mission::Mission;
+use smug_core::mission::{Representative, SequencingCosts};
+use smug_core::oracle::PathOracle;
+use smug_core::pipeline::Pipeline;
+use smug_core::pose::Pose2;
+use smug_core::stages::{CostMatrix, Sequencer, Tour, TourKind};
 
 /// The target's stand-in for sequencing.
 fn representative(
@@ -73,7 +73,7 @@ pub(super) fn sequence(
 
 /// Whether the matrix is filled lazily ([`lazy_tour`]): with `"lazy"` costs, and with
 /// `"full"` costs on an oracle that serves answers kept from earlier missions (a
-/// [`MissionSession`](super::MissionSession)'s replan). There the paths between the
+/// [`MissionSession`](crate::MissionSession)'s replan). There the paths between the
 /// targets are known already, and the pairs it does not know (from the robot's new
 /// pose, or whose kept path a new obstacle blocked) are planned only where the tour
 /// uses them, on lower bounds elsewhere: with an exact solver the order is optimal for
@@ -205,11 +205,11 @@ pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (us
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
-    use crate::objective::PathLength;
-    use crate::path::Path;
-    use crate::stages::Clusters;
-    use crate::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
     use proptest::prelude::*;
+    use smug_core::objective::PathLength;
+    use smug_core::path::Path;
+    use smug_core::stages::Clusters;
+    use smug_core::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
     use std::sync::Arc;
 
     /// Answers every query with a straight path whose cost is the objective's cost
@@ -242,7 +242,7 @@ pub(super) mod tests {
     }
 
     /// The best tour by trying every order (small n only).
-    pub(in crate::mission) struct Exhaustive;
+    pub(crate) struct Exhaustive;
 
     impl Sequencer for Exhaustive {
         fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour> {
@@ -318,10 +318,7 @@ pub(super) mod tests {
         }
     }
 
-    pub(in crate::mission) fn oracle(
-        poses: &[Pose2],
-        detours: Vec<f64>,
-    ) -> (PathOracle, Vec<usize>) {
+    pub(crate) fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
         let objective = PathLength::default();
         let planner = DetourPlanner {
             poses: poses.to_vec(),

@@ -1,12 +1,12 @@
 //! Turning a chosen route into a [`Plan`]: its segments, chosen PoIs and statistics.
 
-use super::Mission;
-use crate::error::{Error, Result};
-use crate::oracle::PathOracle;
-use crate::pipeline::Pipeline;
-use crate::plan::{ChosenPoi, Plan, PlanStats, Segment};
-use crate::pose::Pose2;
-use crate::world::World;
+use smug_core::error::{Error, Result};
+use smug_core::mission::Mission;
+use smug_core::oracle::PathOracle;
+use smug_core::pipeline::Pipeline;
+use smug_core::plan::{ChosenPoi, Plan, PlanStats, Segment};
+use smug_core::pose::Pose2;
+use smug_core::world::World;
 
 /// The index of `pose` among the world's original PoIs of target `id`.
 pub(super) fn original_index(world: &World, id: &str, pose: &Pose2) -> usize {

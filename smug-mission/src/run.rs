@@ -4,21 +4,21 @@
 //! path oracle, so every query shares the planner's roadmap. The joint mode (`joint`)
 //! chooses the order and the PoIs together.
 
-use super::assembly::{assemble_plan, stats};
-use super::dead_ends::drop_dead_ends;
-use super::joint::{joint_tour, JointProblem};
-use super::layout::{register_poses, Layout};
-use super::options::{PlanMode, PlanOptions};
-use super::sequential::sequence;
-use super::Mission;
-use crate::error::{Error, Result};
+use crate::assembly::{assemble_plan, stats};
+use crate::dead_ends::drop_dead_ends;
 use crate::evaluation::plan_metrics;
-use crate::oracle::PathOracle;
-use crate::pipeline::Pipeline;
-use crate::plan::Plan;
+use crate::joint::{joint_tour, JointProblem};
+use crate::layout::{register_poses, Layout};
 use crate::post_process::{concatenate, waypoints};
-use crate::stages::{Selection, SelectionError, SelectionProblem};
-use crate::world::World;
+use crate::sequential::sequence;
+use smug_core::error::{Error, Result};
+use smug_core::mission::Mission;
+use smug_core::mission::{PlanMode, PlanOptions};
+use smug_core::oracle::PathOracle;
+use smug_core::pipeline::Pipeline;
+use smug_core::plan::Plan;
+use smug_core::stages::{Selection, SelectionError, SelectionProblem};
+use smug_core::world::World;
 use std::time::Instant;
 /// Targets that cannot be reached: the plan fails and names them.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -130,7 +130,7 @@ fn order_then_select(
 
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
 /// the options' deadline when they set one (armed on the pipeline's own
-/// [`Deadline`](crate::deadline::Deadline), which its stages hold).
+/// [`Deadline`](smug_core::deadline::Deadline), which its stages hold).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
     let Some(seconds) = options.deadline else {
         return plan_unbounded(pipeline, options);

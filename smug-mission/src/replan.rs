@@ -3,42 +3,19 @@
 //! the failed PoIs, on the world with the newly seen obstacles, through the config's
 //! pipeline ([`assemble_replan`] then [`replan_mission`]).
 
-use super::obstacles::{add_obstacles, MaskedEstimator};
-use super::state::MissionState;
-use super::{plan_mission, Mission, PlanOptions, Target};
-use crate::config::{LoadedConfig, RobotConfig};
-use crate::error::{Error, Result};
-use crate::pipeline::{BuildContext, DroppedPoi, Pipeline};
-use crate::plan::Plan;
-use crate::registry::TraversabilityStage;
-use crate::stages::{ChangedDisc, Fingerprint};
-use crate::world::World;
-use serde::{Deserialize, Serialize};
+use crate::run::plan_mission;
+use smug_core::config::{LoadedConfig, RobotConfig};
+use smug_core::error::{Error, Result};
+use smug_core::mission::MissionState;
+use smug_core::mission::{add_obstacles, MaskedEstimator};
+use smug_core::mission::{Mission, PlanOptions, Target};
+use smug_core::pipeline::{BuildContext, DroppedPoi, Pipeline};
+use smug_core::plan::Plan;
+pub use smug_core::plan::{ReplanInfo, SkippedTarget};
+use smug_core::registry::TraversabilityStage;
+use smug_core::stages::{ChangedDisc, Fingerprint};
+use smug_core::world::World;
 use std::sync::Arc;
-
-/// What marks a plan as a replan: the state it started from and what it left out.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReplanInfo {
-    /// The state file, when the state came from one.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub state_file: Option<String>,
-    /// The mission state the replan started from.
-    pub state: MissionState,
-    /// Targets not visited by this plan (besides the visited ones), with the reason.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub skipped: Vec<SkippedTarget>,
-}
-
-/// A target the replan leaves out.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SkippedTarget {
-    /// Target id.
-    pub target: String,
-    /// Why, e.g. "every PoI failed".
-    pub reason: String,
-}
 
 /// The state leaves nothing to visit: every target is visited or skipped.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

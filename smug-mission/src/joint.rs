@@ -5,10 +5,10 @@
 //! planned legs only. With an exact GTSP solver the result is optimal for the planned
 //! costs (IDP's argument applied to the whole problem).
 
-use super::sequential::{lazy_solve, tour_legs as legs};
-use crate::error::Result;
-use crate::oracle::PathOracle;
-use crate::stages::{Clusters, Selection, Sequencer, TourKind};
+use crate::sequential::{lazy_solve, tour_legs as legs};
+use smug_core::error::Result;
+use smug_core::oracle::PathOracle;
+use smug_core::stages::{Clusters, Selection, Sequencer, TourKind};
 
 /// The joint problem over oracle indices: the start, the PoIs of each target, and the
 /// end of an open tour (`None`: back to the start).
@@ -80,10 +80,10 @@ fn layout(problem: &JointProblem) -> Result<(Vec<usize>, Clusters)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mission::sequential::full_matrix;
-    use crate::mission::sequential::tests::{oracle, Exhaustive};
-    use crate::pose::Pose2;
+    use crate::sequential::full_matrix;
+    use crate::sequential::tests::{oracle, Exhaustive};
     use proptest::prelude::*;
+    use smug_core::pose::Pose2;
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]
@@ -115,7 +115,7 @@ mod tests {
             let kind = if open { reps.push(end); TourKind::OpenTo(reps.len() - 1) } else { TourKind::Closed };
             let tour = Exhaustive.solve(&full_matrix(&mut seq_oracle, &reps).unwrap(), kind).unwrap();
             let order: Vec<usize> = tour.order.iter().copied().filter(|&v| v != 0 && v <= groups.len()).map(|v| v - 1).collect();
-            let selection = crate::stages::SelectionProblem {
+            let selection = smug_core::stages::SelectionProblem {
                 start: nodes[0],
                 groups: order.iter().map(|&g| groups[g].clone()).collect(),
                 end,

@@ -5,13 +5,13 @@
 //! the planner proves it), every remaining PoI is joined to every other through the
 //! start, so every order has a route.
 
-use super::assembly::original_index;
-use super::layout::Layout;
-use super::Mission;
-use crate::error::Result;
-use crate::oracle::PathOracle;
-use crate::plan::DeadEndPoi;
-use crate::world::World;
+use crate::assembly::original_index;
+use crate::layout::Layout;
+use smug_core::error::Result;
+use smug_core::mission::Mission;
+use smug_core::oracle::PathOracle;
+use smug_core::plan::DeadEndPoi;
+use smug_core::world::World;
 
 /// Expansions a proof that a PoI cannot reach the end may take: enough for the few
 /// poses a boxed-in car reaches, far too few to search a map.

@@ -1,0 +1,28 @@
+//! SMUG's mission orchestration, above the core: a mission planned through an assembled
+//! pipeline ([`plan_mission`]) in the sequential or joint mode (sequencing, PoI
+//! selection, refinement, dead ends, plan assembly), replanning from a mission state
+//! ([`replan_mission`], the long-lived [`MissionSession`]), post-processing and
+//! evaluation. The core keeps the model, the stage traits, config, the registry, the
+//! path oracle and pipeline assembly; the deadline and memory limit come with the
+//! pipeline's run context.
+
+#![warn(missing_docs)]
+
+mod assembly;
+mod dead_ends;
+pub mod evaluation;
+mod joint;
+mod layout;
+pub mod post_process;
+mod replan;
+mod run;
+mod sequential;
+mod session;
+
+pub use replan::{
+    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
+    ReplanInfo, SkippedTarget,
+};
+pub use run::{plan_mission, Unreachable};
+pub use session::{MissionSession, WorldUpdate};
+pub use smug_core::mission::{Mission, PlanOptions};
