@@ -381,7 +381,7 @@ fn a_poi_in_a_closed_box_is_never_chosen_and_its_legs_are_proved_for_a_reversing
     let loaded = LoadedConfig::from_text(&config, "boxed.toml", Path::new("."), &[]).unwrap();
     let mut p = Pipeline::assemble(&loaded).unwrap();
     let options = p.config.plan;
-    let plan = smug_core::mission::plan_mission(&mut p, options).unwrap();
+    let plan = smug_mission::plan_mission(&mut p, options).unwrap();
     let chosen = plan.pois.iter().find(|c| c.target == "box").unwrap();
     assert_eq!(chosen.index, 1);
     assert!(
