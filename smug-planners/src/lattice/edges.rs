@@ -64,14 +64,15 @@ impl Worker<'_> {
     /// at which goals are joined).
     pub(super) fn start_successors(&mut self, start: &Pose2) -> Vec<(u32, f64, bool)> {
         let near = 2.0 * std::f64::consts::SQRT_2 * self.sh.lattice.cell * 1.5;
-        let joined = self.joins(start, near, false);
+        let joined = self.joins(start, near);
         if !joined.is_empty() {
             return joined;
         }
         let mut reach = near;
         while reach < self.sh.shot_radius {
+            let inner = reach;
             reach = (2.0 * reach).min(self.sh.shot_radius);
-            let joined = self.joins(start, reach, true);
+            let joined = self.joins_ring(start, inner, reach);
             if !joined.is_empty() {
                 return joined;
             }
@@ -79,10 +80,51 @@ impl Worker<'_> {
         Vec::new()
     }
 
-    /// The valid one-gear curves from `start` to lattice poses within `reach`: with
-    /// headings near the start's and nearly straight (`wide`: any heading, at most
-    /// half a turn longer than the straight line).
-    fn joins(&mut self, start: &Pose2, reach: f64, wide: bool) -> Vec<(u32, f64, bool)> {
+    /// The valid one-gear curves from `start` to lattice poses between `inner` and
+    /// `outer` metres from it, with every fourth heading (a start that needs them
+    /// leaves by any way out, not the best one; the search does the rest), at most half
+    /// a turn longer than the straight line.
+    fn joins_ring(&mut self, start: &Pose2, inner: f64, outer: f64) -> Vec<(u32, f64, bool)> {
+        let sh = self.sh;
+        let layout = Layout {
+            space: sh.space.as_ref(),
+            radius: sh.radius,
+            reverse: sh.space.has_reverse_gear(),
+        };
+        let mut out = Vec::new();
+        for (ix, iy) in sh.lattice.points_near(start.x, start.y, outer) {
+            let [x, y] = sh.lattice.position(ix, iy);
+            let direct = (x - start.x).hypot(y - start.y);
+            if direct <= inner {
+                continue;
+            }
+            for k in (0..sh.lattice.headings).step_by(4) {
+                let id = sh.lattice.id(ix, iy, k);
+                if !self.state_valid(id) {
+                    continue;
+                }
+                let to = sh.lattice.pose(id);
+                if sh.space.motion_extent(start, &to).length
+                    > direct + std::f64::consts::PI * sh.radius
+                {
+                    continue;
+                }
+                let reverse = sh.space.is_reversing(start, &to, 0.5);
+                if !layout.one_gear(start, &to, reverse) {
+                    continue;
+                }
+                self.me.counts.edge_checks += 1;
+                if sh.motions.is_valid_motion(start, &to) {
+                    out.push((id, sh.objective.motion_cost(start, &to), reverse));
+                }
+            }
+        }
+        out
+    }
+
+    /// The valid one-gear curves from `start` to lattice poses within `reach` with
+    /// headings near the start's, nearly straight.
+    fn joins(&mut self, start: &Pose2, reach: f64) -> Vec<(u32, f64, bool)> {
         let sh = self.sh;
         let cell = sh.lattice.cell;
         let layout = Layout {
@@ -92,14 +134,11 @@ impl Worker<'_> {
         };
         let h = sh.lattice.headings as i64;
         let k0 = sh.lattice.heading_bin(start.yaw) as i64;
-        let spread = if wide {
-            h / 2
-        } else {
-            (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1
-        };
+        let spread =
+            (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
         let mut out = Vec::new();
         for (ix, iy) in sh.lattice.points_near(start.x, start.y, reach) {
-            for dk in (-spread..=spread).take(h as usize) {
+            for dk in -spread..=spread {
                 let k = (k0 + dk).rem_euclid(h) as usize;
                 let id = sh.lattice.id(ix, iy, k);
                 let to = sh.lattice.pose(id);
@@ -109,12 +148,7 @@ impl Worker<'_> {
                 }
                 let extent = sh.space.motion_extent(start, &to);
                 let turn = smug_core::pose::angle_distance(start.yaw, to.yaw);
-                let too_long = if wide {
-                    extent.length > direct + std::f64::consts::PI * sh.radius
-                } else {
-                    extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6
-                };
-                if too_long {
+                if extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6 {
                     continue;
                 }
                 let reverse = sh.space.is_reversing(start, &to, 0.5);
