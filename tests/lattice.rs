@@ -448,3 +448,29 @@ fn a_start_hemmed_in_joins_the_lattice_farther_out() {
         .unwrap_or_else(|| panic!("{outcome:?}"));
     check_path(&p, &start, &goal, &path.states, path.cost);
 }
+
+#[test]
+fn a_start_that_reaches_no_target_is_named_with_how_its_legs_ended() {
+    // The start inside the closed box: every target is out of reach.
+    let config = CONFIG.replace(
+        "mission = { start = { x = 1.5, y = 1.5 } }",
+        r#"mission = { start = { x = 13.5, y = 2.5, yaw = 0.0 }, targets = [
+    { id = "a", position = { x = 2.5, y = 9.5 }, pois = [{ x = 2.5, y = 9.5, yaw = 0.0 }] },
+    { id = "b", position = { x = 8.0, y = 9.0 }, pois = [{ x = 8.0, y = 9.0, yaw = 0.0 }] },
+] }"#,
+    );
+    let settings = ["space.type=reeds-shepp".to_string()];
+    let loaded =
+        LoadedConfig::from_text(&config, "enclosed.toml", Path::new("."), &settings).unwrap();
+    let mut p = Pipeline::assemble(&loaded).unwrap();
+    let options = p.config.plan;
+    let message = smug_mission::plan_mission(&mut p, options)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("`a`, `b`"), "{message}");
+    assert!(
+        message.contains("the start (13.500, 2.500, yaw 0.000) reaches no PoI of any target"),
+        "{message}"
+    );
+    assert!(message.contains("2 × no path exists"), "{message}");
+}

@@ -68,6 +68,39 @@ fn unreachable_targets(
     Ok(unreachable)
 }
 
+/// Why the start reaches no target at all: the start pose and how its legs to the PoIs
+/// ended (the same reason for every leg says the start is enclosed).
+fn enclosed_start(
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    targets: &[usize],
+) -> Result<Vec<String>> {
+    let mut reasons: std::collections::BTreeMap<String, usize> = Default::default();
+    for &t in targets {
+        for &p in &layout.pois[t] {
+            let planned = oracle.path(layout.start, p)?;
+            let reason = match planned.outcome.no_path_reason() {
+                Some(reason) => reason.to_string(),
+                None => format!("{:?}", planned.outcome),
+            };
+            *reasons.entry(reason).or_default() += 1;
+        }
+    }
+    let start = oracle.pose(layout.start);
+    let legs: Vec<String> = reasons
+        .iter()
+        .map(|(reason, n)| format!("{n} × {reason}"))
+        .collect();
+    Ok(vec![format!(
+        "the start ({:.3}, {:.3}, yaw {:.3}) reaches no PoI of any target: the robot is \
+         enclosed where it starts, or every PoI is cut off from it; its legs: {}",
+        start.x,
+        start.y,
+        start.yaw,
+        legs.join("; ")
+    )])
+}
+
 /// Most pose pairs one sweep of the PoI selection may weigh (a count bound: beyond it a
 /// sweep takes minutes and the paths between the poses far longer).
 pub const MAX_POSE_PAIRS: u128 = 100_000_000;
@@ -300,13 +333,13 @@ fn plan_on_oracle(
                     .map(|&t| mission.targets[t].id.clone())
                     .collect();
                 if !options.skip_unreachable {
-                    return Err(Error::stage(
-                        "plan",
-                        Unreachable {
-                            targets: ids,
-                            why: Vec::new(),
-                        },
-                    ));
+                    // Every one of several targets: say where the trouble is likelier.
+                    let why = if targets.len() > 1 && unreachable.len() == targets.len() {
+                        enclosed_start(oracle, &layout, &targets)?
+                    } else {
+                        Vec::new()
+                    };
+                    return Err(Error::stage("plan", Unreachable { targets: ids, why }));
                 }
                 skipped.extend(ids);
                 targets.retain(|t| !unreachable.contains(t));
