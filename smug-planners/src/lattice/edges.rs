@@ -86,11 +86,6 @@ impl Worker<'_> {
     /// a turn longer than the straight line.
     fn joins_ring(&mut self, start: &Pose2, inner: f64, outer: f64) -> Vec<(u32, f64, bool)> {
         let sh = self.sh;
-        let layout = Layout {
-            space: sh.space.as_ref(),
-            radius: sh.radius,
-            reverse: sh.space.has_reverse_gear(),
-        };
         let mut out = Vec::new();
         for (ix, iy) in sh.lattice.points_near(start.x, start.y, outer) {
             let [x, y] = sh.lattice.position(ix, iy);
@@ -109,17 +104,29 @@ impl Worker<'_> {
                 {
                     continue;
                 }
-                let reverse = sh.space.is_reversing(start, &to, 0.5);
-                if !layout.one_gear(start, &to, reverse) {
-                    continue;
-                }
-                self.me.counts.edge_checks += 1;
-                if sh.motions.is_valid_motion(start, &to) {
-                    out.push((id, sh.objective.motion_cost(start, &to), reverse));
-                }
+                out.extend(self.join(start, id, &to));
             }
         }
         out
+    }
+
+    /// The start's curve to lattice pose `id` (at `to`) when it keeps one gear, ends on
+    /// a valid pose and is valid: the pose, the curve's cost and its gear.
+    fn join(&mut self, start: &Pose2, id: u32, to: &Pose2) -> Option<(u32, f64, bool)> {
+        let sh = self.sh;
+        let layout = Layout {
+            space: sh.space.as_ref(),
+            radius: sh.radius,
+            reverse: sh.space.has_reverse_gear(),
+        };
+        let reverse = sh.space.is_reversing(start, to, 0.5);
+        if !layout.one_gear(start, to, reverse) || !self.state_valid(id) {
+            return None;
+        }
+        self.me.counts.edge_checks += 1;
+        sh.motions
+            .is_valid_motion(start, to)
+            .then(|| (id, sh.objective.motion_cost(start, to), reverse))
     }
 
     /// The valid one-gear curves from `start` to lattice poses within `reach` with
@@ -127,11 +134,6 @@ impl Worker<'_> {
     fn joins(&mut self, start: &Pose2, reach: f64) -> Vec<(u32, f64, bool)> {
         let sh = self.sh;
         let cell = sh.lattice.cell;
-        let layout = Layout {
-            space: sh.space.as_ref(),
-            radius: sh.radius,
-            reverse: sh.space.has_reverse_gear(),
-        };
         let h = sh.lattice.headings as i64;
         let k0 = sh.lattice.heading_bin(start.yaw) as i64;
         let spread =
@@ -151,14 +153,7 @@ impl Worker<'_> {
                 if extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6 {
                     continue;
                 }
-                let reverse = sh.space.is_reversing(start, &to, 0.5);
-                if !layout.one_gear(start, &to, reverse) || !self.state_valid(id) {
-                    continue;
-                }
-                self.me.counts.edge_checks += 1;
-                if sh.motions.is_valid_motion(start, &to) {
-                    out.push((id, sh.objective.motion_cost(start, &to), reverse));
-                }
+                out.extend(self.join(start, id, &to));
             }
         }
         out

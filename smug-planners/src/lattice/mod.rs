@@ -21,6 +21,7 @@
 //! primitive it tried costs and whether it is valid) is kept for the mission's later
 //! queries: after the first few, searches are pure graph searches.
 
+mod buffers;
 mod caches;
 mod edges;
 mod heuristic;
@@ -108,7 +109,7 @@ impl Counts {
         self.state_checks += other.state_checks;
         self.edge_checks += other.edge_checks;
         self.shot_checks += other.shot_checks;
-        self.breakdown.astar_s += other.breakdown.astar_s;
+        self.breakdown.add(&other.breakdown);
     }
 }
 
@@ -135,7 +136,7 @@ pub(crate) struct Shared {
 pub struct LatticePlanner {
     shared: Shared,
     /// Buffers of idle searchers, one per thread that searched at once.
-    searchers: Mutex<Vec<search::Searcher>>,
+    searchers: Mutex<Vec<buffers::Searcher>>,
     counts: Counts,
     last_costs: Vec<Option<f64>>,
 }
@@ -251,13 +252,13 @@ impl LatticePlanner {
     /// is idle), whose counts are then added to the planner's.
     fn search_with_pool(
         shared: &Shared,
-        pool: &Mutex<Vec<search::Searcher>>,
+        pool: &Mutex<Vec<buffers::Searcher>>,
         start: &Pose2,
         goals: &[Pose2],
         max_expansions: u64,
     ) -> (search::Answers, Counts) {
         let idle = pool.lock().expect("searcher pool").pop();
-        let mut searcher = idle.unwrap_or_else(|| search::Searcher::new(shared.lattice.len()));
+        let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
         let answers = search::Worker {
             sh: shared,
             me: &mut searcher,
@@ -275,8 +276,14 @@ impl LatticePlanner {
         goals: &[Pose2],
         max_expansions: u64,
     ) -> Vec<PlannerOutcome> {
-        let (answers, counts) =
+        let answered =
             Self::search_with_pool(&self.shared, &self.searchers, start, goals, max_expansions);
+        self.record(answered)
+    }
+
+    /// Adds a search's counts to the planner's and keeps its path costs as
+    /// [`Self::last_costs`]; returns its outcomes.
+    fn record(&mut self, (answers, counts): (search::Answers, Counts)) -> Vec<PlannerOutcome> {
         self.counts.add(&counts);
         self.last_costs = answers.costs;
         answers.outcomes
@@ -381,7 +388,7 @@ impl PointToPointPlanner for LatticePlanner {
     /// The rows' searches run side by side on rayon's threads, sharing the caches;
     /// each search's answer is the same as alone (see [`caches`]).
     fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
-        if rows.len() < 2 || self.shared.lattice.len() > MAX_PARALLEL_STATES {
+        if rows.len() < 2 || !self.plans_rows_side_by_side() {
             return rows.iter().map(|(s, g)| self.plan_many(s, g)).collect();
         }
         let (shared, pool) = (&self.shared, &self.searchers);
@@ -391,14 +398,11 @@ impl PointToPointPlanner for LatticePlanner {
             .with_max_len(1)
             .map(|(start, goals)| Self::search_with_pool(shared, pool, start, goals, max))
             .collect();
-        let mut outcomes = Vec::with_capacity(rows.len());
-        for ((answers, counts), (_, goals)) in answered.into_iter().zip(rows) {
-            self.counts.add(&counts);
-            self.counts.queries += goals.len() as u64;
-            self.last_costs = answers.costs;
-            outcomes.push(answers.outcomes);
-        }
-        Ok(outcomes)
+        self.counts.queries += rows
+            .iter()
+            .map(|(_, goals)| goals.len() as u64)
+            .sum::<u64>();
+        Ok(answered.into_iter().map(|a| self.record(a)).collect())
     }
 
     fn answers_many(&self) -> bool {

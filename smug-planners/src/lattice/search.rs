@@ -2,7 +2,8 @@
 //! start joined to the lattice by the model's curves, goals reached by lazily checked
 //! analytic shots, caches of state and primitive validity kept across queries.
 
-use super::{Counts, Shared};
+use super::buffers::{Node, Searcher};
+use super::Shared;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -11,93 +12,6 @@ use std::time::Instant;
 
 /// The start's node id (lattice poses are `0..len`).
 pub(super) const START: u32 = u32::MAX;
-
-/// One lattice pose's entry in a search: its cost, parent and gear once closed (or
-/// the best way queued by a verified motion), stamped with the search's generation.
-#[derive(Clone, Copy, Debug, Default)]
-struct Node {
-    g: f64,
-    parent: u32,
-    /// The primitive (of the parent's heading) of the best verified way queued.
-    prim: u16,
-    /// Generation in which `g` was last set.
-    stamp: u32,
-    /// Generation in which the pose was closed.
-    closed: u32,
-    /// Gear of the motion that reached the pose: 0 forward, 1 reverse.
-    gear: u8,
-}
-
-/// Per-search arrays over the lattice, reused across searches (generation stamps
-/// instead of clearing); one entry per pose, so a pose's data is one cache line.
-pub(crate) struct Buffers {
-    generation: u32,
-    nodes: Vec<Node>,
-}
-
-impl Buffers {
-    pub(crate) fn new(n: usize) -> Self {
-        Self {
-            generation: 0,
-            nodes: vec![Node::default(); n],
-        }
-    }
-
-    fn next_generation(&mut self) {
-        self.generation = self.generation.wrapping_add(1);
-        if self.generation == 0 {
-            self.nodes.fill(Node::default());
-            self.generation = 1;
-        }
-    }
-
-    fn is_closed(&self, i: usize) -> bool {
-        self.nodes[i].closed == self.generation
-    }
-
-    /// The cost of a verified way to pose `i` known in this search, if any.
-    fn known_g(&self, i: usize) -> Option<f64> {
-        let node = &self.nodes[i];
-        (node.stamp == self.generation).then_some(node.g)
-    }
-
-    /// The poses closed in this search, as a bitmap.
-    fn closed_set(&self) -> Vec<u64> {
-        let mut bits = vec![0u64; self.nodes.len().div_ceil(64)];
-        for (i, node) in self.nodes.iter().enumerate() {
-            if node.closed == self.generation {
-                bits[i / 64] |= 1 << (i % 64);
-            }
-        }
-        bits
-    }
-
-    /// True when a verified way to pose `i` is queued or closed that pops before a
-    /// way from `parent` by `prim` and `reverse` at cost `g` would: by cost, then as
-    /// [`Item::rank`] breaks ties (so that what is queued never changes what pops).
-    fn beaten(&self, i: usize, g: f64, parent: u32, prim: u16, reverse: bool) -> bool {
-        let node = &self.nodes[i];
-        node.stamp == self.generation
-            && (g > node.g
-                || (g == node.g
-                    && (parent, prim, reverse) > (node.parent, node.prim, node.gear == 1)))
-    }
-}
-
-/// What one thread needs to search: its buffers and counters.
-pub(crate) struct Searcher {
-    buffers: Buffers,
-    pub(super) counts: Counts,
-}
-
-impl Searcher {
-    pub(crate) fn new(n: usize) -> Self {
-        Self {
-            buffers: Buffers::new(n),
-            counts: Counts::default(),
-        }
-    }
-}
 
 /// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -275,13 +189,12 @@ impl Worker<'_> {
 
     /// The outcome for one goal once the search ended.
     fn outcome(&self, start: &Pose2, goal: &Goal, end: &End) -> PlannerOutcome {
-        let Some((cost, from)) = goal.reached else {
+        let Some((_, from)) = goal.reached else {
             return PlannerOutcome::NoPath(match end {
                 End::Budget(b) => NoPathReason::BudgetSpent(*b),
                 _ => NoPathReason::Proved(Proof::Exhausted),
             });
         };
-        let _ = cost;
         let mut states = vec![goal.pose];
         let mut at = from;
         while at != START {
