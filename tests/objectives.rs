@@ -6,10 +6,10 @@
 use proptest::prelude::*;
 use smug_core::testing::{check_objective, check_objective_path};
 use smug_core::{
-    LoadedConfig, Objective, Path, PathOracle, Pipeline, Plan, PlannerOutcome, PlannerStats,
-    PoiSelector, PointToPointPlanner, Pose2, Result, SelectionProblem,
+    LoadedConfig, Objective, Path, Pipeline, Plan, PlannerOutcome, PlannerStats, PoiSelector,
+    PointToPointPlanner, Pose2, Result, SelectionProblem,
 };
-use smug_mission::plan_mission;
+use smug_mission::{plan_mission, PathOracle};
 use smug_selection::{DpSelector, IdpSelector};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

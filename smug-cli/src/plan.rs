@@ -111,7 +111,7 @@ impl Progress {
     }
 
     /// A callback that shows the paths planned so far beside the stage (in a terminal).
-    pub(crate) fn paths_planned(&self) -> Option<smug_core::oracle::ProgressFn> {
+    pub(crate) fn paths_planned(&self) -> Option<smug_core::ProgressFn> {
         let bar = self.0.clone()?;
         Some(std::sync::Arc::new(move |paths: u64| {
             bar.set_prefix(format!("{paths} paths planned"));

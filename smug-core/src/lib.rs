@@ -1,4 +1,4 @@
-//! SMUG core: the value types, stage traits, path oracle, plugin registry and TOML
+//! SMUG core: the value types, stage traits, plugin registry and TOML
 //! pipelines that every other SMUG crate builds on.
 //!
 //! A pipeline is assembled from a TOML config: each stage (`world`, `traversability`,
@@ -18,7 +18,6 @@ pub mod grid;
 pub mod limits;
 pub mod mission;
 pub mod objective;
-pub mod oracle;
 pub mod output;
 pub mod path;
 pub mod pipeline;
@@ -44,12 +43,11 @@ pub use limits::MemoryLimit;
 pub use mission::PlanOptions;
 pub use mission::{Mission, Target};
 pub use objective::{Objective, PathLength};
-pub use oracle::{PathOracle, PlannedPath};
 pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline, WorldChange};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, Waypoint};
-pub use run_context::RunContext;
+pub use run_context::{ProgressFn, RunContext};
 pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};
 pub use stages::*;
 pub use termination::Termination;

@@ -5,7 +5,6 @@ use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection};
 use crate::error::{Error, Result};
 use crate::mission::Mission;
 use crate::objective::Objective;
-use crate::oracle::KnownAnswers;
 use crate::pose::Pose2;
 use crate::registry::{
     MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
@@ -93,14 +92,9 @@ pub struct Pipeline {
     pub resolved: Vec<ResolvedStage>,
     /// Build time per stage, seconds.
     pub build_times_s: BTreeMap<String, f64>,
-    /// Paths kept from earlier missions on this pipeline (`None`: none kept, the
-    /// default). When set, [`plan_mission`](crate::plan_mission) serves the pose pairs
-    /// found here without planning and adds every exact path it planned (what a
-    /// [`MissionSession`](crate::mission::MissionSession) remembers between replans).
-    pub answers: Option<KnownAnswers>,
     /// Told the number of paths planned so far after each plan of
-    /// [`plan_mission`](crate::plan_mission) (a progress display; `None`: nothing told).
-    pub progress: Option<crate::oracle::ProgressFn>,
+    /// `smug_mission::plan_mission` (a progress display; `None`: nothing told).
+    pub progress: Option<crate::run_context::ProgressFn>,
     context: BuildContext,
 }
 
@@ -149,7 +143,6 @@ impl Pipeline {
             selector: None,
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
-            answers: None,
             progress: None,
             context: ctx.clone(),
         };

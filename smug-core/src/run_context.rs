@@ -2,6 +2,11 @@
 
 use crate::deadline::Deadline;
 use crate::limits::MemoryLimit;
+use std::sync::Arc;
+
+/// Told the number of paths planned so far after each plan (a progress display; it must
+/// not change what is planned).
+pub type ProgressFn = Arc<dyn Fn(u64) + Send + Sync>;
 
 /// What a run carries besides its stages: its deadline and its memory limit. A
 /// pipeline owns one and hands it to every stage it builds (through the

@@ -1,8 +1,8 @@
 //! Turning a chosen route into a [`Plan`]: its segments, chosen PoIs and statistics.
 
+use crate::oracle::PathOracle;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
-use smug_core::oracle::PathOracle;
 use smug_core::pipeline::Pipeline;
 use smug_core::plan::{ChosenPoi, Plan, PlanStats, Segment};
 use smug_core::pose::Pose2;

@@ -7,9 +7,9 @@
 
 use crate::assembly::original_index;
 use crate::layout::Layout;
+use crate::oracle::PathOracle;
 use smug_core::error::Result;
 use smug_core::mission::Mission;
-use smug_core::oracle::PathOracle;
 use smug_core::plan::DeadEndPoi;
 use smug_core::world::World;
 

@@ -5,9 +5,9 @@
 //! planned legs only. With an exact GTSP solver the result is optimal for the planned
 //! costs (IDP's argument applied to the whole problem).
 
+use crate::oracle::PathOracle;
 use crate::sequential::{lazy_solve, tour_legs as legs};
 use smug_core::error::Result;
-use smug_core::oracle::PathOracle;
 use smug_core::stages::{Clusters, Selection, Sequencer, TourKind};
 
 /// The joint problem over oracle indices: the start, the PoIs of each target, and the

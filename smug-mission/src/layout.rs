@@ -1,7 +1,7 @@
 //! Where a mission's poses sit in the path oracle.
 
+use crate::oracle::PathOracle;
 use smug_core::mission::Mission;
-use smug_core::oracle::PathOracle;
 
 /// Where the mission's poses sit in the oracle.
 pub(super) struct Layout {

@@ -2,8 +2,9 @@
 //! pipeline ([`plan_mission`]) in the sequential or joint mode (sequencing, PoI
 //! selection, refinement, dead ends, plan assembly), replanning from a mission state
 //! ([`replan_mission`], the long-lived [`MissionSession`]), post-processing and
-//! evaluation. The core keeps the model, the stage traits, config, the registry, the
-//! path oracle and pipeline assembly; the deadline and memory limit come with the
+//! evaluation. The path oracle ([`PathOracle`]) lives here: every
+//! query of a mission goes through it and shares the planner's roadmap. The core keeps
+//! the model, the stage traits, config, the registry and pipeline assembly; the deadline and memory limit come with the
 //! pipeline's run context.
 
 #![warn(missing_docs)]
@@ -13,12 +14,14 @@ mod dead_ends;
 pub mod evaluation;
 mod joint;
 mod layout;
+pub mod oracle;
 pub mod post_process;
 mod replan;
 mod run;
 mod sequential;
 mod session;
 
+pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
 pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,

@@ -3,7 +3,8 @@
 //! the failed PoIs, on the world with the newly seen obstacles, through the config's
 //! pipeline ([`assemble_replan`] then [`replan_mission`]).
 
-use crate::run::plan_mission;
+use crate::oracle::KnownAnswers;
+use crate::run::plan_mission_keeping;
 use smug_core::config::{LoadedConfig, RobotConfig};
 use smug_core::error::{Error, Result};
 use smug_core::mission::MissionState;
@@ -240,6 +241,17 @@ pub fn replan_mission(
     options: PlanOptions,
     state: &MissionState,
 ) -> Result<Plan> {
+    replan_mission_keeping(pipeline, options, state, None)
+}
+
+/// [`replan_mission`] with paths kept between missions (as
+/// [`plan_mission_keeping`]).
+pub(crate) fn replan_mission_keeping(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    state: &MissionState,
+    answers: Option<&mut KnownAnswers>,
+) -> Result<Plan> {
     let original =
         pipeline
             .world
@@ -257,7 +269,7 @@ pub fn replan_mission(
     check_endpoints(pipeline, &mission, "mission state")?;
     pipeline.mission = Some(mission);
     pipeline.dropped_pois = dropped;
-    let mut plan = plan_mission(pipeline, options)?;
+    let mut plan = plan_mission_keeping(pipeline, options, answers)?;
     let mut skipped_all = skipped.clone();
     skipped_all.extend(plan.skipped.iter().map(|id| SkippedTarget {
         target: id.clone(),

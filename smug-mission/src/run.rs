@@ -9,12 +9,12 @@ use crate::dead_ends::drop_dead_ends;
 use crate::evaluation::plan_metrics;
 use crate::joint::{joint_tour, JointProblem};
 use crate::layout::{register_poses, Layout};
+use crate::oracle::{KnownAnswers, PathOracle};
 use crate::post_process::{concatenate, waypoints};
 use crate::sequential::sequence;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{PlanMode, PlanOptions};
-use smug_core::oracle::PathOracle;
 use smug_core::pipeline::Pipeline;
 use smug_core::plan::Plan;
 use smug_core::stages::{Selection, SelectionError, SelectionProblem};
@@ -165,13 +165,24 @@ fn order_then_select(
 /// the options' deadline when they set one (armed on the pipeline's own
 /// [`Deadline`](smug_core::deadline::Deadline), which its stages hold).
 pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+    plan_mission_keeping(pipeline, options, None)
+}
+
+/// [`plan_mission`] serving the pose pairs found in `answers` (paths kept from earlier
+/// missions) without planning, and adding to it every exact path it planned (what a
+/// [`MissionSession`](crate::MissionSession) remembers between replans).
+pub(crate) fn plan_mission_keeping(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    answers: Option<&mut KnownAnswers>,
+) -> Result<Plan> {
     let Some(seconds) = options.deadline else {
-        return plan_unbounded(pipeline, options);
+        return plan_unbounded(pipeline, options, answers);
     };
     let built_s: f64 = pipeline.build_times_s.values().sum();
     let deadline = pipeline.run().deadline.clone();
     let _armed = deadline.arm(Some(seconds - built_s));
-    match plan_unbounded(pipeline, options) {
+    match plan_unbounded(pipeline, options, answers) {
         Ok(mut plan) => {
             plan.deadline_reached = deadline.reached();
             Ok(plan)
@@ -205,7 +216,11 @@ fn refine_route(
 }
 
 /// The mission in the options' mode (sequential or joint), without a deadline.
-fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan> {
+fn plan_unbounded(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    mut answers: Option<&mut KnownAnswers>,
+) -> Result<Plan> {
     let started = Instant::now();
     let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
         stage: "plan".into(),
@@ -219,15 +234,15 @@ fn plan_unbounded(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Plan>
         stage: "plan".into(),
         needed: "planner",
     })?;
-    let keep_answers = pipeline.answers.is_some();
+    let known = answers.as_deref_mut().map(std::mem::take);
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
         .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
-        .with_known(pipeline.answers.take().unwrap_or_default())
+        .with_known(known.unwrap_or_default())
         .with_progress(pipeline.progress.clone())
         .with_run(pipeline.run().clone());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
-    if keep_answers {
-        pipeline.answers = Some(oracle.take_known_answers());
+    if let Some(answers) = answers {
+        *answers = oracle.take_known_answers();
     }
     // The planner goes back to the pipeline with its roadmap (`--save-roadmap`, a
     // session's next replan), whatever the outcome.

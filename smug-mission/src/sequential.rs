@@ -2,10 +2,10 @@
 //! costs between one representative pose per target (full or lazy cost matrix).
 
 use crate::layout::Layout;
+use crate::oracle::PathOracle;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{Representative, SequencingCosts};
-use smug_core::oracle::PathOracle;
 use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
 use smug_core::stages::{CostMatrix, Sequencer, Tour, TourKind};

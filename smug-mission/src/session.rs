@@ -15,14 +15,14 @@
 //! obstacles after them are the new ones. A state that drops or changes an applied
 //! obstacle is refused (`obstacles[k]` named); a world without it needs a new session.
 
-use crate::replan::replan_mission;
-use crate::run::plan_mission;
+use crate::oracle::KnownAnswers;
+use crate::replan::replan_mission_keeping;
+use crate::run::plan_mission_keeping;
 use smug_core::config::{LoadedConfig, RobotConfig};
 use smug_core::error::{Error, Result};
 use smug_core::mission::{add_obstacles, mask_layer, DiscObstacle};
 use smug_core::mission::{Mission, PlanOptions};
 use smug_core::mission::{MissionState, StateError};
-use smug_core::oracle::KnownAnswers;
 use smug_core::pipeline::{DroppedPoi, Pipeline, WorldChange};
 use smug_core::plan::Plan;
 use smug_core::registry::{PlannerStage, TraversabilityStage};
@@ -39,6 +39,8 @@ pub struct MissionSession {
     estimator: Option<Box<dyn TraversabilityEstimator>>,
     /// The obstacles applied so far, in order.
     obstacles: Vec<DiscObstacle>,
+    /// Paths planned by earlier plans and replans (re-checked near new obstacles).
+    answers: KnownAnswers,
     /// The mission as assembled (PoIs not valid for the robot left out) and the PoIs
     /// left out, for [`plan`](Self::plan).
     assembled: (Option<Mission>, Vec<DroppedPoi>),
@@ -66,7 +68,7 @@ pub struct WorldUpdate {
 impl MissionSession {
     /// Assembles the config's pipeline (as `smug plan` does) and keeps it.
     pub fn new(loaded: &LoadedConfig) -> Result<Self> {
-        let mut pipeline = Pipeline::assemble(loaded)?;
+        let pipeline = Pipeline::assemble(loaded)?;
         let estimator = match &loaded.config.traversability {
             Some(section) => Some(
                 pipeline
@@ -76,8 +78,8 @@ impl MissionSession {
             ),
             None => None,
         };
-        pipeline.answers = Some(KnownAnswers::default());
         Ok(Self {
+            answers: KnownAnswers::default(),
             options: pipeline.config.plan,
             assembled: (pipeline.mission.clone(), pipeline.dropped_pois.clone()),
             pipeline,
@@ -93,7 +95,7 @@ impl MissionSession {
     pub fn plan(&mut self) -> Result<Plan> {
         self.pipeline.build_times_s.clear();
         (self.pipeline.mission, self.pipeline.dropped_pois) = self.assembled.clone();
-        plan_mission(&mut self.pipeline, self.options)
+        plan_mission_keeping(&mut self.pipeline, self.options, Some(&mut self.answers))
     }
 
     /// Replans the rest of the mission from `state` (checked against the mission and the
@@ -109,7 +111,12 @@ impl MissionSession {
             .map_err(|e| Error::stage("replan", e))?;
         self.pipeline.build_times_s.clear();
         self.apply_obstacles(&state.obstacles)?;
-        replan_mission(&mut self.pipeline, self.options, state)
+        replan_mission_keeping(
+            &mut self.pipeline,
+            self.options,
+            state,
+            Some(&mut self.answers),
+        )
     }
 
     /// Applies the obstacles of `all` (a state's list) the session has not applied yet:
@@ -170,19 +177,14 @@ impl MissionSession {
             self.pipeline.planner = Some(planner);
         }
         let space = self.pipeline.space.clone();
-        let (answers_checked, answers_dropped) = match (
-            self.pipeline.answers.as_mut(),
-            &self.pipeline.motion_validator,
-        ) {
-            (Some(answers), Some(motions)) => {
-                answers.recheck_touched(space.as_ref(), &changed, motions.as_ref())
-            }
-            (Some(answers), None) => {
+        let answers = &mut self.answers;
+        let (answers_checked, answers_dropped) = match &self.pipeline.motion_validator {
+            Some(motions) => answers.recheck_touched(space.as_ref(), &changed, motions.as_ref()),
+            None => {
                 let n = answers.len();
                 *answers = KnownAnswers::default();
                 (n, n)
             }
-            (None, _) => (0, 0),
         };
         self.pipeline
             .build_times_s
@@ -310,7 +312,7 @@ impl MissionSession {
 
     /// The number of paths kept from earlier plans (each direction counts).
     pub fn known_paths(&self) -> usize {
-        self.pipeline.answers.as_ref().map_or(0, KnownAnswers::len)
+        self.answers.len()
     }
 }
 

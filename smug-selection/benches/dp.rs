@@ -15,9 +15,10 @@ use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use smug_core::{
-    Objective, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PoiSelector,
-    PointToPointPlanner, Pose2, Result, SelectionProblem,
+    Objective, Path, PathLength, PlannerOutcome, PlannerStats, PoiSelector, PointToPointPlanner,
+    Pose2, Result, SelectionProblem,
 };
+use smug_mission::PathOracle;
 use smug_selection::{DpSelector, IdpSelector};
 use std::collections::HashMap;
 use std::f64::consts::PI;

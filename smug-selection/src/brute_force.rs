@@ -1,7 +1,7 @@
 //! `brute-force`: tries every combination of PoIs. Exponential; for tests and tiny missions.
 
 use serde::{Deserialize, Serialize};
-use smug_core::{Error, PathOracle, PoiSelector, Result, Selection, SelectionProblem};
+use smug_core::{Error, PathCosts, PoiSelector, Result, Selection, SelectionProblem};
 
 /// Parameters of the brute-force selector.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -69,7 +69,7 @@ fn next_combination(digits: &mut [usize], sizes: &[usize]) -> bool {
 }
 
 impl PoiSelector for BruteForceSelector {
-    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+    fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
         self.combination_count(problem)?;
         let sizes: Vec<usize> = problem.groups.iter().map(Vec::len).collect();
         let mut digits = vec![0usize; sizes.len()];
@@ -127,8 +127,8 @@ mod tests {
         }
     }
 
-    fn oracle(poses: &[(f64, f64)]) -> PathOracle {
-        let mut o = PathOracle::new(
+    fn oracle(poses: &[(f64, f64)]) -> smug_mission::PathOracle {
+        let mut o = smug_mission::PathOracle::new(
             Arc::new(PathLength::new(1.0, 0.0).unwrap()),
             Box::new(StraightLine),
         );

@@ -2,7 +2,7 @@
 
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
-use smug_core::{PathOracle, PoiSelector, Result, Selection, SelectionProblem};
+use smug_core::{PathCosts, PoiSelector, Result, Selection, SelectionProblem};
 
 /// Parameters of the DP selector (none).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -24,7 +24,7 @@ impl DpSelector {
 }
 
 impl PoiSelector for DpSelector {
-    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+    fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
         check_groups(problem)?;
         if oracle.answers_many() {
             // Every leg DP needs, one call per pose of a layer.

@@ -1,6 +1,6 @@
 //! Selection errors and the diagnosis of unreachable targets.
 
-use smug_core::{Error, PathOracle, Result, SelectionProblem};
+use smug_core::{Error, PathCosts, Result, SelectionProblem};
 
 pub use smug_core::SelectionError;
 
@@ -10,7 +10,7 @@ pub use smug_core::SelectionError;
 /// Plans legs between consecutive groups as needed (already planned legs first), so it
 /// answers from true path costs. `None` when a finite route exists or there are no groups.
 pub fn unreachable_group(
-    oracle: &mut PathOracle,
+    oracle: &mut dyn PathCosts,
     problem: &SelectionProblem,
 ) -> Result<Option<usize>> {
     let mut reachable = vec![problem.start];
@@ -34,7 +34,7 @@ pub fn unreachable_group(
 }
 
 /// The error to return when the best route found is infinite.
-pub(crate) fn unreachable_error(oracle: &mut PathOracle, problem: &SelectionProblem) -> Error {
+pub(crate) fn unreachable_error(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Error {
     let diagnosis = match unreachable_group(oracle, problem) {
         Ok(d) => d,
         Err(e) => return e,
@@ -52,7 +52,7 @@ pub(crate) fn unreachable_error(oracle: &mut PathOracle, problem: &SelectionProb
 }
 
 /// Whether some pose of `from` has a path to `to`, trying planned legs first.
-fn reaches_from(oracle: &mut PathOracle, from: &[usize], to: usize) -> Result<bool> {
+fn reaches_from(oracle: &mut dyn PathCosts, from: &[usize], to: usize) -> Result<bool> {
     if from
         .iter()
         .any(|&p| oracle.planned_cost(p, to).is_some_and(f64::is_finite))

@@ -2,7 +2,7 @@
 
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
-use smug_core::{PathOracle, PoiSelector, Result, Selection, SelectionProblem};
+use smug_core::{PathCosts, PoiSelector, Result, Selection, SelectionProblem};
 
 /// Parameters of the iterative DP selector (none).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -27,7 +27,7 @@ impl IdpSelector {
 }
 
 impl PoiSelector for IdpSelector {
-    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+    fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
         check_groups(problem)?;
         idp(oracle, problem)
     }
@@ -35,7 +35,7 @@ impl PoiSelector for IdpSelector {
 
 /// Runs iterative DP (groups must be non-empty). Terminates: every iteration but the
 /// last plans at least one new leg between consecutive layers, and there are finitely many.
-pub(crate) fn idp(oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+pub(crate) fn idp(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
     let mut best: Option<Selection> = None;
     loop {
         let (chosen, _) = problem.solve_layers(|i, j| Ok(oracle.cost_or_bound(i, j)))?;

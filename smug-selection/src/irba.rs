@@ -3,7 +3,7 @@
 use crate::error::check_groups;
 use crate::idp::idp;
 use serde::{Deserialize, Serialize};
-use smug_core::{Error, PathOracle, PoiSelector, Result, Selection, SelectionProblem};
+use smug_core::{Error, PathCosts, PoiSelector, Result, Selection, SelectionProblem};
 
 /// Parameters of the iterative rubber band selector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -42,7 +42,7 @@ impl IrbaSelector {
 /// The initial band: group by group, the PoI minimising the straight-line cost from the
 /// previous choice (the start for group 0) plus the mean straight-line cost to the next
 /// group's PoIs (the end for the last group). First among equals.
-pub(crate) fn initial_band(oracle: &PathOracle, problem: &SelectionProblem) -> Vec<usize> {
+pub(crate) fn initial_band(oracle: &dyn PathCosts, problem: &SelectionProblem) -> Vec<usize> {
     let mut chosen = Vec::with_capacity(problem.groups.len());
     let mut prev = problem.start;
     for (g, group) in problem.groups.iter().enumerate() {
@@ -70,7 +70,7 @@ pub(crate) fn initial_band(oracle: &PathOracle, problem: &SelectionProblem) -> V
 /// The PoI of `group` minimising the true cost `c(prev, p) + c(p, next)`, planning lazily,
 /// and that cost. Prefers `current` among equals (so sweeps terminate), then the first.
 fn best_between(
-    oracle: &mut PathOracle,
+    oracle: &mut dyn PathCosts,
     prev: usize,
     group: &[usize],
     next: usize,
@@ -95,12 +95,12 @@ fn best_between(
 }
 
 /// `c(prev, p) + c(p, next)` with planned costs where planned, else lower bounds.
-fn estimate(oracle: &PathOracle, prev: usize, p: usize, next: usize) -> f64 {
+fn estimate(oracle: &dyn PathCosts, prev: usize, p: usize, next: usize) -> f64 {
     oracle.cost_or_bound(prev, p) + oracle.cost_or_bound(p, next)
 }
 
 impl PoiSelector for IrbaSelector {
-    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection> {
+    fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
         check_groups(problem)?;
         if self.params.max_sweeps == 0 {
             return Err(Error::invalid_param(

@@ -2,9 +2,9 @@
 
 use crate::SelectionError;
 use smug_core::{
-    Error, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2,
-    Result,
+    Error, Path, PathLength, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Result,
 };
+use smug_mission::PathOracle;
 use std::sync::Arc;
 
 /// Straight lines, except that nothing reaches x = 9.

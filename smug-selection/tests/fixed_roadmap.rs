@@ -3,9 +3,10 @@
 
 use proptest::prelude::*;
 use smug_core::{
-    Error, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PoiSelector,
-    PointToPointPlanner, Pose2, Result, Selection, SelectionProblem,
+    Error, Path, PathLength, PlannerOutcome, PlannerStats, PoiSelector, PointToPointPlanner, Pose2,
+    Result, Selection, SelectionProblem,
 };
+use smug_mission::PathOracle;
 use smug_selection::{BruteForceSelector, DpSelector, IdpSelector, IrbaSelector, SelectionError};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

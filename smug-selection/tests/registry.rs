@@ -2,9 +2,10 @@
 
 use smug_core::registry::{SelectorStage, Stage};
 use smug_core::{
-    BuildContext, Path, PathLength, PathOracle, PlannerOutcome, PlannerStats, PluginSection,
-    PoiSelector, PointToPointPlanner, Pose2, Result, RobotConfig, SelectionProblem,
+    BuildContext, Path, PathLength, PlannerOutcome, PlannerStats, PluginSection, PoiSelector,
+    PointToPointPlanner, Pose2, Result, RobotConfig, SelectionProblem,
 };
+use smug_mission::PathOracle;
 use std::sync::Arc;
 // Link the crate so that its `inventory` registrations are collected.
 use smug_selection as _;

@@ -2,6 +2,7 @@
 
 mod clusters;
 mod motion;
+mod path_costs;
 mod planner;
 pub mod roadmap_file;
 mod sampler;
@@ -13,6 +14,7 @@ mod validity;
 
 pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
+pub use path_costs::PathCosts;
 pub use planner::{
     refuse_world_update, Budget, NoPathReason, NoRoadmap, PlannerOutcome, PlannerStats,
     PointToPointPlanner, Proof,

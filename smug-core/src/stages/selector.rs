@@ -1,7 +1,7 @@
 //! PoI selector stage: which PoI of each target, given the visiting order.
 
 use crate::error::Result;
-use crate::oracle::PathOracle;
+use crate::stages::PathCosts;
 
 /// A selection problem over the path oracle's poses (indices into the oracle).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -102,10 +102,11 @@ pub struct Selection {
     pub cost: f64,
 }
 
-/// Chooses one PoI per target over a fixed visiting order, asking the oracle for paths.
+/// Chooses one PoI per target over a fixed visiting order, asking a [`PathCosts`] (the
+/// path oracle) for paths.
 pub trait PoiSelector: Send + Sync {
     /// The selection; every leg of the returned route has been planned by the oracle.
-    fn select(&self, oracle: &mut PathOracle, problem: &SelectionProblem) -> Result<Selection>;
+    fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection>;
 }
 
 /// Position and value of the smallest value (first among equals; position 0 when all are

@@ -1,8 +1,8 @@
 //! Tests of the path oracle with a straight-line planner.
 
 use super::*;
-use crate::objective::PathLength;
-use crate::stages::{ChangedDisc, MotionValidator, PlannerStats, Proof};
+use smug_core::objective::PathLength;
+use smug_core::stages::{ChangedDisc, MotionValidator, PlannerStats, Proof};
 
 /// Connects everything with the straight line, except into pose index 2's position.
 struct StraightLine {
@@ -136,7 +136,7 @@ impl MotionValidator for LeftOfFive {
         a.x <= 5.0 && b.x <= 5.0
     }
 
-    fn check_motion(&self, _: &Pose2, _: &Pose2) -> crate::stages::MotionCheck {
+    fn check_motion(&self, _: &Pose2, _: &Pose2) -> smug_core::stages::MotionCheck {
         unreachable!("not used")
     }
 }
@@ -163,7 +163,7 @@ fn known_answers_are_served_without_planning_and_rechecked_near_changes() {
     assert_eq!(again.stats().paths_planned, 0);
     assert_eq!(again.stats().known_hits, 1);
     // A change far away keeps them; one on the way checks them again.
-    let space = crate::space::Se2Space::default();
+    let space = smug_core::space::Se2Space::default();
     let far = ChangedDisc {
         center: [-20.0, -20.0],
         radius: 1.0,

@@ -1,11 +1,13 @@
 //! What the oracle answers and keeps: a planned path per pose pair, the oracle's
 //! counters, and answers kept between missions (re-checked near world changes).
 
-use crate::path::Path;
-use crate::pose::Pose2;
-use crate::space::StateSpace;
-use crate::stages::{Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PoseBits};
 use serde::{Deserialize, Serialize};
+use smug_core::path::Path;
+use smug_core::pose::Pose2;
+use smug_core::space::StateSpace;
+use smug_core::stages::{
+    Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PoseBits,
+};
 use std::collections::HashMap;
 use std::sync::Arc;
 

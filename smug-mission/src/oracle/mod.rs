@@ -3,13 +3,13 @@
 //! Sequencing and PoI selection only talk to the oracle. It owns the point-to-point
 //! planner, so every query of a mission shares one roadmap.
 
-use crate::deadline::Deadline;
-use crate::error::{Error, Result};
-use crate::objective::Objective;
-use crate::path::Path;
-use crate::pose::Pose2;
-use crate::run_context::RunContext;
-use crate::stages::{NoPathReason, PlannerOutcome, PointToPointPlanner};
+use smug_core::deadline::Deadline;
+use smug_core::error::{Error, Result};
+use smug_core::objective::Objective;
+use smug_core::path::Path;
+use smug_core::pose::Pose2;
+use smug_core::run_context::{ProgressFn, RunContext};
+use smug_core::stages::{NoPathReason, PathCosts, PlannerOutcome, PointToPointPlanner};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -18,10 +18,6 @@ mod answers;
 mod tests;
 
 pub use answers::{KnownAnswers, OracleStats, PlannedPath};
-
-/// Told the number of paths planned so far after each plan (a progress display; it must
-/// not change what is planned).
-pub type ProgressFn = Arc<dyn Fn(u64) + Send + Sync>;
 
 /// Lower bounds and lazily planned paths between registered poses.
 pub struct PathOracle {
@@ -389,6 +385,37 @@ fn refuse_after_deadline(deadline: &Deadline) -> Result<()> {
         });
     }
     Ok(())
+}
+
+/// What the PoI selectors ask of the oracle.
+impl PathCosts for PathOracle {
+    fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
+        PathOracle::cost(self, i, j)
+    }
+
+    fn lower_bound(&self, i: usize, j: usize) -> f64 {
+        PathOracle::lower_bound(self, i, j)
+    }
+
+    fn is_planned(&self, i: usize, j: usize) -> bool {
+        PathOracle::is_planned(self, i, j)
+    }
+
+    fn planned_cost(&self, i: usize, j: usize) -> Option<f64> {
+        PathOracle::planned_cost(self, i, j)
+    }
+
+    fn answers_many(&self) -> bool {
+        PathOracle::answers_many(self)
+    }
+
+    fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+        PathOracle::plan_rows(self, rows)
+    }
+
+    fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+        PathOracle::plan_pairs(self, pairs)
+    }
 }
 
 impl std::fmt::Debug for PathOracle {

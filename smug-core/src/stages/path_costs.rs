@@ -1,0 +1,33 @@
+//! What a PoI selector asks of the paths between a mission's poses: costs planned on
+//! demand, admissible bounds of the ones not planned, and batches planned together.
+//!
+//! The path oracle of `smug-mission` implements it; the selectors of `smug-selection`
+//! see only this trait, so the core keeps no orchestration.
+
+use crate::error::Result;
+
+/// Path costs between registered poses (indices), planned lazily and cached.
+pub trait PathCosts {
+    /// The planned cost from `i` to `j`, planned on first request (`INFINITY` when no
+    /// path exists).
+    fn cost(&mut self, i: usize, j: usize) -> Result<f64>;
+    /// An admissible bound of any path's cost from `i` to `j`.
+    fn lower_bound(&self, i: usize, j: usize) -> f64;
+    /// True when the pair has been planned.
+    fn is_planned(&self, i: usize, j: usize) -> bool;
+    /// The planned cost if the pair has been planned (`INFINITY` for no path).
+    fn planned_cost(&self, i: usize, j: usize) -> Option<f64>;
+    /// The planned cost if planned, else the lower bound.
+    fn cost_or_bound(&self, i: usize, j: usize) -> f64 {
+        self.planned_cost(i, j)
+            .unwrap_or_else(|| self.lower_bound(i, j))
+    }
+    /// True when one start and many goals are answered in one call: callers that need
+    /// many pairs from one pose then ask [`plan_rows`](Self::plan_rows) first.
+    fn answers_many(&self) -> bool;
+    /// Plans every pair `i → j` of every row `(i, js)` not planned yet, in one call
+    /// (rows possibly side by side); their costs are then served by [`cost`](Self::cost).
+    fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()>;
+    /// Plans every pair of `pairs` not planned yet (side by side where the planner can).
+    fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()>;
+}
