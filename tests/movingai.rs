@@ -4,7 +4,7 @@
 //! drawn by our octile Dijkstra, every one solved, no path entering a blocked cell, mean
 //! length within RATIO_BOUND of the optimal octile length.
 
-use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2};
+use smug_core::{LoadedConfig, Pipeline, PlannerOutcome, Pose2};
 use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{generate_scenarios, grid_to_map_yaml, scenario_to_world};
@@ -41,12 +41,7 @@ fn random_32x32_10_percent_scenarios_are_solved_safely_and_near_optimally() {
     };
     let picked: Vec<_> = scenarios.iter().collect();
     assert_eq!(picked.len(), 50);
-    let mission = Mission {
-        start: to_pose(picked[0].start),
-        end: None,
-        targets: vec![],
-    };
-    let world = layers.into_world("r10", mission, &yaml).unwrap();
+    let world = layers.into_world("r10");
     let set: Vec<String> = SET.iter().map(|s| s.to_string()).collect();
     let loaded = LoadedConfig::from_text(CONFIG, "p2p-grid.toml", Path::new("."), &set).unwrap();
     let mut pipeline = Pipeline::assemble_with_world(&loaded, world).unwrap();

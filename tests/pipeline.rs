@@ -52,7 +52,7 @@ fn invalid_pois_are_dropped_and_reported() {
         ("block", 0)
     );
     assert_eq!(
-        pipeline.world.as_ref().unwrap().mission.targets[0]
+        pipeline.given_mission.as_ref().unwrap().targets[0]
             .pois
             .len(),
         2,

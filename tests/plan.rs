@@ -18,7 +18,7 @@ fn demo() -> Pipeline {
 fn the_demo_plan_is_valid_and_complete() {
     let mut pipeline = demo();
     let plan = plan_mission(&mut pipeline, PlanOptions::default()).unwrap();
-    let mission = pipeline.world.as_ref().unwrap().mission.clone();
+    let mission = pipeline.given_mission.clone().unwrap();
     let states = pipeline.state_validity.clone().unwrap();
     let motions = pipeline.motion_validator.clone().unwrap();
 

@@ -53,7 +53,7 @@ fn an_empty_state_reproduces_the_original_plan_bit_identically() {
     ] {
         let loaded = config(name, &[]);
         let (plan, pipeline) = original(&loaded);
-        let state = MissionState::at_start(&pipeline.world.as_ref().unwrap().mission);
+        let state = MissionState::at_start(pipeline.given_mission.as_ref().unwrap());
         let (again, _) = replan(&loaded, &state);
         let again = again.unwrap();
         same_route(&plan, &again);
@@ -75,7 +75,7 @@ proptest! {
             Ok(plan) => check_replan(&plan, &pipeline, &state),
             Err(Error::Stage { source, .. }) if source.is::<NoTargetLeft>() => {
                 // Only when every target not visited has all its PoIs failed or blocked.
-                let mission = &pipeline.world.as_ref().unwrap().mission;
+                let mission = &pipeline.given_mission.as_ref().unwrap();
                 let checker = pipeline.state_validity.clone().unwrap();
                 for t in mission.targets.iter().filter(|t| !state.visited.contains(&t.id)) {
                     let open = t.pois.iter().enumerate()

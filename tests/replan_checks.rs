@@ -7,7 +7,7 @@ use smug_core::{Pipeline, Plan};
 
 /// Checks the replan's properties against the state and the updated world.
 pub fn check_replan(plan: &Plan, pipeline: &Pipeline, state: &MissionState) {
-    let mission = &pipeline.world.as_ref().unwrap().mission;
+    let mission = &pipeline.given_mission.as_ref().unwrap();
     for chosen in &plan.pois {
         assert!(
             !state.visited.contains(&chosen.target),

@@ -160,7 +160,7 @@ fn local_world_updates_equal_the_world_built_from_scratch() {
         let (mut session, plan) = session(&loaded);
         let obstacles = lunar_obstacles(&plan, 1);
         assert!(obstacles.len() >= 2, "{name}: {obstacles:?}");
-        let start = session.world().unwrap().mission.start;
+        let start = session.mission().unwrap().start;
         let half = obstacles.len() / 2;
         let update = session.apply_obstacles(&obstacles[..half]).unwrap();
         assert_eq!(update.applied, half);
@@ -192,7 +192,7 @@ fn a_state_without_an_applied_obstacle_is_refused() {
         radius: 0.4,
         height: 1.0,
     };
-    let mut state = MissionState::at_start(&session.world().unwrap().mission);
+    let mut state = MissionState::at_start(session.mission().unwrap());
     state.obstacles = vec![obstacle];
     session.replan(&state).unwrap();
     let key = |e: Error| match e {
@@ -220,7 +220,7 @@ fn a_state_without_an_applied_obstacle_is_refused() {
     let whole = session.plan().unwrap();
     let start = MissionState {
         obstacles: more.obstacles.clone(),
-        ..MissionState::at_start(&session.world().unwrap().mission)
+        ..MissionState::at_start(session.mission().unwrap())
     };
     assert_eq!(whole.sequence.len(), 3);
     check_replan(&whole, session.pipeline(), &start);
@@ -343,9 +343,9 @@ fn lunar_events(plan: &Plan, start: Pose2) -> Vec<(&'static str, MissionState)> 
 fn a_session_replan_with_the_full_matrix_plans_few_paths_at_the_scratch_cost() {
     let loaded = config("lunar.toml", &[]);
     let (mut session, plan) = session(&loaded);
-    let start = session.world().unwrap().mission.start;
+    let start = session.mission().unwrap().start;
     let again = session
-        .replan(&MissionState::at_start(&session.world().unwrap().mission))
+        .replan(&MissionState::at_start(session.mission().unwrap()))
         .unwrap();
     assert_eq!(again.sequence, plan.sequence);
     assert_eq!(again.pois, plan.pois);

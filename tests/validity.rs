@@ -3,7 +3,7 @@
 use proptest::prelude::*;
 use rand::SeedableRng;
 use smug_core::rng::StageRng;
-use smug_core::{Pose2, RobotConfig, StateValidityChecker, World};
+use smug_core::{Mission, Pose2, RobotConfig, Scenario, StateValidityChecker, World};
 use smug_validity::volumetric::VolumetricParams;
 use smug_validity::{ExactChecker, RobotBox, Volumes, VolumetricChecker};
 use smug_worlds::indoor::{indoor_world, IndoorParams};
@@ -12,12 +12,13 @@ use std::sync::{Arc, OnceLock};
 
 struct Checkers {
     world: Arc<World>,
+    mission: Mission,
     volumetric: VolumetricChecker,
     exact: ExactChecker,
 }
 
-fn checkers_for(world: World) -> Checkers {
-    let world = Arc::new(world);
+fn checkers_for(scenario: Scenario) -> Checkers {
+    let world = Arc::new(scenario.world);
     let robot = RobotBox::from_robot(&RobotConfig::default());
     let volumes = Arc::new(Volumes::from_world(&world, robot.headroom()).unwrap());
     Checkers {
@@ -30,6 +31,7 @@ fn checkers_for(world: World) -> Checkers {
         .unwrap(),
         exact: ExactChecker::new(world.clone(), volumes, robot),
         world,
+        mission: scenario.mission,
     }
 }
 
@@ -123,7 +125,7 @@ fn the_start_and_most_pois_of_both_worlds_are_valid() {
 }
 
 fn check_mission_validity(c: &Checkers) {
-    let mission = &c.world.mission;
+    let mission = &c.mission;
     let valid_pois = mission
         .targets
         .iter()

@@ -7,7 +7,7 @@
 //! comes within 2% of it on average (10% on the worst). And the planner refuses,
 //! naming the key, the pipelines it cannot serve.
 
-use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, Pose2, StateValidityChecker};
+use smug_core::{LoadedConfig, Pipeline, PlannerOutcome, Pose2, StateValidityChecker};
 use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{generate_scenarios, grid_to_map_yaml, scenario_to_world};
@@ -43,15 +43,7 @@ fn generated(params: &GridParams, n: usize) -> (smug_core::World, Vec<(Pose2, Po
         .iter()
         .map(|s| (to_pose(s.start), to_pose(s.goal), s.optimal_length))
         .collect();
-    let mission = Mission {
-        start: queries[0].0,
-        end: None,
-        targets: vec![],
-    };
-    let world = load_map(&yaml, 2.0)
-        .unwrap()
-        .into_world("g", mission, &yaml)
-        .unwrap();
+    let world = load_map(&yaml, 2.0).unwrap().into_world("g");
     std::fs::remove_dir_all(&dir).ok();
     (world, queries)
 }

@@ -2,21 +2,18 @@
 //! `[output]` asks), each whole or not at all.
 
 use crate::{AppError, Result};
-use smug_core::{LoadedConfig, Plan, World};
+use smug_core::{LoadedConfig, Mission, Pipeline, Plan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
 use std::path::{Path, PathBuf};
 
 /// The files [`write_outputs`] may write into its directory.
 pub const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
 
-/// Writes `plan` (made in `world`) into `dir` as `output` asks; each file whole or not
-/// at all, so a killed run leaves the previous plan intact.
-pub fn write_outputs(
-    plan: &Plan,
-    world: &World,
-    output: &smug_core::config::OutputConfig,
-    dir: &Path,
-) -> Result<()> {
+/// Writes `plan` (made by `pipeline`, in its world) into `dir` as the config's
+/// `[output]` asks; each file whole or not at all, so a killed run leaves the previous
+/// plan intact.
+pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path) -> Result<()> {
+    let output = &pipeline.config.output;
     std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
         path: dir.to_path_buf(),
         what: "cannot create",
@@ -37,7 +34,16 @@ pub fn write_outputs(
         write("plan.csv", plan_csv(plan))?;
     }
     if output.svg {
-        write("plan.svg", render_svg(world, &render_options(plan, world)))?;
+        let world = pipeline.world.as_deref().ok_or(AppError::NoWorld)?;
+        let mission = pipeline
+            .given_mission
+            .as_ref()
+            .or(pipeline.mission.as_ref())
+            .ok_or(AppError::NoWorld)?;
+        write(
+            "plan.svg",
+            render_svg(world, Some(mission), &render_options(plan, world, mission)),
+        )?;
     }
     Ok(())
 }
@@ -79,14 +85,14 @@ pub fn plan_csv(plan: &Plan) -> String {
     csv
 }
 
-/// How plan.svg draws `plan` on `world`: the path, the chosen PoIs and a title.
-pub fn render_options(plan: &Plan, world: &World) -> RenderOptions {
+/// How plan.svg draws `plan` on `world` with the mission as given: the path, the
+/// chosen PoIs and a title.
+pub fn render_options(plan: &Plan, world: &World, mission: &Mission) -> RenderOptions {
     let highlighted = plan
         .pois
         .iter()
         .filter_map(|c| {
-            world
-                .mission
+            mission
                 .targets
                 .iter()
                 .position(|t| t.id == c.target)

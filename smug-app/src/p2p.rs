@@ -4,7 +4,7 @@
 use crate::{AppError, Result};
 use serde::Serialize;
 use smug_core::{
-    EndpointFault, LoadedConfig, Mission, Pipeline, PlannerOutcome, PlannerStats, Pose2,
+    EndpointFault, LoadedConfig, Pipeline, PlannerOutcome, PlannerStats, Pose2,
     StateValidityChecker, World,
 };
 use std::path::{Path, PathBuf};
@@ -108,17 +108,17 @@ pub struct P2pPlanner {
 }
 
 impl P2pPlanner {
-    /// Assembles the pipeline of `request`, its world's mission starting at
-    /// `first_start`; with the fallback of [`P2pRequest::prefer_exact`] taken, also why
+    /// Assembles the pipeline of `request` (a world of maps only when the request
+    /// gives one: queries need no mission); with the fallback of [`P2pRequest::prefer_exact`] taken, also why
     /// `visibility` did not apply.
-    pub fn assemble(request: &P2pRequest, first_start: Pose2) -> Result<(Self, Option<String>)> {
+    pub fn assemble(request: &P2pRequest) -> Result<(Self, Option<String>)> {
         let planner_set = request.set.iter().any(|s| s.starts_with("planner."));
         let mut note = None;
         if request.prefer_exact && request.config.is_none() && !planner_set {
             let mut exact = request.set.clone();
             exact.push("planner.type=visibility".into());
             exact.push("planner.params={}".into());
-            match assemble_with(request, first_start, &exact) {
+            match assemble_with(request, &exact) {
                 Ok(pipeline) => {
                     let planner_type = "visibility".to_string();
                     return Ok((
@@ -135,7 +135,7 @@ impl P2pPlanner {
                 Err(err) => return Err(err),
             }
         }
-        let pipeline = assemble_with(request, first_start, &request.set)?;
+        let pipeline = assemble_with(request, &request.set)?;
         let planner_type = pipeline
             .resolved
             .iter()
@@ -216,39 +216,33 @@ impl P2pPlanner {
 
 /// Plans `queries` as `request` says (see [`P2pPlanner`]).
 pub fn p2p(request: &P2pRequest, queries: &[(Pose2, Pose2)]) -> Result<P2pResults> {
-    let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
-    let (mut planner, _) = P2pPlanner::assemble(request, first_start)?;
+    let (mut planner, _) = P2pPlanner::assemble(request)?;
     planner.run(queries, |_, _| {})
 }
 
-fn assemble_with(request: &P2pRequest, first_start: Pose2, set: &[String]) -> Result<Pipeline> {
+fn assemble_with(request: &P2pRequest, set: &[String]) -> Result<Pipeline> {
     let loaded = match &request.config {
         Some(path) => LoadedConfig::from_file(path, set)?,
         None => {
             LoadedConfig::from_text(DEFAULT_CONFIG, "<default p2p config>", Path::new("."), set)?
         }
     };
-    let mission = Mission {
-        start: first_start,
-        end: None,
-        targets: Vec::new(),
-    };
     let world = match &request.world {
         P2pWorld::Config => None,
-        P2pWorld::Given(world) => Some(World {
-            mission,
-            ..(**world).clone()
-        }),
+        P2pWorld::Given(world) => Some((**world).clone()),
         P2pWorld::Map {
             path,
             obstacle_height,
         } => {
             let layers = smug_worlds::map_file::load_map(path, *obstacle_height)?;
-            let name = smug_worlds::map_file::file_stem(path);
-            Some(layers.into_world(name, mission, path)?)
+            Some(layers.into_world(smug_worlds::map_file::file_stem(path)))
         }
     };
-    Ok(Pipeline::assemble_with(&loaded, world, None)?)
+    Ok(Pipeline::assemble_with(
+        &loaded,
+        world.map(|w| (w, None)),
+        None,
+    )?)
 }
 
 /// Why an endpoint is invalid: machine-readable cause and the sentence to show.

@@ -1,7 +1,7 @@
 //! Planning a mission from a config, as `smug plan` and `smug.plan` do.
 
 use crate::{AppError, Outcome, Result};
-use smug_core::{LoadedConfig, Pipeline, Plan, TraversabilityEstimator, World};
+use smug_core::{LoadedConfig, Mission, Pipeline, Plan, TraversabilityEstimator, World};
 use smug_mission::plan_mission;
 use std::path::Path;
 use std::sync::Arc;
@@ -25,11 +25,12 @@ pub fn load_config(config: &Path, set: &[String], seed: Option<u64>) -> Result<L
     Ok(LoadedConfig::from_file(config, &set)?)
 }
 
-/// Builds every stage of `loaded`, with `world` (when given) instead of the config's
-/// `[world]` and `estimator` (when given) instead of its `[traversability]`.
+/// Builds every stage of `loaded`, with `world` and its mission (when given) instead
+/// of the config's `[world]` and `estimator` (when given) instead of its
+/// `[traversability]`.
 pub fn assemble(
     loaded: &LoadedConfig,
-    world: Option<World>,
+    world: Option<(World, Option<Mission>)>,
     estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
 ) -> Result<Pipeline> {
     Ok(Pipeline::assemble_with(loaded, world, estimator)?)
@@ -53,7 +54,7 @@ pub fn plan_on(mut pipeline: Pipeline) -> Result<Outcome<Planned>> {
 /// Assembles the pipeline of `loaded` and plans its mission (see [`assemble`]).
 pub fn plan(
     loaded: &LoadedConfig,
-    world: Option<World>,
+    world: Option<(World, Option<Mission>)>,
     estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
 ) -> Result<Outcome<Planned>> {
     plan_on(assemble(loaded, world, estimator)?)

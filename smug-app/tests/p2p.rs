@@ -2,7 +2,6 @@
 //! front ends' rules for the default config hold.
 
 use smug_app::p2p::{p2p, P2pPlanner, P2pRequest, P2pWorld};
-use smug_core::Pose2;
 use std::path::PathBuf;
 
 #[test]
@@ -18,15 +17,14 @@ fn the_default_config_plans_with_its_own_planner_or_visibility_when_asked() {
         },
         prefer_exact: false,
     };
-    let start = Pose2::new(1.5, 1.5, 0.0);
-    let (planner, note) = P2pPlanner::assemble(&request, start).unwrap();
+    let (planner, note) = P2pPlanner::assemble(&request).unwrap();
     assert_eq!(note, None);
     assert_ne!(planner.planner_type(), "visibility");
     let exact = P2pRequest {
         prefer_exact: true,
         ..request.clone()
     };
-    let (planner, _) = P2pPlanner::assemble(&exact, start).unwrap();
+    let (planner, _) = P2pPlanner::assemble(&exact).unwrap();
     assert_eq!(planner.planner_type(), "visibility");
     let results = p2p(&request, &[]).unwrap();
     assert!(results.queries.is_empty());

@@ -159,9 +159,9 @@ fn measure(
             crate::error::invalid!("{}: the planner keeps no roadmap", config.display())
         })?;
     let s = pipeline
-        .world
+        .given_mission
         .as_ref()
-        .map(|w| w.mission.start)
+        .map(|m| m.start)
         .ok_or_else(|| crate::error::invalid!("{}: the config has no world", config.display()))?;
     let mut runs = Vec::new();
     for event in EVENTS {

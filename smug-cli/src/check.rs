@@ -19,8 +19,7 @@ pub struct CheckArgs {
 pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
     let pipeline = Pipeline::assemble(&LoadedConfig::from_file(&args.config, &args.set)?)?;
     println!("# {}: configuration is valid", args.config.display());
-    if let Some(world) = &pipeline.world {
-        let m = &world.mission;
+    if let (Some(world), Some(m)) = (&pipeline.world, &pipeline.given_mission) {
         let g = world.elevation.geometry;
         println!(
             "# world `{}`: {}×{} cells at {} m, {} targets, {} poses of interest",

@@ -2,7 +2,6 @@
 
 use crate::Outcome;
 use smug_app::p2p::{P2pPlanner, P2pRequest, P2pWorld};
-use smug_core::Pose2;
 use std::path::PathBuf;
 
 /// Arguments of `smug p2p`.
@@ -49,7 +48,6 @@ fn overrides(args: &P2pArgs) -> Vec<String> {
 /// Runs `smug p2p`.
 pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
     let queries = smug_core::queries::read_queries(&args.queries)?;
-    let first_start = queries.first().map_or(Pose2::new(0.0, 0.0, 0.0), |q| q.0);
     let request = P2pRequest {
         config: args.config.clone(),
         set: overrides(&args),
@@ -62,7 +60,7 @@ pub fn run(args: P2pArgs) -> anyhow::Result<Outcome> {
         },
         prefer_exact: true,
     };
-    let (mut planner, fallback) = P2pPlanner::assemble(&request, first_start)?;
+    let (mut planner, fallback) = P2pPlanner::assemble(&request)?;
     if let Some(why) = fallback {
         eprintln!("smug p2p: {why}; planning with lazy-prm-star");
     }

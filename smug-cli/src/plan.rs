@@ -74,7 +74,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
              found by then (marked `deadline_reached` in plan.json)"
         );
     }
-    write_outputs(&plan, &world, &pipeline.config.output, &out)?;
+    write_outputs(&plan, &pipeline, &out)?;
     if let Some(file) = &args.save_roadmap {
         smug_app::save_roadmap(&pipeline, &loaded, &world, file)?;
     }

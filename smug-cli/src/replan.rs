@@ -55,11 +55,7 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
         progress.stage(stage)
     });
     progress.finish();
-    let Planned {
-        plan,
-        pipeline,
-        world,
-    } = match planned? {
+    let Planned { plan, pipeline, .. } = match planned? {
         smug_app::Outcome::Solved(planned) => planned,
         // A passed deadline is an error here (exit 2), as it always was for replans.
         smug_app::Outcome::NoSolution {
@@ -70,7 +66,7 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::NoSolution);
         }
     };
-    write_outputs(&plan, &world, &pipeline.config.output, &out)?;
+    write_outputs(&plan, &pipeline, &out)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
     } else {

@@ -8,7 +8,7 @@
 use crate::Outcome;
 use anyhow::{bail, Context};
 use clap::Subcommand;
-use smug_core::{LoadedConfig, Mission, Pipeline, Pose2, World};
+use smug_core::{LoadedConfig, Mission, Pipeline, Scenario, World};
 use smug_worlds::export::ExportOptions;
 use smug_worlds::map_file::{
     check_mission_inside, file_stem, load_terrain, MapLayers, TerrainKind, DEFAULT_OBSTACLE_HEIGHT,
@@ -144,7 +144,7 @@ pub fn run(args: WorldsArgs) -> anyhow::Result<Outcome> {
 }
 
 fn show(args: ShowArgs) -> anyhow::Result<Outcome> {
-    let world = load_world(&args.source)?;
+    let (world, mission) = load_world(&args.source)?;
     let options = RenderOptions {
         title: Some(args.title.unwrap_or_else(|| world.name.clone())),
         layer: match args.layer {
@@ -154,11 +154,15 @@ fn show(args: ShowArgs) -> anyhow::Result<Outcome> {
         },
         ..RenderOptions::default()
     };
-    let svg = smug_worlds::render_svg(&world, &options);
+    let svg = smug_worlds::render_svg(&world, mission.as_ref(), &options);
     create_parent(&args.out)?;
     smug_core::output::write_atomic(&args.out, svg.as_bytes())
         .with_context(|| format!("{}: cannot write", args.out.display()))?;
-    println!("wrote {}: {}", args.out.display(), describe(&world));
+    println!(
+        "wrote {}: {}",
+        args.out.display(),
+        describe(&world, mission.as_ref())
+    );
     Ok(Outcome::Ok)
 }
 
@@ -174,13 +178,18 @@ fn convert(args: ConvertArgs) -> anyhow::Result<Outcome> {
 }
 
 fn export(args: ExportArgs) -> anyhow::Result<Outcome> {
-    let world = load_world(&args.source)?;
+    let (world, mission) = load_world(&args.source)?;
     let stem = args.stem.unwrap_or_else(|| file_safe(&world.name));
     let options = ExportOptions {
         obstacle_threshold: args.obstacle_threshold,
     };
-    let yaml = smug_worlds::export_world_with(&world, &args.out, &stem, &options)?;
-    println!("wrote {}: {}", yaml.display(), describe(&world));
+    let yaml =
+        smug_worlds::export_world_with(&world, mission.as_ref(), &args.out, &stem, &options)?;
+    println!(
+        "wrote {}: {}",
+        yaml.display(),
+        describe(&world, mission.as_ref())
+    );
     Ok(Outcome::Ok)
 }
 
@@ -210,13 +219,14 @@ fn world_spec(text: &str) -> anyhow::Result<WorldSpec<'_>> {
     }
 }
 
-/// Builds the world the command line names, with its `--mission` if given.
-fn load_world(source: &WorldSource) -> anyhow::Result<World> {
+/// Builds the world the command line names and its mission: `--mission` if given, else
+/// the world's own (none for a map without one).
+fn load_world(source: &WorldSource) -> anyhow::Result<(World, Option<Mission>)> {
     let mut overrides = source.set.clone();
     if let Some(seed) = source.seed {
         overrides.push(format!("seed={seed}"));
     }
-    let mut world = match world_spec(&source.world)? {
+    let (world, own) = match world_spec(&source.world)? {
         WorldSpec::Map(path) => {
             if !source.set.is_empty() {
                 bail!(
@@ -257,16 +267,19 @@ fn load_world(source: &WorldSource) -> anyhow::Result<World> {
             build_world(loaded).with_context(|| format!("world plugin `{name}`"))?
         }
     };
-    if let Some(path) = &source.mission {
-        let mission = load_mission(path)?;
-        check_mission_inside(&mission, &world.elevation.geometry, path)?;
-        world.mission = mission;
+    match &source.mission {
+        Some(path) => {
+            let mission = load_mission(path)?;
+            check_mission_inside(&mission, &world.elevation.geometry, path)?;
+            Ok((world, Some(mission)))
+        }
+        None => Ok((world, own)),
     }
-    Ok(world)
 }
 
-/// Builds the world and traversability stages of a config (the others are not needed).
-fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<World> {
+/// Builds the world and traversability stages of a config (the others are not needed);
+/// the world and its mission.
+fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<(World, Option<Mission>)> {
     let config = &mut loaded.config;
     config.validity = None;
     config.motion = None;
@@ -276,49 +289,49 @@ fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<World> {
     config.selector = None;
     let pipeline = Pipeline::assemble(&loaded)?;
     match pipeline.world {
-        Some(world) => Ok(World::clone(&world)),
+        Some(world) => Ok((World::clone(&world), pipeline.given_mission)),
         None => bail!("the config has no [world] section"),
     }
 }
 
-/// Imports a map YAML; without a mission (`--mission` or the YAML's `mission` key) the
-/// world gets an empty one starting at the map's centre.
-fn load_map_world(path: &Path, mission: Option<&Path>) -> anyhow::Result<World> {
+/// Imports a map YAML and its mission (`--mission` or the YAML's `mission` key), if any.
+fn load_map_world(path: &Path, mission: Option<&Path>) -> anyhow::Result<(World, Option<Mission>)> {
     let layers = load_map(path, DEFAULT_OBSTACLE_HEIGHT)?;
     layers_world(layers, path, mission)
 }
 
-/// The world of imported layers; without a mission (given, or the layers' own) an empty
-/// one starting at the map's centre.
-fn layers_world(layers: MapLayers, path: &Path, mission: Option<&Path>) -> anyhow::Result<World> {
-    let mission = match mission.or(layers.mission_file.as_deref()) {
-        Some(file) => load_mission(file)?,
-        None => {
-            let b = layers.elevation.geometry.bounds();
-            Mission {
-                start: Pose2::new(
-                    (b.min[0] + b.max[0]) / 2.0,
-                    (b.min[1] + b.max[1]) / 2.0,
-                    0.0,
-                ),
-                end: None,
-                targets: Vec::new(),
-            }
+/// The world of imported layers and its mission (given, or the layers' own), if any.
+fn layers_world(
+    layers: MapLayers,
+    path: &Path,
+    mission: Option<&Path>,
+) -> anyhow::Result<(World, Option<Mission>)> {
+    let file = mission
+        .map(Path::to_path_buf)
+        .or(layers.mission_file.clone());
+    match file {
+        Some(file) => {
+            let Scenario { world, mission } =
+                layers.into_scenario(file_stem(path), load_mission(&file)?, path)?;
+            Ok((world, Some(mission)))
         }
-    };
-    Ok(layers.into_world(file_stem(path), mission, path)?)
+        None => Ok((layers.into_world(file_stem(path)), None)),
+    }
 }
 
-fn describe(world: &World) -> String {
+fn describe(world: &World, mission: Option<&Mission>) -> String {
     let g = world.elevation.geometry;
+    let what = match mission {
+        Some(m) => format!(
+            "{} targets, {} poses of interest",
+            m.targets.len(),
+            m.poi_count()
+        ),
+        None => "no mission".to_string(),
+    };
     format!(
-        "world `{}`, {}×{} cells at {} m, {} targets, {} poses of interest",
-        world.name,
-        g.size[0],
-        g.size[1],
-        g.resolution,
-        world.mission.targets.len(),
-        world.mission.poi_count()
+        "world `{}`, {}×{} cells at {} m, {what}",
+        world.name, g.size[0], g.size[1], g.resolution,
     )
 }
 

@@ -66,14 +66,11 @@ fn convert_a_movingai_map_then_show_and_export_it() {
     assert_ok(&smug(&["worlds", "show", text(&yaml), "--out", text(&svg)]));
     let picture = std::fs::read_to_string(&svg).unwrap();
     assert!(picture.len() > 2000, "{} bytes", picture.len());
-    for needle in [
-        "<image",
-        "data:image/png;base64,",
-        "class=\"start\"",
-        "class=\"legend\"",
-    ] {
+    for needle in ["<image", "data:image/png;base64,", "class=\"legend\""] {
         assert!(picture.contains(needle), "`{needle}` missing");
     }
+    // A map without a mission is drawn alone: no start is invented.
+    assert!(!picture.contains("class=\"start\""));
 
     let mission = dir.join("mission.toml");
     std::fs::write(&mission, MISSION).unwrap();
@@ -92,6 +89,7 @@ fn convert_a_movingai_map_then_show_and_export_it() {
     assert!(String::from_utf8_lossy(&with_mission.stdout).contains("1 targets, 2 poses"));
     let picture = std::fs::read_to_string(&svg).unwrap();
     assert_eq!(picture.matches("class=\"poi\"").count(), 2);
+    assert!(picture.contains("class=\"start\""));
     assert!(picture.contains("rock-a") && picture.contains("random 32"));
 
     let export_dir = dir.join("export");

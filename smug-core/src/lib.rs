@@ -51,7 +51,7 @@ pub use run_context::{ProgressFn, RunContext};
 pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};
 pub use stages::*;
 pub use termination::Termination;
-pub use world::World;
+pub use world::{Scenario, World};
 
 #[doc(hidden)]
 pub use inventory;

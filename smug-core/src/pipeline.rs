@@ -16,7 +16,7 @@ use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sequencer, StateValidityChecker,
     TraversabilityEstimator,
 };
-use crate::world::World;
+use crate::world::{Scenario, World};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
@@ -69,8 +69,11 @@ pub struct Pipeline {
     pub config: PipelineConfig,
     /// The world (with its traversability layer), if configured.
     pub world: Option<Arc<World>>,
-    /// The world's mission without the PoIs the validity checker rejects (once both
-    /// a world and a validity checker are configured; else the world's mission).
+    /// The mission as the world plugin (or the caller) gave it; `None` for a world of
+    /// maps only (point-to-point queries).
+    pub given_mission: Option<Mission>,
+    /// The given mission without the PoIs the validity checker rejects (once both
+    /// a mission and a validity checker are configured; else the given mission).
     pub mission: Option<Mission>,
     /// PoIs left out because they are not valid for the robot.
     pub dropped_pois: Vec<DroppedPoi>,
@@ -104,17 +107,19 @@ impl Pipeline {
         Self::assemble_inner(loaded, None, None)
     }
 
-    /// Builds every stage, using `world` instead of the config's `[world]` section.
+    /// Builds every stage, using `world` (maps only, no mission: point-to-point
+    /// queries) instead of the config's `[world]` section.
     pub fn assemble_with_world(loaded: &LoadedConfig, world: World) -> Result<Self> {
-        Self::assemble_inner(loaded, Some(world), None)
+        Self::assemble_inner(loaded, Some((world, None)), None)
     }
 
-    /// Builds every stage, with `world` (when given) instead of the config's `[world]`
-    /// section and `estimator` (when given) instead of its `[traversability]` section.
-    /// The estimator is recorded as stage `traversability`, plugin `name`.
+    /// Builds every stage, with `world` and its mission (when given) instead of the
+    /// config's `[world]` section and `estimator` (when given) instead of its
+    /// `[traversability]` section. The estimator is recorded as stage
+    /// `traversability`, plugin `name`.
     pub fn assemble_with(
         loaded: &LoadedConfig,
-        world: Option<World>,
+        world: Option<(World, Option<Mission>)>,
         estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
     ) -> Result<Self> {
         Self::assemble_inner(loaded, world, estimator)
@@ -122,7 +127,7 @@ impl Pipeline {
 
     fn assemble_inner(
         loaded: &LoadedConfig,
-        given_world: Option<World>,
+        given_world: Option<(World, Option<Mission>)>,
         given_estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
     ) -> Result<Self> {
         let config = loaded.config.clone();
@@ -132,6 +137,7 @@ impl Pipeline {
         let mut pipeline = Pipeline {
             config: config.clone(),
             world: None,
+            given_mission: None,
             mission: None,
             dropped_pois: Vec::new(),
             space: ctx.space(),
@@ -161,12 +167,18 @@ impl Pipeline {
         pipeline.space = space;
 
         let world = match (given_world, &config.world) {
-            (Some(world), _) => Some(world),
-            (None, Some(section)) => Some(*pipeline.build_stage::<WorldStage>(&ctx, section)?),
+            (Some(given), _) => Some(given),
+            (None, Some(section)) => {
+                let Scenario { world, mission } =
+                    *pipeline.build_stage::<WorldStage>(&ctx, section)?;
+                Some((world, Some(mission)))
+            }
             (None, None) => None,
         };
-        if let Some(mut world) = world {
-            world.mission.validate()?;
+        if let Some((mut world, mission)) = world {
+            if let Some(mission) = &mission {
+                mission.validate()?;
+            }
             check_robot_fits(loaded, &world)?;
             let estimator = match (given_estimator, &config.traversability) {
                 (Some((name, estimator)), _) => {
@@ -194,7 +206,8 @@ impl Pipeline {
                 )?);
                 pipeline.add_time(&section.key, started);
             }
-            pipeline.mission = Some(world.mission.clone());
+            pipeline.given_mission = mission.clone();
+            pipeline.mission = mission;
             let world = Arc::new(world);
             ctx = ctx.with_world(world.clone());
             pipeline.world = Some(world);
@@ -211,8 +224,7 @@ impl Pipeline {
         if let Some(section) = &config.validity {
             let checker: Arc<dyn StateValidityChecker> =
                 pipeline.build_stage::<ValidityStage>(&ctx, section)?.into();
-            // A mission without targets only carries a map (e.g. for point-to-point
-            // queries): nothing to prune.
+            // A mission without targets has nothing to prune.
             if let Some(mission) = pipeline.mission.as_ref().filter(|m| !m.targets.is_empty()) {
                 let (pruned, dropped) = prune_mission(mission, checker.as_ref())?;
                 pipeline.mission = Some(pruned);

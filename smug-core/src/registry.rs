@@ -11,7 +11,7 @@ use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
     TraversabilityEstimator,
 };
-use crate::world::World;
+use crate::world::Scenario;
 use crate::StateSpace;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -128,7 +128,7 @@ macro_rules! define_stage {
 
 define_stage!(
     /// Worlds: terrain maps and a mission (procedural or imported).
-    WorldStage, "world", "terrain maps and the mission", World
+    WorldStage, "world", "terrain maps and the mission", Scenario
 );
 define_stage!(
     /// State spaces (motion models): k-NN distance and local motions.

@@ -1,4 +1,5 @@
-//! A world: terrain layers, volumetric maps and the mission to plan.
+//! A world: terrain layers and volumetric maps; a scenario: a world and the mission to
+//! plan in it (what a `world` plugin builds).
 
 use crate::grid::{GridLayer, VoxelGrid};
 use crate::mission::Mission;
@@ -21,19 +22,34 @@ pub struct World {
     /// Euclidean signed distance field of `occupancy`, metres (negative inside).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub esdf: Option<VoxelGrid<f32>>,
-    /// The task.
+}
+
+/// A world and the mission to plan in it: what a `world` plugin builds (a procedural
+/// world generates its targets; a map world reads its mission file).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    /// Maps and layers.
+    pub world: World,
+    /// What to visit.
     pub mission: Mission,
 }
 
 impl World {
-    /// A world with only an elevation layer and a mission.
-    pub fn new(name: impl Into<String>, elevation: GridLayer, mission: Mission) -> Self {
+    /// A world with only an elevation layer.
+    pub fn new(name: impl Into<String>, elevation: GridLayer) -> Self {
         Self {
             name: name.into(),
             elevation,
             traversability: None,
             occupancy: None,
             esdf: None,
+        }
+    }
+
+    /// This world with `mission` to plan in it.
+    pub fn with_mission(self, mission: Mission) -> Scenario {
+        Scenario {
+            world: self,
             mission,
         }
     }

@@ -6,12 +6,11 @@ use smug_core::mission::Mission;
 use smug_core::pipeline::Pipeline;
 use smug_core::plan::{ChosenPoi, Plan, PlanStats, Segment};
 use smug_core::pose::Pose2;
-use smug_core::world::World;
 
-/// The index of `pose` among the world's original PoIs of target `id`.
-pub(super) fn original_index(world: &World, id: &str, pose: &Pose2) -> usize {
-    world
-        .mission
+/// The index of `pose` among the PoIs of target `id` in `given` (the mission as
+/// given, before PoIs invalid for the robot were dropped).
+pub(super) fn original_index(given: &Mission, id: &str, pose: &Pose2) -> usize {
+    given
         .targets
         .iter()
         .find(|t| t.id == id)
@@ -23,7 +22,7 @@ pub(super) fn original_index(world: &World, id: &str, pose: &Pose2) -> usize {
 pub(super) fn assemble_plan(
     oracle: &mut PathOracle,
     mission: &Mission,
-    world: &World,
+    given: &Mission,
     order: &[usize],
     chosen: &[usize],
     route: &[usize],
@@ -60,7 +59,7 @@ pub(super) fn assemble_plan(
             let pose = *oracle.pose(p);
             let id = mission.targets[t].id.clone();
             ChosenPoi {
-                index: original_index(world, &id, &pose),
+                index: original_index(given, &id, &pose),
                 target: id,
                 pose,
             }

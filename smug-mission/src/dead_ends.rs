@@ -11,7 +11,6 @@ use crate::oracle::PathOracle;
 use smug_core::error::Result;
 use smug_core::mission::Mission;
 use smug_core::plan::DeadEndPoi;
-use smug_core::world::World;
 
 /// Expansions a proof that a PoI cannot reach the end may take: enough for the few
 /// poses a boxed-in car reaches, far too few to search a map.
@@ -26,7 +25,7 @@ const PROOF_EFFORT: u64 = 20_000;
 pub(super) fn drop_dead_ends(
     oracle: &mut PathOracle,
     mission: &Mission,
-    world: &World,
+    given: &Mission,
     layout: &mut Layout,
     targets: &[usize],
 ) -> Result<Vec<DeadEndPoi>> {
@@ -51,7 +50,7 @@ pub(super) fn drop_dead_ends(
                     let id = &mission.targets[t].id;
                     dropped.push(DeadEndPoi {
                         target: id.clone(),
-                        index: original_index(world, id, &pose),
+                        index: original_index(given, id, &pose),
                         pose,
                         why,
                     });

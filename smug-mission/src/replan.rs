@@ -16,7 +16,6 @@ pub use smug_core::plan::{ReplanInfo, SkippedTarget};
 use smug_core::registry::TraversabilityStage;
 use smug_core::stages::{ChangedDisc, Fingerprint};
 use smug_core::world::World;
-use std::sync::Arc;
 
 /// The state leaves nothing to visit: every target is visited or skipped.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -38,12 +37,12 @@ fn describe(skipped: &[SkippedTarget]) -> String {
 }
 
 /// The config's world (built from its `[world]` section) with `obstacles` added, its
-/// mission unchanged, and the context it was built in.
+/// mission, and the context it was built in.
 fn updated_world(
     loaded: &LoadedConfig,
     state: &MissionState,
     path: &str,
-) -> Result<(World, BuildContext, Fingerprint)> {
+) -> Result<(World, Mission, BuildContext, Fingerprint)> {
     let mut world_only = loaded.clone();
     let c = &mut world_only.config;
     (c.traversability, c.validity, c.motion, c.sampler) = (None, None, None, None);
@@ -57,12 +56,16 @@ fn updated_world(
             stage: "replan".into(),
             needed: "world",
         })?;
+    let mission = pipeline.given_mission.clone().ok_or(Error::MissingStage {
+        stage: "replan".into(),
+        needed: "world",
+    })?;
     state
-        .check(&world.mission, &world.bounds(), path)
+        .check(&mission, &world.bounds(), path)
         .map_err(|e| Error::stage("replan", e))?;
     let fingerprint = Fingerprint::of(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
-    Ok((world, pipeline.context().clone(), fingerprint))
+    Ok((world, mission, pipeline.context().clone(), fingerprint))
 }
 
 /// Assembles the config's pipeline on its world updated with the state's obstacles
@@ -98,18 +101,10 @@ pub fn assemble_replan_fingerprinted(
     state: &MissionState,
     path: &str,
 ) -> Result<(Pipeline, Fingerprint)> {
-    let (world, ctx, fingerprint) = updated_world(loaded, state, path)?;
-    let original = world.mission.clone();
-    // No targets while assembling: the replan prunes the PoIs itself (a visited
+    let (world, original, ctx, fingerprint) = updated_world(loaded, state, path)?;
+    // No mission while assembling: the replan prunes the PoIs itself (a visited
     // target whose poses are now blocked is no error).
-    let build_world = World {
-        mission: Mission {
-            start: state.pose(),
-            end: Some(original.end_pose()),
-            targets: vec![],
-        },
-        ..world
-    };
+    let build_world = Some((world, None));
     let mut pipeline = match (&loaded.config.traversability, state.obstacles.is_empty()) {
         (Some(section), false) => {
             let inner = ctx.build::<TraversabilityStage>(section)?.object;
@@ -119,20 +114,15 @@ pub fn assemble_replan_fingerprinted(
             };
             Pipeline::assemble_with(
                 loaded,
-                Some(build_world),
+                build_world,
                 Some((section.kind.as_str(), Box::new(masked))),
             )?
         }
-        _ => Pipeline::assemble_with(loaded, Some(build_world), None)?,
+        _ => Pipeline::assemble_with(loaded, build_world, None)?,
     };
-    if let Some(built) = pipeline.world.take() {
-        pipeline.world = Some(Arc::new(World {
-            mission: original.clone(),
-            ..(*built).clone()
-        }));
-    }
     let endpoints = replan_mission_of(&original, state, vec![]);
     check_endpoints(&pipeline, &endpoints, path)?;
+    pipeline.given_mission = Some(original.clone());
     pipeline.mission = Some(original);
     Ok((pipeline, fingerprint))
 }
@@ -252,15 +242,10 @@ pub(crate) fn replan_mission_keeping(
     state: &MissionState,
     answers: Option<&mut KnownAnswers>,
 ) -> Result<Plan> {
-    let original =
-        pipeline
-            .world
-            .as_ref()
-            .map(|w| w.mission.clone())
-            .ok_or(Error::MissingStage {
-                stage: "replan".into(),
-                needed: "world",
-            })?;
+    let original = pipeline.given_mission.clone().ok_or(Error::MissingStage {
+        stage: "replan".into(),
+        needed: "world",
+    })?;
     let (targets, skipped, dropped) = remaining_targets(pipeline, &original, state);
     if targets.is_empty() {
         return Err(Error::stage("replan", NoTargetLeft { skipped }));

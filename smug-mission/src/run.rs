@@ -260,12 +260,13 @@ fn plan_on_oracle(
     started: Instant,
 ) -> Result<Plan> {
     check_selection_size(mission)?;
+    let given = pipeline.given_mission.as_ref().unwrap_or(mission);
     let mut layout = register_poses(oracle, mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
     let t = Instant::now();
-    let dead_ends = drop_dead_ends(oracle, mission, world, &mut layout, &targets)?;
+    let dead_ends = drop_dead_ends(oracle, mission, given, &mut layout, &targets)?;
     if !dead_ends.is_empty() {
         times.insert("dead-ends".to_string(), t.elapsed().as_secs_f64());
         let emptied: Vec<usize> = targets
@@ -373,7 +374,7 @@ fn plan_on_oracle(
     };
     let t = Instant::now();
     let route = problem.route(&selection.chosen);
-    let mut plan = assemble_plan(oracle, mission, world, &order, &selection.chosen, &route)?;
+    let mut plan = assemble_plan(oracle, mission, given, &order, &selection.chosen, &route)?;
     let objective = pipeline
         .config
         .objective

@@ -107,7 +107,7 @@ impl MissionSession {
     pub fn replan(&mut self, state: &MissionState) -> Result<Plan> {
         let world = self.world()?.clone();
         state
-            .check(&world.mission, &world.bounds(), "mission state")
+            .check(self.mission()?, &world.bounds(), "mission state")
             .map_err(|e| Error::stage("replan", e))?;
         self.pipeline.build_times_s.clear();
         self.apply_obstacles(&state.obstacles)?;
@@ -298,6 +298,17 @@ impl MissionSession {
             stage: "a mission session".into(),
             needed: "world",
         })
+    }
+
+    /// The mission as the config's world gave it (PoIs invalid for the robot included).
+    pub fn mission(&self) -> Result<&Mission> {
+        self.pipeline
+            .given_mission
+            .as_ref()
+            .ok_or(Error::MissingStage {
+                stage: "a mission session".into(),
+                needed: "world",
+            })
     }
 
     /// The pipeline the session keeps (world, checkers, planner, kept paths).

@@ -213,7 +213,20 @@ impl TraversabilityEstimator for PyEstimator {
 /// A world: elevation (and traversability) layers and a mission.
 #[pyclass(name = "World", module = "smug", frozen)]
 struct PyWorld {
-    inner: Arc<World>,
+    world: Arc<World>,
+    mission: Arc<Mission>,
+}
+
+impl PyWorld {
+    /// The world of `pipeline` with its mission as given (PoIs invalid for the robot
+    /// included).
+    fn of(pipeline: &Pipeline) -> PyResult<Self> {
+        let no_world = || ConfigError::new_err("the config has no [world] section");
+        Ok(Self {
+            world: pipeline.world.clone().ok_or_else(no_world)?,
+            mission: Arc::new(pipeline.given_mission.clone().ok_or_else(no_world)?),
+        })
+    }
 }
 
 #[pymethods]
@@ -285,29 +298,30 @@ impl PyWorld {
                 b.min[0], b.min[1], b.max[0], b.max[1]
             )));
         }
-        let mut world = World::new(name, GridLayer { geometry, data }, mission);
+        let mut world = World::new(name, GridLayer { geometry, data });
         world.traversability = traversability;
         Ok(Self {
-            inner: Arc::new(world),
+            world: Arc::new(world),
+            mission: Arc::new(mission),
         })
     }
 
     /// Name in reports.
     #[getter]
     fn name(&self) -> String {
-        self.inner.name.clone()
+        self.world.name.clone()
     }
 
     /// Terrain height, float32 `(ny, nx)`; row `j` is `y = origin_y + (j + ½)·resolution`.
     #[getter]
     fn elevation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
-        layer_array(py, &self.inner.elevation)
+        layer_array(py, &self.world.elevation)
     }
 
     /// Traversability in `[0, 1]` (NaN = unknown), float32 `(ny, nx)`, or `None`.
     #[getter]
     fn traversability<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f32>>> {
-        self.inner
+        self.world
             .traversability
             .as_ref()
             .map(|layer| layer_array(py, layer))
@@ -316,37 +330,37 @@ impl PyWorld {
     /// Cell edge length, metres.
     #[getter]
     fn resolution(&self) -> f64 {
-        self.inner.elevation.geometry.resolution
+        self.world.elevation.geometry.resolution
     }
 
     /// Lower-left corner `(x, y)` of cell `(0, 0)`.
     #[getter]
     fn origin(&self) -> (f64, f64) {
-        let [x, y] = self.inner.elevation.geometry.origin;
+        let [x, y] = self.world.elevation.geometry.origin;
         (x, y)
     }
 
     /// `(xmin, ymin, xmax, ymax)`.
     #[getter]
     fn bounds(&self) -> (f64, f64, f64, f64) {
-        let b = self.inner.bounds();
+        let b = self.world.bounds();
         (b.min[0], b.min[1], b.max[0], b.max[1])
     }
 
     /// The mission as JSON (the package's `World.mission` parses it).
     fn _mission_json(&self) -> String {
-        serde_json::to_string(&self.inner.mission).unwrap_or_default()
+        serde_json::to_string(self.mission.as_ref()).unwrap_or_default()
     }
 
     fn __repr__(&self) -> String {
-        let g = self.inner.elevation.geometry;
+        let g = self.world.elevation.geometry;
         format!(
             "World({:?}, {}×{} cells at {} m, {} targets)",
-            self.inner.name,
+            self.world.name,
             g.size[0],
             g.size[1],
             g.resolution,
-            self.inner.mission.targets.len()
+            self.mission.targets.len()
         )
     }
 }
@@ -464,11 +478,8 @@ fn load_world(
         c.sequencer,
         c.selector,
     ) = (None, None, None, None, None, None);
-    let world = py
-        .detach(|| Pipeline::assemble(&loaded).map(|p| p.world))
-        .map_err(to_py)?;
-    let inner = world.ok_or_else(|| ConfigError::new_err("the config has no [world] section"))?;
-    Ok(PyWorld { inner })
+    let pipeline = py.detach(|| Pipeline::assemble(&loaded)).map_err(to_py)?;
+    PyWorld::of(&pipeline)
 }
 
 /// Every registered plugin by stage, as JSON (what `smug plugins --json` prints).
@@ -514,7 +525,7 @@ fn p2p(
     }
     let world = match (world, map) {
         (Some(_), Some(_)) => return Err(input_error("give either `world` or `map`, not both")),
-        (Some(w), None) => P2pWorld::Given(Box::new((*w.inner).clone())),
+        (Some(w), None) => P2pWorld::Given(Box::new((*w.world).clone())),
         (None, Some(path)) => P2pWorld::Map {
             path,
             obstacle_height,

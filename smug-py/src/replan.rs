@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use smug_app::replan::ReplanRequest;
 use smug_app::MissionSession;
 use smug_core::mission::MissionState;
-use smug_core::{Plan, TraversabilityEstimator, World};
+use smug_core::{Pipeline, Plan, TraversabilityEstimator};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
@@ -18,7 +18,7 @@ use std::sync::{Arc, Mutex};
 type PlanParts<'py> = (String, Bound<'py, PyArray2<f64>>, PyWorld);
 
 /// The plan as Python parts.
-fn parts<'py>(py: Python<'py>, plan: &Plan, world: Arc<World>) -> PyResult<PlanParts<'py>> {
+fn parts<'py>(py: Python<'py>, plan: &Plan, pipeline: &Pipeline) -> PyResult<PlanParts<'py>> {
     let text = serde_json::to_string_pretty(plan)
         .map_err(|e| InputError::new_err(format!("cannot write the plan as JSON: {e}")))?;
     let waypoints = Array2::from_shape_fn((plan.waypoints.len(), 4), |(k, c)| {
@@ -26,7 +26,7 @@ fn parts<'py>(py: Python<'py>, plan: &Plan, world: Arc<World>) -> PyResult<PlanP
         [w.x, w.y, w.z, w.yaw][c]
     })
     .into_pyarray(py);
-    Ok((text, waypoints, PyWorld { inner: world }))
+    Ok((text, waypoints, PyWorld::of(pipeline)?))
 }
 
 /// Plans a mission (saving the planner's roadmap to `save_roadmap` when given);
@@ -43,7 +43,7 @@ pub fn plan<'py>(
     save_roadmap: Option<PathBuf>,
 ) -> PyResult<PlanParts<'py>> {
     let loaded = load(&config, set, seed)?;
-    let given_world = world.map(|w| (*w.inner).clone());
+    let given_world = world.map(|w| ((*w.world).clone(), Some((*w.mission).clone())));
     let raised = Arc::new(Mutex::new(None));
     let estimator = traversability.map(|function| {
         let estimator: Box<dyn TraversabilityEstimator> = Box::new(PyEstimator {
@@ -68,7 +68,7 @@ pub fn plan<'py>(
     if let Some(refused) = saved {
         return Err(app_to_py(refused));
     }
-    parts(py, &planned.plan, planned.world)
+    parts(py, &planned.plan, &planned.pipeline)
 }
 
 /// Replans a mission from a state file (on the roadmap file `roadmap` when given);
@@ -92,7 +92,7 @@ pub fn replan<'py>(
         .detach(|| smug_app::replan(&loaded, &request, &mut |_| {}))
         .map_err(app_to_py)?;
     let planned = solved(planned)?;
-    parts(py, &planned.plan, planned.world)
+    parts(py, &planned.plan, &planned.pipeline)
 }
 
 /// A mission session: the pipeline assembled once and kept in memory, the mission
@@ -117,8 +117,7 @@ impl PySession {
     fn plan<'py>(&mut self, py: Python<'py>) -> PyResult<PlanParts<'py>> {
         let session = &mut self.inner;
         let plan = py.detach(|| session.plan()).map_err(to_py)?;
-        let world = self.inner.world().map_err(to_py)?.clone();
-        parts(py, &plan, world)
+        parts(py, &plan, self.inner.pipeline())
     }
 
     /// Replans from a mission state given as TOML text (`name` stands for it in
@@ -133,8 +132,7 @@ impl PySession {
             MissionState::from_toml(state, name).map_err(|e| InputError::new_err(e.to_string()))?;
         let session = &mut self.inner;
         let plan = py.detach(|| session.replan(&parsed)).map_err(to_py)?;
-        let world = self.inner.world().map_err(to_py)?.clone();
-        parts(py, &plan, world)
+        parts(py, &plan, self.inner.pipeline())
     }
 
     /// The obstacles applied so far, as `(x, y, radius, height)` tuples.

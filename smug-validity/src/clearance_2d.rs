@@ -234,7 +234,7 @@ smug_core::register_plugin!(
 mod tests {
     use super::*;
     use proptest::prelude::*;
-    use smug_core::{GridLayer, Mission};
+    use smug_core::GridLayer;
 
     /// A 10×10 map at 1 m with a few blocked cells.
     fn world() -> World {
@@ -242,15 +242,7 @@ mod tests {
         let blocked = [(3, 3), (4, 3), (7, 8), (0, 9)];
         let elevation =
             GridLayer::from_fn(g, |i, j| if blocked.contains(&(i, j)) { 2.0 } else { 0.0 });
-        World::new(
-            "grid",
-            elevation,
-            Mission {
-                start: Pose2::new(0.5, 0.5, 0.0),
-                end: None,
-                targets: vec![],
-            },
-        )
+        World::new("grid", elevation)
     }
 
     proptest! {

@@ -497,7 +497,7 @@ mod tests {
             }],
             ..FlatParams::default()
         };
-        let world = Arc::new(flat_world(&params, mission).unwrap());
+        let world = Arc::new(flat_world(&params, mission).unwrap().world);
         let v = validator(0.1, Some((world.clone(), 0.58)));
         // A 0.3 m step crossed within 0.1 m is far steeper than 0.58.
         assert!(!v.is_valid_motion(&Pose2::new(1.0, 7.0, 0.0), &Pose2::new(1.0, 9.0, 0.0)));
@@ -519,15 +519,7 @@ mod tests {
             let blocked = [(3, 3), (4, 3), (7, 8), (5, 6)];
             let elevation =
                 GridLayer::from_fn(g, |i, j| if blocked.contains(&(i, j)) { 2.0 } else { 0.0 });
-            World::new(
-                "grid",
-                elevation,
-                Mission {
-                    start: Pose2::new(0.5, 0.5, 0.0),
-                    end: None,
-                    targets: vec![],
-                },
-            )
+            World::new("grid", elevation)
         }
 
         fn disc_validator(resolution: f64) -> DiscreteMotionValidator {

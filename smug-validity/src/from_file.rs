@@ -339,19 +339,10 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use smug_core::{Mission, Pose2};
 
     fn world() -> World {
         let g = GridGeometry::new([0.0, 0.0], 1.0, [3, 2]).unwrap();
-        World::new(
-            "t",
-            GridLayer::filled(g, 0.0),
-            Mission {
-                start: Pose2::new(0.5, 0.5, 0.0),
-                end: None,
-                targets: vec![],
-            },
-        )
+        World::new("t", GridLayer::filled(g, 0.0))
     }
 
     fn npy(rows: usize, cols: usize, values: &[f32]) -> Vec<u8> {

@@ -337,7 +337,7 @@ mod tests {
     use super::*;
 
     use proptest::prelude::*;
-    use smug_core::{GridGeometry, Mission, Pose2};
+    use smug_core::GridGeometry;
     use smug_core::{TraversabilityEstimator, World};
 
     /// The original accumulation (heights' range as options), verbatim.
@@ -454,7 +454,9 @@ mod tests {
         use rand::SeedableRng;
         use smug_worlds::lunar::{lunar_world, LunarParams};
         let mut rng = smug_core::rng::StageRng::seed_from_u64(3);
-        let world = lunar_world(&LunarParams::default(), &mut rng).unwrap();
+        let world = lunar_world(&LunarParams::default(), &mut rng)
+            .unwrap()
+            .world;
         let radius = 0.5 * 1.07f64.hypot(0.55); // the ANYmal window
         let estimator = GeometricEstimator::new(GeometricParams::default(), radius).unwrap();
         let layer = estimator.estimate(&world).unwrap();
@@ -500,12 +502,7 @@ mod tests {
             let [x, y] = g.center_of(i, j);
             f(x, y) as f32
         });
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        World::new("test", elevation, mission)
+        World::new("test", elevation)
     }
 
     fn score_at_centre(world: &World) -> f64 {

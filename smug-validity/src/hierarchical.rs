@@ -152,17 +152,12 @@ smug_core::register_plugin!(
 mod tests {
     use super::*;
     use crate::volumes::SharedVolumes;
-    use smug_core::{GridGeometry, Mission, RobotConfig, World};
+    use smug_core::{GridGeometry, RobotConfig, World};
     use std::sync::Arc;
 
     fn flat_world(traversability: f32) -> Arc<World> {
         let g = GridGeometry::new([0.0, 0.0], 0.1, [40, 40]).unwrap();
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        let mut world = World::new("flat", GridLayer::filled(g, 0.0), mission);
+        let mut world = World::new("flat", GridLayer::filled(g, 0.0));
         world.traversability = Some(GridLayer::filled(g, traversability));
         Arc::new(world)
     }

@@ -378,19 +378,14 @@ pub fn signed_distance_field(occupancy: &VoxelGrid<bool>) -> VoxelGrid<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use smug_core::{GridGeometry, GridLayer, Mission, Pose2};
+    use smug_core::{GridGeometry, GridLayer};
 
     /// A small world of bumps and a hole (no data).
     fn bumpy_world() -> Arc<World> {
         let g = GridGeometry::new([0.0, 0.0], 0.1, [24, 20]).unwrap();
         let mut elevation = GridLayer::from_fn(g, |i, j| ((i * 7 + j * 3) % 5) as f32 * 0.04);
         elevation.set(3, 4, f32::NAN);
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        Arc::new(World::new("bumps", elevation, mission))
+        Arc::new(World::new("bumps", elevation))
     }
 
     #[test]
@@ -441,7 +436,7 @@ mod update_tests {
     use super::{SharedVolumes, Volumes};
     use proptest::prelude::*;
     use smug_core::mission::{add_obstacles, DiscObstacle};
-    use smug_core::{GridGeometry, GridLayer, Mission, Pose2, World};
+    use smug_core::{GridGeometry, GridLayer, World};
     use std::sync::Arc;
 
     /// Hills, a pit and a hole without data.
@@ -456,12 +451,7 @@ mod update_tests {
             ((i as f32 * 0.4).sin() * 0.15 + (j as f32 * 0.3).cos() * 0.1) + pit
         });
         elevation.set(30, 20, f32::NAN);
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        World::new("terrain", elevation, mission)
+        World::new("terrain", elevation)
     }
 
     fn bits(v: &Volumes) -> (Vec<bool>, Vec<u32>) {

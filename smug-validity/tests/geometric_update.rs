@@ -1,9 +1,7 @@
 //! The geometric estimator updated locally after the elevation changed equals the
 //! layer estimated again as a whole, bit for bit.
 
-use smug_core::{
-    CellRect, GridGeometry, GridLayer, Mission, Pose2, TraversabilityEstimator, World,
-};
+use smug_core::{CellRect, GridGeometry, GridLayer, TraversabilityEstimator, World};
 use smug_validity::geometric::{GeometricEstimator, GeometricParams};
 
 #[test]
@@ -12,12 +10,7 @@ fn a_local_update_equals_the_layer_estimated_again() {
     let hills = GridLayer::from_fn(g, |i, j| {
         ((i as f32 * 0.3).sin() + (j as f32 * 0.2).cos()) * 0.2
     });
-    let mission = Mission {
-        start: Pose2::new(1.0, 1.0, 0.0),
-        end: None,
-        targets: vec![],
-    };
-    let mut world = World::new("hills", hills, mission);
+    let mut world = World::new("hills", hills);
     world.elevation.set(0, 0, f32::NAN);
     let estimator = GeometricEstimator::new(GeometricParams::default(), 0.6).unwrap();
     let mut layer = estimator.estimate(&world).unwrap();

@@ -15,11 +15,11 @@
 //!   true`, so a round trip restores every elevation to within half a scale step;
 //! - `STEM.traversability.png` when the world has a traversability layer: 8-bit gray
 //!   with alpha (`value / 255`, transparent = no data);
-//! - `STEM.mission.toml`: the mission, named by the YAML's `mission` key.
+//! - `STEM.mission.toml`: the mission (when given), named by the YAML's `mission` key.
 
 use crate::map_file::{MapYaml, DEFAULT_ELEVATION_SCALE};
 use image::{ImageBuffer, Luma, LumaA};
-use smug_core::{GridGeometry, GridLayer, World};
+use smug_core::{GridGeometry, GridLayer, Mission, World};
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
@@ -76,16 +76,22 @@ pub enum ExportError {
     },
 }
 
-/// Exports `world` into `dir` as `stem.yaml` and its companions, with default options;
-/// returns the YAML's path.
-pub fn export_world(world: &World, dir: &Path, stem: &str) -> Result<PathBuf, ExportError> {
-    export_world_with(world, dir, stem, &ExportOptions::default())
+/// Exports `world` and `mission` (when given) into `dir` as `stem.yaml` and its
+/// companions, with default options; returns the YAML's path.
+pub fn export_world(
+    world: &World,
+    mission: Option<&Mission>,
+    dir: &Path,
+    stem: &str,
+) -> Result<PathBuf, ExportError> {
+    export_world_with(world, mission, dir, stem, &ExportOptions::default())
 }
 
-/// Exports `world` into `dir` as `stem.yaml` and its companions (see the
-/// [module documentation](self)); returns the YAML's path.
+/// Exports `world` and `mission` (when given) into `dir` as `stem.yaml` and its
+/// companions (see the [module documentation](self)); returns the YAML's path.
 pub fn export_world_with(
     world: &World,
+    mission: Option<&Mission>,
     dir: &Path,
     stem: &str,
     options: &ExportOptions,
@@ -120,13 +126,15 @@ pub fn export_world_with(
         yaml.traversability_image = Some(name("traversability.png").into());
     }
 
-    let mission_path = dir.join(name("mission.toml"));
-    let mission = toml::to_string_pretty(&world.mission).map_err(|e| ExportError::Encode {
-        path: mission_path.clone(),
-        message: e.to_string(),
-    })?;
-    write_file(&mission_path, mission.as_bytes())?;
-    yaml.mission = Some(name("mission.toml").into());
+    if let Some(mission) = mission {
+        let mission_path = dir.join(name("mission.toml"));
+        let text = toml::to_string_pretty(mission).map_err(|e| ExportError::Encode {
+            path: mission_path.clone(),
+            message: e.to_string(),
+        })?;
+        write_file(&mission_path, text.as_bytes())?;
+        yaml.mission = Some(name("mission.toml").into());
+    }
 
     let yaml_path = dir.join(name("yaml"));
     write_map_yaml(

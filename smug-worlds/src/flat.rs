@@ -2,7 +2,9 @@
 //! mission file) — small, exact worlds for tests, tutorials and wheeled robots.
 
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Error, GridGeometry, GridLayer, MemoryLimit, Mission, World};
+use smug_core::{
+    BuildContext, Error, GridGeometry, GridLayer, MemoryLimit, Mission, Scenario, World,
+};
 use std::path::PathBuf;
 
 /// An axis-aligned box obstacle standing on the floor.
@@ -59,8 +61,8 @@ impl Default for FlatParams {
 /// The largest grid a flat world may have (cells), to catch unit mistakes early.
 const MAX_CELLS: f64 = 1e8;
 
-/// Builds the world described by `params`, with `mission`.
-pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<World, Error> {
+/// Builds the world described by `params`, with `mission` to plan in it.
+pub fn flat_world(params: &FlatParams, mission: Mission) -> Result<Scenario, Error> {
     flat_world_within(params, mission, MemoryLimit::default())
 }
 
@@ -69,7 +71,7 @@ pub fn flat_world_within(
     params: &FlatParams,
     mission: Mission,
     memory: MemoryLimit,
-) -> Result<World, Error> {
+) -> Result<Scenario, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     let [w, h] = params.size;
     if !(w > 0.0 && h > 0.0 && w.is_finite() && h.is_finite()) {
@@ -111,7 +113,7 @@ pub fn flat_world_within(
             .fold(0.0, f32::max)
     });
     check_mission_inside(&mission, &geometry)?;
-    Ok(World::new(params.name.clone(), elevation, mission))
+    Ok(World::new(params.name.clone(), elevation).with_mission(mission))
 }
 
 fn check_mission_inside(mission: &Mission, geometry: &GridGeometry) -> Result<(), Error> {
@@ -175,7 +177,7 @@ mod tests {
             }],
             ..FlatParams::default()
         };
-        let world = flat_world(&params, mission()).unwrap();
+        let world = flat_world(&params, mission()).unwrap().world;
         assert_eq!(world.elevation.geometry.size, [100, 100]);
         assert_eq!(world.height_at(2.5, 2.5), Some(1.5));
         assert_eq!(world.height_at(5.0, 5.0), Some(0.0));

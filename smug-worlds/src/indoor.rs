@@ -6,7 +6,7 @@ use crate::canvas::{geometry, raise_rectangle, world_rng};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Scenario, Target, World};
 
 /// Parameters of the indoor world.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -124,8 +124,8 @@ fn room_sides(room: &Rect) -> [Side; 4] {
     ]
 }
 
-/// Builds the indoor world from `params` with randomness from `rng`.
-pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<World, Error> {
+/// Builds the indoor world and its mission from `params` with randomness from `rng`.
+pub fn indoor_world(params: &IndoorParams, rng: &mut StageRng) -> Result<Scenario, Error> {
     indoor_world_within(params, rng, MemoryLimit::default())
 }
 
@@ -134,7 +134,7 @@ pub fn indoor_world_within(
     params: &IndoorParams,
     rng: &mut StageRng,
     memory: MemoryLimit,
-) -> Result<World, Error> {
+) -> Result<Scenario, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     if params.size.is_nan() || params.size < 8.0 {
         return Err(bad(format!(
@@ -203,15 +203,11 @@ pub fn indoor_world_within(
             }
         }
     }
-    Ok(World::new(
-        "indoor",
-        floor,
-        Mission {
-            start,
-            end: None,
-            targets,
-        },
-    ))
+    Ok(World::new("indoor", floor).with_mission(Mission {
+        start,
+        end: None,
+        targets,
+    }))
 }
 
 /// Cuts one door into each half of both inner walls; returns the door rectangles.
@@ -381,24 +377,29 @@ mod tests {
             w,
             indoor_world(&params, &mut StageRng::seed_from_u64(2)).unwrap()
         );
-        assert_eq!(w.elevation.geometry.size, [160, 160]);
+        assert_eq!(w.world.elevation.geometry.size, [160, 160]);
         assert_eq!(w.mission.targets.len(), 12);
         assert!(w.mission.targets.iter().all(|t| t.pois.len() == 2));
         w.mission.validate().unwrap();
         // Walls are high, the start is on the floor, every PoI is on the floor.
-        assert_eq!(w.height_at(8.0, 0.1), Some(2.0));
-        assert_eq!(w.height_at(w.mission.start.x, w.mission.start.y), Some(0.0));
+        assert_eq!(w.world.height_at(8.0, 0.1), Some(2.0));
+        assert_eq!(
+            w.world.height_at(w.mission.start.x, w.mission.start.y),
+            Some(0.0)
+        );
         for t in &w.mission.targets {
             for p in &t.pois {
                 assert_eq!(
-                    w.height_at(p.x, p.y),
+                    w.world.height_at(p.x, p.y),
                     Some(0.0),
                     "{} PoI on an obstacle",
                     t.id
                 );
             }
         }
-        let doors_cut = (0..160).filter(|&j| w.elevation.get(80, j) == 0.0).count();
+        let doors_cut = (0..160)
+            .filter(|&j| w.world.elevation.get(80, j) == 0.0)
+            .count();
         assert!(
             doors_cut >= 2 * 12,
             "the inner wall has {doors_cut} open cells"

@@ -7,7 +7,7 @@ use crate::canvas::{add_feature, geometry, raise_feature, world_rng};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Target, World};
+use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Scenario, Target, World};
 use std::f64::consts::{PI, TAU};
 
 /// Parameters of the lunar world.
@@ -165,8 +165,8 @@ fn pois_around(center: [f64; 2], distance: f64, count: usize, offset: f64) -> Ve
         .collect()
 }
 
-/// Builds the lunar world from `params` with randomness from `rng`.
-pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<World, Error> {
+/// Builds the lunar world and its mission from `params` with randomness from `rng`.
+pub fn lunar_world(params: &LunarParams, rng: &mut StageRng) -> Result<Scenario, Error> {
     lunar_world_within(params, rng, MemoryLimit::default())
 }
 
@@ -175,7 +175,7 @@ pub fn lunar_world_within(
     params: &LunarParams,
     rng: &mut StageRng,
     memory: MemoryLimit,
-) -> Result<World, Error> {
+) -> Result<Scenario, Error> {
     let bad = |message: String| Error::invalid_param("world", message);
     if params.pois_per_target == 0
         || params.inspection_distance.is_nan()
@@ -231,7 +231,7 @@ pub fn lunar_world_within(
         end: None,
         targets,
     };
-    Ok(World::new("lunar", terrain, mission))
+    Ok(World::new("lunar", terrain).with_mission(mission))
 }
 
 /// Places the stones (ToIs) with their PoIs, shrinking the spacing if crowded.
@@ -357,21 +357,21 @@ mod tests {
         let b = lunar_world(&params, &mut StageRng::seed_from_u64(3)).unwrap();
         let c = lunar_world(&params, &mut StageRng::seed_from_u64(4)).unwrap();
         assert_eq!(a, b, "same seed, same world");
-        assert_ne!(a.elevation, c.elevation);
-        assert_eq!(a.elevation.geometry.size, [300, 290]);
+        assert_ne!(a.world.elevation, c.world.elevation);
+        assert_eq!(a.world.elevation.geometry.size, [300, 290]);
         assert_eq!(a.mission.targets.len(), 13);
         assert!(a.mission.targets.iter().all(|t| t.pois.len() == 10));
         a.mission.validate().unwrap();
-        let bounds = a.bounds();
+        let bounds = a.world.bounds();
         for t in &a.mission.targets {
             for p in &t.pois {
                 assert!(bounds.contains(p.x, p.y));
                 let facing = (t.position.y - p.y).atan2(t.position.x - p.x);
                 assert!(smug_core::pose::angle_distance(facing, p.yaw) < 1e-9);
             }
-            let top = a.height_at(t.position.x, t.position.y).unwrap();
+            let top = a.world.height_at(t.position.x, t.position.y).unwrap();
             assert!(
-                top > a.height_at(t.pois[0].x, t.pois[0].y).unwrap() + 0.1,
+                top > a.world.height_at(t.pois[0].x, t.pois[0].y).unwrap() + 0.1,
                 "stone {} is not raised",
                 t.id
             );

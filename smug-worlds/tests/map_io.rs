@@ -3,7 +3,9 @@
 //! `tests/data/` (every terrain character, CRLF, header and scenario corner cases).
 
 use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};
-use smug_core::{GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Point3, Pose2, World};
+use smug_core::{
+    GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Point3, Pose2, Scenario, World,
+};
 use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::{load_map, MapFileError};
 use smug_worlds::movingai::{
@@ -247,14 +249,15 @@ fn malformed_maps_are_typed_errors_naming_the_file() {
 
 /// A pipeline config loading `map.yaml` in `dir` (with a robot small enough for the
 /// tiny test maps) with extra world `params`.
-fn map_config(dir: &Path, params: &str) -> Result<World, String> {
+fn map_config(dir: &Path, params: &str) -> Result<Scenario, String> {
     let robot = "[robot]\nlength = 0.4\nwidth = 0.3\n";
     let text =
         format!("{robot}[world]\ntype = \"map\"\n[world.params]\nyaml = \"map.yaml\"\n{params}");
     let loaded =
         LoadedConfig::from_text(&text, "test.toml", dir, &[]).map_err(|e| e.to_string())?;
     let pipeline = Pipeline::assemble(&loaded).map_err(|e| e.to_string())?;
-    Ok(pipeline.world.unwrap().as_ref().clone())
+    let world = pipeline.world.unwrap().as_ref().clone();
+    Ok(world.with_mission(pipeline.given_mission.unwrap()))
 }
 
 #[test]
@@ -269,9 +272,9 @@ fn map_plugin_loads_missions_and_checks_they_lie_inside() {
         "mission_file = \"inside.toml\"\nobstacle_height = 0.75\n",
     )
     .unwrap();
-    assert_eq!(world.name, "map");
+    assert_eq!(world.world.name, "map");
     assert_eq!(world.mission, mission(&[[2.0, -1.0]]));
-    assert_eq!(world.elevation.get(0, 1), 0.75);
+    assert_eq!(world.world.elevation.get(0, 1), 0.75);
 
     let outside = toml::to_string(&mission(&[[2.0, -1.0], [2.0, -1.0], [9.0, -1.0]])).unwrap();
     write(&dir, "outside.toml", &outside);
@@ -297,12 +300,12 @@ fn map_plugin_loads_missions_and_checks_they_lie_inside() {
     write(&dir, "map.yaml", format!("{YAML}mission: inside.toml\n"));
     let world = map_config(&dir, "name = \"lab\"\n").unwrap();
     assert_eq!(
-        (world.name.as_str(), world.mission.targets.len()),
+        (world.world.name.as_str(), world.mission.targets.len()),
         ("lab", 1)
     );
 }
 
-fn sample_world() -> World {
+fn sample_world() -> Scenario {
     let g = GridGeometry::new([-3.25, 10.5], 0.25, [40, 24]).unwrap();
     let mut elevation = GridLayer::from_fn(g, |i, j| {
         let [x, y] = g.center_of(i, j);
@@ -317,46 +320,45 @@ fn sample_world() -> World {
     elevation.set(39, 23, f32::NAN);
     let mut traversability = GridLayer::from_fn(g, |i, j| ((i + j) % 11) as f32 / 10.0);
     traversability.set(3, 4, f32::NAN);
-    let mut world = World::new(
-        "round-trip",
-        elevation,
-        Mission {
-            start: Pose2::new(-2.0, 11.0, 0.3),
-            end: Some(Pose2::new(5.0, 15.0, -3.0)),
-            targets: vec![
-                smug_core::Target {
-                    id: "gauge \"a\"".into(),
-                    position: Point3 {
-                        x: 0.1,
-                        y: 12.0,
-                        z: 0.5,
-                    },
-                    pois: vec![
-                        Pose2::new(0.0, 11.5, 1.0),
-                        Pose2::new(1.0 / 3.0, 12.5, -2.0),
-                    ],
+    let mut world = World::new("round-trip", elevation).with_mission(Mission {
+        start: Pose2::new(-2.0, 11.0, 0.3),
+        end: Some(Pose2::new(5.0, 15.0, -3.0)),
+        targets: vec![
+            smug_core::Target {
+                id: "gauge \"a\"".into(),
+                position: Point3 {
+                    x: 0.1,
+                    y: 12.0,
+                    z: 0.5,
                 },
-                smug_core::Target {
-                    id: "valve".into(),
-                    position: Point3 {
-                        x: 4.0,
-                        y: 14.0,
-                        z: 0.0,
-                    },
-                    pois: vec![Pose2::new(4.5, 14.0, 3.1)],
+                pois: vec![
+                    Pose2::new(0.0, 11.5, 1.0),
+                    Pose2::new(1.0 / 3.0, 12.5, -2.0),
+                ],
+            },
+            smug_core::Target {
+                id: "valve".into(),
+                position: Point3 {
+                    x: 4.0,
+                    y: 14.0,
+                    z: 0.0,
                 },
-            ],
-        },
-    );
-    world.traversability = Some(traversability);
+                pois: vec![Pose2::new(4.5, 14.0, 3.1)],
+            },
+        ],
+    });
+    world.world.traversability = Some(traversability);
     world
 }
 
 #[test]
 fn export_then_import_round_trips() {
     let dir = scratch("round-trip");
-    let world = sample_world();
-    let yaml = export_world(&world, &dir.join("out"), "rt").unwrap();
+    let Scenario {
+        world,
+        mission: given,
+    } = sample_world();
+    let yaml = export_world(&world, Some(&given), &dir.join("out"), "rt").unwrap();
     assert_eq!(yaml, dir.join("out/rt.yaml"));
     for file in [
         "rt.pgm",
@@ -368,8 +370,8 @@ fn export_then_import_round_trips() {
     }
     let layers = load_map(&yaml, 2.0).unwrap();
     let mission = smug_worlds::load_mission(layers.mission_file.as_ref().unwrap()).unwrap();
-    assert_eq!(mission, world.mission);
-    let imported = layers.into_world("rt", mission, &yaml).unwrap();
+    assert_eq!(mission, given);
+    let imported = layers.into_scenario("rt", mission, &yaml).unwrap().world;
     assert_eq!(imported.elevation.geometry, world.elevation.geometry);
     for (k, (a, b)) in world
         .elevation
@@ -405,14 +407,20 @@ fn export_then_import_round_trips() {
 #[test]
 fn export_rejects_unusable_requests() {
     let dir = scratch("export-errors");
-    let err = export_world(&sample_world(), &dir, "a/b")
+    let sample = sample_world();
+    let err = export_world(&sample.world, Some(&sample.mission), &dir, "a/b")
         .unwrap_err()
         .to_string();
     assert!(err.contains("a/b"), "{err}");
     let blocker = write(&dir, "file", "x");
-    let err = export_world(&sample_world(), &blocker.join("sub"), "w")
-        .unwrap_err()
-        .to_string();
+    let err = export_world(
+        &sample.world,
+        Some(&sample.mission),
+        &blocker.join("sub"),
+        "w",
+    )
+    .unwrap_err()
+    .to_string();
     assert!(err.contains("cannot write"), "{err}");
 }
 

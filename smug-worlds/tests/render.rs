@@ -1,45 +1,41 @@
 //! SVG rendering: structure, markers, the embedded raster and world → picture coordinates.
 
 use base64::Engine;
-use smug_core::{GridGeometry, GridLayer, Mission, Point3, Pose2, Target, World};
+use smug_core::{GridGeometry, GridLayer, Mission, Point3, Pose2, Scenario, Target, World};
 use smug_worlds::render::RasterLayer;
 use smug_worlds::{render_svg, RenderOptions};
 
-fn world() -> World {
+fn world() -> Scenario {
     // 10 × 5 m, 0.5 m cells, origin at (0, 0).
     let g = GridGeometry::new([0.0, 0.0], 0.5, [20, 10]).unwrap();
     let mut elevation = GridLayer::filled(g, 0.0);
     elevation.set(2, 1, f32::NAN);
     elevation.set(5, 5, 2.0);
-    let mut world = World::new(
-        "test <world>",
-        elevation,
-        Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: Some(Pose2::new(9.0, 4.0, 1.0)),
-            targets: vec![
-                Target {
-                    id: "stone & co".into(),
-                    position: Point3 {
-                        x: 5.0,
-                        y: 2.5,
-                        z: 0.0,
-                    },
-                    pois: vec![Pose2::new(4.0, 2.5, 0.0), Pose2::new(6.0, 2.5, 3.0)],
+    let mut world = World::new("test <world>", elevation).with_mission(Mission {
+        start: Pose2::new(1.0, 1.0, 0.0),
+        end: Some(Pose2::new(9.0, 4.0, 1.0)),
+        targets: vec![
+            Target {
+                id: "stone & co".into(),
+                position: Point3 {
+                    x: 5.0,
+                    y: 2.5,
+                    z: 0.0,
                 },
-                Target {
-                    id: "gauge".into(),
-                    position: Point3 {
-                        x: 8.0,
-                        y: 1.0,
-                        z: 0.0,
-                    },
-                    pois: vec![Pose2::new(8.0, 2.0, -1.57)],
+                pois: vec![Pose2::new(4.0, 2.5, 0.0), Pose2::new(6.0, 2.5, 3.0)],
+            },
+            Target {
+                id: "gauge".into(),
+                position: Point3 {
+                    x: 8.0,
+                    y: 1.0,
+                    z: 0.0,
                 },
-            ],
-        },
-    );
-    world.traversability = Some(GridLayer::from_fn(
+                pois: vec![Pose2::new(8.0, 2.0, -1.57)],
+            },
+        ],
+    });
+    world.world.traversability = Some(GridLayer::from_fn(
         g,
         |i, _| {
             if i == 0 {
@@ -96,7 +92,8 @@ fn renders_every_element_of_the_world_and_the_overlay() {
         highlighted_pois: vec![(0, 1), (7, 7)],
         ..RenderOptions::default()
     };
-    let svg = render_svg(&world(), &options);
+    let scenario = world();
+    let svg = render_svg(&scenario.world, Some(&scenario.mission), &options);
     assert!(svg.starts_with("<svg xmlns=\"http://www.w3.org/2000/svg\""));
     assert_well_formed(&svg);
     for needle in [
@@ -126,7 +123,11 @@ fn renders_every_element_of_the_world_and_the_overlay() {
 #[test]
 fn the_raster_is_north_up_with_missing_data_dark() {
     let world = world();
-    let svg = render_svg(&world, &RenderOptions::default());
+    let svg = render_svg(
+        &world.world,
+        Some(&world.mission),
+        &RenderOptions::default(),
+    );
     let png = embedded_png(&svg);
     // 20 × 10 cells drawn 800 × 400 px: each cell is replicated 8 × 8 (the maximum).
     assert_eq!(png.dimensions(), (160, 80));
@@ -140,7 +141,7 @@ fn the_raster_is_north_up_with_missing_data_dark() {
         scale_bar: false,
         ..RenderOptions::default()
     };
-    let svg = render_svg(&world, &options);
+    let svg = render_svg(&world.world, Some(&world.mission), &options);
     assert!(!svg.contains("class=\"legend\"") && !svg.contains("class=\"scale-bar\""));
     let png = embedded_png(&svg);
     // Cell (2, 1) is NaN: image row 10 − 1 − 1 = 8. Cell (5, 5), the highest, is darkest.
@@ -152,18 +153,27 @@ fn the_raster_is_north_up_with_missing_data_dark() {
 #[test]
 fn degenerate_worlds_render_without_panicking() {
     let g = GridGeometry::new([0.0, 0.0], 1.0, [1, 1]).unwrap();
-    let mut world = World::new(
-        "one cell",
-        GridLayer::filled(g, f32::NAN),
-        Mission {
-            start: Pose2::new(0.5, 0.5, 0.0),
-            end: None,
-            targets: Vec::new(),
-        },
+    let mut world = World::new("one cell", GridLayer::filled(g, f32::NAN)).with_mission(Mission {
+        start: Pose2::new(0.5, 0.5, 0.0),
+        end: None,
+        targets: Vec::new(),
+    });
+    assert_well_formed(&render_svg(
+        &world.world,
+        Some(&world.mission),
+        &RenderOptions::default(),
+    ));
+    // A world without a mission: the map alone.
+    let bare = render_svg(&world.world, None, &RenderOptions::default());
+    assert_well_formed(&bare);
+    assert!(!bare.contains("class=\"start\""));
+    world.world.elevation =
+        GridLayer::filled(GridGeometry::new([0.0, 0.0], 1.0, [0, 0]).unwrap(), 0.0);
+    let svg = render_svg(
+        &world.world,
+        Some(&world.mission),
+        &RenderOptions::default(),
     );
-    assert_well_formed(&render_svg(&world, &RenderOptions::default()));
-    world.elevation = GridLayer::filled(GridGeometry::new([0.0, 0.0], 1.0, [0, 0]).unwrap(), 0.0);
-    let svg = render_svg(&world, &RenderOptions::default());
     assert_well_formed(&svg);
     assert!(!svg.contains("<image"));
 }

@@ -122,12 +122,12 @@ mod tests {
         let elevation = GridLayer::from_fn(geometry, |i, j| {
             ((i as f32 * 0.3).sin() + (j as f32 * 0.2).cos()) * 0.8
         });
-        let mission = Mission {
+        let _mission = Mission {
             start: Pose2::new(0.0, 0.0, 0.0),
             end: None,
             targets: Vec::new(),
         };
-        Arc::new(World::new("hills", elevation, mission))
+        Arc::new(World::new("hills", elevation))
     }
 
     proptest! {

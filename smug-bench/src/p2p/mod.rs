@@ -9,7 +9,7 @@ mod lunar;
 pub mod maps;
 
 use serde::Serialize;
-use smug_core::{LoadedConfig, Mission, Pipeline, PlannerOutcome, PointToPointPlanner, Pose2};
+use smug_core::{LoadedConfig, Pipeline, PlannerOutcome, PointToPointPlanner, Pose2};
 use smug_planners::{Visibility, VisibilityParams};
 use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{
@@ -156,16 +156,7 @@ fn load_bench_map(
         .map(|i| &scenarios[i * scenarios.len() / count.max(1)])
         .map(|s| (to_pose(s.start), to_pose(s.goal), s.optimal_length))
         .collect();
-    let start = queries.first().map_or(Pose2::new(0.5, 0.5, 0.0), |q| q.0);
-    let world = load_map(&yaml, 2.0)?.into_world(
-        stem.clone(),
-        Mission {
-            start,
-            end: None,
-            targets: vec![],
-        },
-        &yaml,
-    )?;
+    let world = load_map(&yaml, 2.0)?.into_world(stem.clone());
     Ok(LoadedMap {
         stem,
         grid,

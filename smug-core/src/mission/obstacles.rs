@@ -202,17 +202,10 @@ impl TraversabilityEstimator for MaskedEstimator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mission::Mission;
-    use crate::pose::Pose2;
 
     fn flat_world() -> World {
         let g = GridGeometry::new([0.0, 0.0], 0.5, [20, 20]).unwrap();
-        let mission = Mission {
-            start: Pose2::new(1.0, 1.0, 0.0),
-            end: None,
-            targets: vec![],
-        };
-        let mut world = World::new("flat", GridLayer::filled(g, 0.0), mission);
+        let mut world = World::new("flat", GridLayer::filled(g, 0.0));
         world.traversability = Some(GridLayer::filled(g, 1.0));
         let vg = VoxelGeometry::new([0.0, 0.0, -1.0], 0.5, [20, 20, 8]).unwrap();
         world.occupancy = Some(VoxelGrid::filled(vg, false));

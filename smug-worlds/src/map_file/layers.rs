@@ -6,7 +6,7 @@ use super::image::{
     Colour,
 };
 use super::yaml::{MapMode, MapYaml};
-use smug_core::{GridGeometry, GridLayer, MemoryLimit, Mission, World};
+use smug_core::{GridGeometry, GridLayer, MemoryLimit, Mission, Scenario, World};
 use std::path::{Path, PathBuf};
 
 /// The layers read from a map file.
@@ -30,18 +30,23 @@ impl MapLayers {
         }
     }
 
-    /// A world of these layers and `mission`; errors when a pose lies outside the map.
-    /// `yaml` names the map in errors.
-    pub fn into_world(
+    /// A world of these layers (maps only: point-to-point queries).
+    pub fn into_world(self, name: impl Into<String>) -> World {
+        let mut world = World::new(name, self.elevation);
+        world.traversability = self.traversability;
+        world
+    }
+
+    /// A world of these layers with `mission` to plan in it; errors when a pose lies
+    /// outside the map. `yaml` names the map in errors.
+    pub fn into_scenario(
         self,
         name: impl Into<String>,
         mission: Mission,
         yaml: &Path,
-    ) -> Result<World, MapFileError> {
+    ) -> Result<Scenario, MapFileError> {
         check_mission_inside(&mission, &self.elevation.geometry, yaml)?;
-        let mut world = World::new(name, self.elevation, mission);
-        world.traversability = self.traversability;
-        Ok(world)
+        Ok(self.into_world(name).with_mission(mission))
     }
 }
 

@@ -4,7 +4,7 @@ use super::layers::{file_stem, load_map_within, MapLayers};
 use super::terrain::{load_terrain, TerrainKind};
 use super::yaml::{DEFAULT_CELL_SIZE, DEFAULT_OBSTACLE_HEIGHT};
 use serde::{Deserialize, Serialize};
-use smug_core::{BuildContext, Error, Mission, World};
+use smug_core::{BuildContext, Error, Mission, Scenario};
 use std::path::{Path, PathBuf};
 
 /// Parameters of the `map` world plugin.
@@ -77,7 +77,7 @@ fn map_mission(
 }
 
 /// Builds the `map` world described by `params`.
-fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Error> {
+fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<Scenario, Error> {
     let given = [
         !params.yaml.as_os_str().is_empty(),
         params.dem.is_some(),
@@ -118,7 +118,7 @@ fn build_map_world(params: &MapParams, ctx: &BuildContext) -> Result<World, Erro
     let mission = map_mission(params, &layers, &yaml, ctx)?;
     let name = params.name.clone().unwrap_or_else(|| file_stem(&yaml));
     layers
-        .into_world(name, mission, &yaml)
+        .into_scenario(name, mission, &yaml)
         .map_err(|e| Error::stage("world", e))
 }
 

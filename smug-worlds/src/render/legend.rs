@@ -6,7 +6,7 @@ use super::svg::{
     arrow_shape, escape, num, View, END_COLOUR, HIGHLIGHT_COLOUR, LEGEND_ROW, LEGEND_WIDTH,
     NO_DATA, PATH_COLOUR, POI_COLOUR, START_COLOUR, TARGET_COLOUR,
 };
-use smug_core::World;
+use smug_core::{Mission, World};
 use std::fmt::Write as _;
 
 /// The largest 1, 2 or 5 × 10^k not above `limit` (> 0).
@@ -62,7 +62,7 @@ pub(super) struct LegendRow {
     text: &'static str,
 }
 
-pub(super) fn legend_rows(world: &World, options: &RenderOptions) -> Vec<LegendRow> {
+pub(super) fn legend_rows(mission: Option<&Mission>, options: &RenderOptions) -> Vec<LegendRow> {
     let mut rows = vec![
         LegendRow {
             symbol: format!(
@@ -100,7 +100,7 @@ pub(super) fn legend_rows(world: &World, options: &RenderOptions) -> Vec<LegendR
         ),
         text: "start",
     });
-    if world.mission.end.is_some() {
+    if mission.is_some_and(|m| m.end.is_some()) {
         rows.push(LegendRow {
             symbol: format!(r#"<rect x="-6" y="-6" width="12" height="12" fill="{END_COLOUR}"/>"#),
             text: "end",

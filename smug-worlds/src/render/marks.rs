@@ -4,7 +4,7 @@ use super::svg::{
     arrow_shape, escape, label, num, View, END_COLOUR, HIGHLIGHT_COLOUR, PATH_COLOUR, POI_COLOUR,
     START_COLOUR, TARGET_COLOUR,
 };
-use smug_core::{Pose2, World};
+use smug_core::{Mission, Pose2};
 use std::fmt::Write as _;
 
 pub(super) fn draw_paths(svg: &mut String, paths: &[Vec<[f64; 2]>], view: &View) {
@@ -42,11 +42,11 @@ pub(super) fn pose_transform(pose: &Pose2, view: &View) -> String {
 
 pub(super) fn draw_pois(
     svg: &mut String,
-    world: &World,
+    mission: &Mission,
     highlighted: &[(usize, usize)],
     view: &View,
 ) {
-    for (t, target) in world.mission.targets.iter().enumerate() {
+    for (t, target) in mission.targets.iter().enumerate() {
         for (p, pose) in target.pois.iter().enumerate() {
             let bright = highlighted.contains(&(t, p));
             let (class, shape) = if bright {
@@ -64,8 +64,8 @@ pub(super) fn draw_pois(
     }
 }
 
-pub(super) fn draw_targets(svg: &mut String, world: &World, view: &View) {
-    for target in &world.mission.targets {
+pub(super) fn draw_targets(svg: &mut String, mission: &Mission, view: &View) {
+    for target in &mission.targets {
         let [x, y] = view.point(target.position.x, target.position.y);
         let _ = writeln!(
             svg,
@@ -77,8 +77,8 @@ pub(super) fn draw_targets(svg: &mut String, world: &World, view: &View) {
     }
 }
 
-pub(super) fn draw_start_and_end(svg: &mut String, world: &World, view: &View) {
-    let start = &world.mission.start;
+pub(super) fn draw_start_and_end(svg: &mut String, mission: &Mission, view: &View) {
+    let start = &mission.start;
     let [x, y] = view.point(start.x, start.y);
     let _ = writeln!(
         svg,
@@ -89,7 +89,7 @@ pub(super) fn draw_start_and_end(svg: &mut String, world: &World, view: &View) {
         num(y),
         label(x + 9.0, y + 16.0, "start", START_COLOUR)
     );
-    if let Some(end) = &world.mission.end {
+    if let Some(end) = &mission.end {
         let [x, y] = view.point(end.x, end.y);
         let _ = writeln!(
             svg,

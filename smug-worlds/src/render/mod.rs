@@ -17,12 +17,13 @@ pub use options::{RasterLayer, RenderOptions};
 use legend::{draw_legend, draw_scale_bar, legend_rows};
 use marks::{draw_paths, draw_pois, draw_start_and_end, draw_targets};
 use raster::{draw_raster, RasterChoice};
-use smug_core::World;
+use smug_core::{Mission, World};
 use std::fmt::Write as _;
 use svg::{escape, num, View, FOOTER_HEIGHT, LEGEND_ROW, LEGEND_WIDTH, MARGIN, TITLE_HEIGHT};
 
-/// The SVG picture of `world` (see the [module documentation](self)).
-pub fn render_svg(world: &World, options: &RenderOptions) -> String {
+/// The SVG picture of `world` with `mission` (when given) drawn over it (see the
+/// [module documentation](self)).
+pub fn render_svg(world: &World, mission: Option<&Mission>, options: &RenderOptions) -> String {
     let title_height = if options.title.is_some() {
         TITLE_HEIGHT
     } else {
@@ -30,7 +31,7 @@ pub fn render_svg(world: &World, options: &RenderOptions) -> String {
     };
     let view = View::new(world, options, MARGIN + title_height);
     let raster = RasterChoice::for_world(world, options.layer);
-    let legend_rows = legend_rows(world, options);
+    let legend_rows = legend_rows(mission, options);
     let legend_height = LEGEND_ROW * (legend_rows.len() as f64 + 3.0);
     let width = view.left
         + view.size[0]
@@ -61,9 +62,11 @@ pub fn render_svg(world: &World, options: &RenderOptions) -> String {
     }
     draw_raster(&mut svg, world, &raster, &view);
     draw_paths(&mut svg, &options.paths, &view);
-    draw_pois(&mut svg, world, &options.highlighted_pois, &view);
-    draw_targets(&mut svg, world, &view);
-    draw_start_and_end(&mut svg, world, &view);
+    if let Some(mission) = mission {
+        draw_pois(&mut svg, mission, &options.highlighted_pois, &view);
+        draw_targets(&mut svg, mission, &view);
+        draw_start_and_end(&mut svg, mission, &view);
+    }
     if options.scale_bar {
         draw_scale_bar(&mut svg, world, &view);
     }
@@ -81,20 +84,11 @@ mod tests {
     use super::marks::svg_rotation;
     use super::raster::{ramp, raster_size, traversability_colour};
     use super::*;
-    use smug_core::{GridGeometry, Mission};
-    use smug_core::{GridLayer, Pose2};
+    use smug_core::{GridGeometry, GridLayer};
 
     fn world() -> World {
         let g = GridGeometry::new([-2.0, 1.0], 0.5, [20, 10]).unwrap();
-        World::new(
-            "w",
-            GridLayer::filled(g, 0.0),
-            Mission {
-                start: Pose2::new(0.0, 2.0, 0.0),
-                end: None,
-                targets: Vec::new(),
-            },
-        )
+        World::new("w", GridLayer::filled(g, 0.0))
     }
 
     #[test]
