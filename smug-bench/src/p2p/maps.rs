@@ -107,7 +107,7 @@ pub fn generated_params() -> Vec<GridParams> {
 /// The name of a generated map: family, size, density or room size, seed.
 pub fn generated_name(params: &GridParams) -> String {
     let detail = match params.family {
-        GridFamily::Random | GridFamily::Terrain => {
+        GridFamily::Random | GridFamily::Terrain | GridFamily::Polygons => {
             format!("-d{}", (params.density * 100.0).round())
         }
         GridFamily::Rooms => format!("-r{}", params.room_size),
