@@ -205,7 +205,10 @@ fn exact_planner(pipeline: &Pipeline) -> crate::Result<(Visibility, f64)> {
         .ok_or_else(|| crate::error::invalid!("the bench's checker is not a disc on a grid"))?;
     let started = Instant::now();
     let planner = Visibility::new(
-        VisibilityParams { build_all: true },
+        VisibilityParams {
+            build_all: true,
+            ..Default::default()
+        },
         disc,
         states,
         pipeline.objective.clone(),

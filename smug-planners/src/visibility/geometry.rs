@@ -83,22 +83,26 @@ pub struct Grid {
     pub corners: Vec<Corner>,
     /// Corner id of each grid vertex (`(ny+1)` rows of `(nx+1)`), `u32::MAX` if none.
     corner_at: Vec<u32>,
+    /// Per cell, a lower bound of its points' clearance (see `clearance_bounds`).
+    pub(super) clearance_bounds: Vec<f32>,
 }
 
 impl Grid {
     /// The grid of `blocked` (row-major, `nx × ny`).
     pub fn new(nx: usize, ny: usize, blocked: Vec<bool>) -> Self {
+        let clearance_bounds = super::clearance::clearance_bounds(nx, ny, &blocked);
         let mut grid = Self {
             nx,
             ny,
             blocked,
+            clearance_bounds,
             corners: Vec::new(),
             corner_at: vec![u32::MAX; (nx + 1) * (ny + 1)],
         };
         for y in 0..=ny as i64 {
             for x in 0..=nx as i64 {
                 let around = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
-                let b: Vec<bool> = around.iter().map(|&(i, j)| grid.blocked(i, j)).collect();
+                let b = around.map(|(i, j)| grid.blocked(i, j));
                 if b.iter().filter(|&&v| v).count() != 1 {
                     continue;
                 }
@@ -161,7 +165,7 @@ impl Grid {
     /// True when every point of the segment `p → q` is at least `r` from every blocked
     /// cell (cells outside the grid included), checked exactly against each cell
     /// within `r` of the segment.
-    pub fn segment_clear(&self, p: Pt, q: Pt, r: f64) -> bool {
+    pub fn segment_clear_exact(&self, p: Pt, q: Pt, r: f64) -> bool {
         // Walk along the major axis; `swap` exchanges x and y.
         let swap = (q[1] - p[1]).abs() > (q[0] - p[0]).abs();
         let (a, b) = if swap {

@@ -27,8 +27,11 @@
 //! a cell on, arcs can pass near cells other than their corner's and are checked
 //! exactly too (the crossings of the circle with each nearby cell's inflated square).
 
+mod clearance;
 mod geometry;
 mod search;
+mod shadow;
+mod staircase;
 #[cfg(test)]
 mod tests;
 
@@ -52,6 +55,9 @@ pub struct VisibilityParams {
     /// Build the whole tangent graph when the planner is built (timed apart, as
     /// preprocessing) instead of corner by corner as queries reach them.
     pub build_all: bool,
+    /// Keep every convex corner in the graph: no staircase corner is left out until a
+    /// query needs it (a reference for the tests; slower on rasterised diagonals).
+    pub all_corners: bool,
 }
 
 /// A goal the exact search did not reach: it covered everything the start reaches.
@@ -120,7 +126,7 @@ impl Visibility {
         let started = Instant::now();
         let grid = Grid::new(g.size[0], g.size[1], disc.blocked);
         let r = radius + 2.0 * RADIUS_MARGIN;
-        let mut graph = TangentGraph::new(grid, r, radius + RADIUS_MARGIN);
+        let mut graph = TangentGraph::new(grid, r, radius + RADIUS_MARGIN, !params.all_corners);
         if params.build_all {
             graph.build_all();
         }
@@ -302,6 +308,10 @@ impl PointToPointPlanner for Visibility {
             },
             counters: BTreeMap::from([
                 ("corners".to_string(), self.graph.grid.corners.len() as u64),
+                (
+                    "corners_hidden".to_string(),
+                    self.graph.hidden_count() as u64,
+                ),
                 ("corners_built".to_string(), c.corners_built),
                 ("segment_checks".to_string(), c.segment_checks),
                 ("expansions".to_string(), c.expansions),

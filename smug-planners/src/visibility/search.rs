@@ -13,6 +13,8 @@
 mod build;
 
 use super::geometry::{circle_tangents, dist, point_tangents, Grid, Lane, Pt};
+use super::shadow::Lines;
+use super::staircase::{hidden_corners, Pocket};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 
@@ -265,6 +267,8 @@ impl PartialOrd for Entry {
 pub struct TangentGraph {
     /// The grid.
     pub grid: Grid,
+    /// The grid's bit rows and corner lists, for the shadowcast.
+    lines: Lines,
     /// Radius of the circles (grid units), slightly above the robot's.
     pub r: f64,
     /// Clearance every segment must keep (grid units): the robot's radius plus a margin.
@@ -273,6 +277,10 @@ pub struct TangentGraph {
     /// a cell or more): arcs are then checked too.
     pub big: bool,
     lanes: Vec<Option<Lanes>>,
+    /// Corners in the graph: all but the hidden staircase corners not yet activated.
+    active: Vec<bool>,
+    /// The hidden corners and their pockets (see `staircase`), until activated.
+    hidden: Vec<(u32, Pocket)>,
     /// Every node's departure, corner by corner.
     nodes: Vec<Departure>,
     /// Corner of each node.
@@ -291,10 +299,27 @@ pub struct TangentGraph {
 }
 
 impl TangentGraph {
-    /// The graph of `grid` for circles of radius `r`, segments keeping clearance `r_check`.
-    pub fn new(grid: Grid, r: f64, r_check: f64) -> Self {
+    /// The graph of `grid` for circles of radius `r`, segments keeping clearance `r_check`;
+    /// with `collapse`, hidden staircase corners wait for a query beside them.
+    pub fn new(grid: Grid, r: f64, r_check: f64, collapse: bool) -> Self {
         let n = grid.corners.len();
+        let hidden: Vec<(u32, Pocket)> = if collapse {
+            hidden_corners(&grid, r, r_check)
+                .into_iter()
+                .enumerate()
+                .filter_map(|(c, p)| Some((c as u32, p?)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut active = vec![true; n];
+        for &(c, _) in &hidden {
+            active[c as usize] = false;
+        }
         Self {
+            active,
+            hidden,
+            lines: Lines::new(&grid),
             grid,
             r,
             r_check,
@@ -354,6 +379,7 @@ impl TangentGraph {
             self.exit_query.fill(0);
             self.query = 1;
         }
+        self.activate_pockets(s, goals);
         let single = goals.len() == 1;
         let target = goals[0].0;
         // Exits: segments from corners straight to each goal.
