@@ -89,6 +89,7 @@ fn check_roadmap_size(params: &LazyPrmStarParams, memory: MemoryLimit) -> Result
     for (key, count) in [
         ("initial_samples", params.initial_samples),
         ("max_samples", params.max_samples),
+        ("max_corner_vertices", params.max_corner_vertices),
     ] {
         let what = format!("a roadmap of {key} = {count} vertices");
         memory
