@@ -52,6 +52,24 @@ impl Corner {
     /// The angle of normal `n` relative to the quadrant's start, in `[0, π/2]`, or
     /// `None` when `n` points outside the quadrant (beyond a tolerance).
     pub fn relative_angle(&self, n: Pt) -> Option<f64> {
+        // Most normals are far outside: a dot product with the quadrant's bisector
+        // (a bound slightly looser than the tolerance below) spares their atan2.
+        // (q0 is 0, π/2, −π/2 or −π: the bisector's signs.)
+        let (c, s) = if self.q0 == 0.0 {
+            (1.0, 1.0)
+        } else if self.q0 > 0.0 {
+            (-1.0, 1.0)
+        } else if self.q0 > -2.0 {
+            (1.0, -1.0)
+        } else {
+            (-1.0, -1.0)
+        };
+        let len2 = n[0] * n[0] + n[1] * n[1];
+        // cos(π/4 + 1e-6)·√2 = 1 − 1e-6 (to first order): n·(c, s)/√2 against it.
+        let dot = n[0] * c + n[1] * s;
+        if dot < 0.0 || dot * dot < len2 * (1.0 - 2.1e-6) {
+            return None;
+        }
         let mut rel = n[1].atan2(n[0]) - self.q0;
         while rel < -PI {
             rel += TAU;

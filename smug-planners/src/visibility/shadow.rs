@@ -6,9 +6,8 @@
 //! [`Grid::visible_cells`], visits millions of cells from a corner of an open
 //! 2000 × 2000 map).
 //!
-//! What it returns is a superset of [`Grid::visible_cells`]'s corners: every corner on
-//! the two vertex lines of a scanned column, within the lit stretch widened to its
-//! cells' vertices, whether the cell beside it is free or not.
+//! What it returns is a superset of [`Grid::visible_cells`]'s corners: every corner of
+//! a free cell in a lit stretch of a scanned column.
 
 use super::geometry::{Grid, Pt, EPS};
 
@@ -147,7 +146,7 @@ impl Lines {
     }
 
     /// The corners on vertex line `line` (`along_y`: a column) with `w` in `w0..=w1`.
-    fn corners(&self, along_y: bool, line: i64, w0: i64, w1: i64, mut visit: impl FnMut(u32)) {
+    fn corners(&self, along_y: bool, line: i64, w0: i64, w1: i64, mut visit: impl FnMut(u32, i64)) {
         let lists = if along_y { &self.on_x } else { &self.on_y };
         if line < 0 || line as usize >= lists.len() || w1 < 0 {
             return;
@@ -158,7 +157,7 @@ impl Lines {
             if w as i64 > w1 {
                 break;
             }
-            visit(id);
+            visit(id, w as i64);
         }
     }
 
@@ -206,8 +205,15 @@ impl Lines {
                 let wmin = sw + (lo * u0).min(lo * u1);
                 let wmax = sw + (hi * u0).max(hi * u1);
                 let (w0, w1) = ((wmin - EPS).floor() as i64, (wmax + EPS).floor() as i64);
+                // A corner of a lit free cell: on a vertex line of the column, beside a
+                // free cell of the stretch.
+                let lit = |w: i64| (w0..=w1).contains(&w) && !self.blocked(along_y, line, w);
                 for v in vertex_lines(iu) {
-                    self.corners(along_y, v, w0, w1 + 1, &mut *visit);
+                    self.corners(along_y, v, w0, w1 + 1, |id, w| {
+                        if lit(w - 1) || lit(w) {
+                            visit(id);
+                        }
+                    });
                 }
                 cuts.clear();
                 self.blocked_runs(along_y, line, w0, w1, |b0, b1| {
