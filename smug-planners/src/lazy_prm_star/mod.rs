@@ -293,7 +293,8 @@ impl PointToPointPlanner for LazyPrmStar {
 /// The random stream of the endpoint expansions.
 const EXPANSION_STREAM: &str = "planner-expansion";
 
-fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
+/// LazyPRM* for the pipeline of `ctx`.
+pub(crate) fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
     Ok(LazyPrmStar::new_in(
         params,

@@ -322,29 +322,45 @@ impl PointToPointPlanner for Visibility {
     }
 }
 
-fn build_planner(params: VisibilityParams, ctx: &BuildContext) -> Result<Visibility> {
+/// The exact planner for the pipeline of `ctx`: `Ok(Err(refusal))` when it does not
+/// apply (naming the config key), `Err` for any other failure.
+pub(crate) fn build_exact(
+    params: VisibilityParams,
+    ctx: &BuildContext,
+) -> Result<std::result::Result<Visibility, Error>> {
     let space = ctx.space();
     if !space.is_holonomic() {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "space.type",
             "the motion model is curved (a car), not straight holonomic motions",
-        ));
+        )));
     }
     let world = ctx.world()?;
     if world.traversability.is_some() {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "traversability.type",
             "a terrain world (it has a traversability layer); the exact planner plans on flat occupancy maps",
-        ));
+        )));
     }
     let states = ctx.state_validity()?;
     let Some(disc) = states.disc_on_grid() else {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "validity.type",
             "the robot is not a disc on a 2D occupancy map (use `clearance-2d`)",
-        ));
+        )));
     };
-    Visibility::new(params, disc, states, ctx.objective())
+    let objective = ctx.objective();
+    if objective.se2_length_weights().is_none() {
+        return Ok(Err(refuse(
+            "objective.type",
+            "the objective is not the path length on a holonomic space",
+        )));
+    }
+    Visibility::new(params, disc, states, objective).map(Ok)
+}
+
+fn build_planner(params: VisibilityParams, ctx: &BuildContext) -> Result<Visibility> {
+    build_exact(params, ctx)?
 }
 
 smug_core::register_plugin!(
