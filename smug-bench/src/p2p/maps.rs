@@ -89,7 +89,8 @@ pub fn is_movingai(name: &str) -> bool {
 }
 
 /// The generated maps of `--generated`, all with seed 1: random obstacles at 10% and
-/// 20%, rooms, a maze and open terrain.
+/// 20%, rooms, a maze, open terrain, and a 2000 × 2000 map of polygons (4 M cells,
+/// rasterised diagonal edges).
 pub fn generated_params() -> Vec<GridParams> {
     let with_density = |family, size, density| GridParams {
         density,
@@ -101,6 +102,7 @@ pub fn generated_params() -> Vec<GridParams> {
         GridParams::new(GridFamily::Rooms, 64, 64, 1),
         GridParams::new(GridFamily::Maze, 33, 33, 1),
         with_density(GridFamily::Terrain, 64, 0.2),
+        with_density(GridFamily::Polygons, 2000, 0.2),
     ]
 }
 
