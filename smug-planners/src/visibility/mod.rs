@@ -8,8 +8,9 @@
 //! them (the tangent visibility graph, exact: no sampling, no discretisation). The
 //! graph is built lazily, corner by corner (the corners a corner may see come from a
 //! conservative shadowcast, each tangent segment's clearance is checked exactly against
-//! the cells near it), and shared by every query of the mission; A* answers one goal,
-//! Dijkstra one start and many goals ([`PointToPointPlanner::plan_many`]).
+//! the cells near it), and shared by every query of the mission; A* answers one goal
+//! and one start with many goals ([`PointToPointPlanner::plan_many`]; the heuristic
+//! is the distance to the nearest goal, Dijkstra beyond 64 goals).
 //!
 //! What is not exact: circles are planned with a radius 10⁻⁷ cell above the robot's
 //! (a margin so that rounding never puts the returned path inside an inflated cell),

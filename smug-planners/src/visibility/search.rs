@@ -1,5 +1,6 @@
 //! The tangent graph of the `visibility` planner, built lazily corner by corner and
-//! shared by every query, and its exact search (A* for one goal, Dijkstra for many).
+//! shared by every query, and its exact search (A* towards the nearest goal; Dijkstra
+//! for more than 64 goals).
 //!
 //! A shortest path of a disc of radius `r` among blocked grid cells is a chain of
 //! straight segments tangent to the circles of radius `r` around the convex corners of
@@ -81,6 +82,10 @@ const VIA_CHAIN: Via = u32::MAX;
 /// See [`Via`].
 const VIA_START: Via = 1 << 31;
 
+/// Goals of one query up to which the search is A* towards the nearest (beyond:
+/// Dijkstra, the heuristic's cost per node growing with the goals).
+const MAX_AIMED_GOALS: usize = 64;
+
 /// Angles within this (radians) of an arrival count as at it.
 const REL_TOL: f64 = 1e-12;
 
@@ -130,8 +135,8 @@ struct GoalVia {
 
 /// One query's search: the heap, the goals' costs and how they were reached, the exits.
 struct Search {
-    single: bool,
-    target: Pt,
+    /// The goals the heuristic aims at (none: Dijkstra, for many goals).
+    targets: Vec<Pt>,
     /// Heap ids from this one on are goals (`goal_base + k`).
     goal_base: u32,
     goal_cost: Vec<f64>,
@@ -170,13 +175,19 @@ impl Search {
         }
     }
 
-    /// The heuristic: the straight-line distance to the goal of a one-goal query.
+    /// The heuristic: the straight-line distance to the nearest goal (a minimum of
+    /// consistent heuristics is consistent, and 0 at every goal); 0 with more than
+    /// [`MAX_AIMED_GOALS`] goals.
     fn h(&self, p: Pt) -> f64 {
-        if self.single {
-            let (dx, dy) = (p[0] - self.target[0], p[1] - self.target[1]);
-            (dx * dx + dy * dy).sqrt()
-        } else {
+        let mut best = f64::INFINITY;
+        for t in &self.targets {
+            let (dx, dy) = (p[0] - t[0], p[1] - t[1]);
+            best = best.min(dx * dx + dy * dy);
+        }
+        if self.targets.is_empty() {
             0.0
+        } else {
+            best.sqrt()
         }
     }
 
@@ -380,8 +391,11 @@ impl TangentGraph {
             self.query = 1;
         }
         self.activate_pockets(s, goals);
-        let single = goals.len() == 1;
-        let target = goals[0].0;
+        let targets: Vec<Pt> = if goals.len() <= MAX_AIMED_GOALS {
+            goals.iter().map(|g| g.0).collect()
+        } else {
+            Vec::new()
+        };
         // Exits: segments from corners straight to each goal.
         let mut exits: HashMap<u32, Vec<Exit>> = HashMap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
@@ -397,8 +411,7 @@ impl TangentGraph {
             }
         }
         let mut search = Search {
-            single,
-            target,
+            targets,
             goal_base: u32::MAX - goals.len() as u32,
             goal_cost: vec![f64::INFINITY; goals.len()],
             goal_via: vec![None; goals.len()],
