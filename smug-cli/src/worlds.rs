@@ -35,7 +35,7 @@ enum WorldsCommand {
     /// occupancy PGM + 16-bit elevation PNG + mission TOML (what `smug worlds export`
     /// writes).
     Convert(ExportArgs),
-    /// Generate a seeded grid map (random, rooms, maze, terrain) as a MovingAI `.map`,
+    /// Generate a seeded grid map (random, rooms, maze, terrain, polygons) as a MovingAI `.map`,
     /// with scenarios and a map YAML + PGM on request.
     Generate(crate::worlds_generate::GenerateArgs),
     /// Export a world as map YAML + occupancy PGM + elevation and traversability PNGs +

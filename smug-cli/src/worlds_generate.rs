@@ -1,5 +1,5 @@
 //! `smug worlds generate`: a seeded grid map (random obstacles, rooms, maze, open
-//! terrain) as a MovingAI `.map`, optionally with scenarios (`.map.scen`, optimal
+//! terrain, polygons) as a MovingAI `.map`, optionally with scenarios (`.map.scen`, optimal
 //! octile lengths) and a map_server YAML + PGM.
 
 use crate::Outcome;
@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 /// Arguments of `smug worlds generate`.
 #[derive(clap::Args, Debug)]
 pub struct GenerateArgs {
-    /// The family: random, rooms, maze or terrain.
+    /// The family: random, rooms, maze, terrain or polygons.
     #[arg(value_parser = parse_family)]
     family: GridFamily,
     /// Columns × rows, e.g. `32x32`.
@@ -20,7 +20,7 @@ pub struct GenerateArgs {
     /// Seed of the map (and of its scenarios).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Blocked share of the cells, in [0, 1) (random: 0.1, terrain: 0.2).
+    /// Blocked share of the cells, in [0, 1) (random: 0.1, terrain and polygons: 0.2).
     #[arg(long)]
     density: Option<f64>,
     /// Interior side of a room in cells (rooms; default 8).
@@ -92,7 +92,10 @@ fn params(args: &GenerateArgs) -> anyhow::Result<GridParams> {
     let family = args.family;
     let mut params = GridParams::new(family, args.size.0, args.size.1, args.seed);
     if let Some(density) = args.density {
-        if !matches!(family, GridFamily::Random | GridFamily::Terrain) {
+        if !matches!(
+            family,
+            GridFamily::Random | GridFamily::Terrain | GridFamily::Polygons
+        ) {
             bail!("--density applies to the random and terrain families, not {family}");
         }
         params.density = density;
@@ -110,7 +113,9 @@ fn params(args: &GenerateArgs) -> anyhow::Result<GridParams> {
 pub fn command_line(params: &GridParams) -> String {
     let family = params.family;
     let extra = match family {
-        GridFamily::Random | GridFamily::Terrain => format!(" --density {}", params.density),
+        GridFamily::Random | GridFamily::Terrain | GridFamily::Polygons => {
+            format!(" --density {}", params.density)
+        }
         GridFamily::Rooms => format!(" --room-size {}", params.room_size),
         GridFamily::Maze => String::new(),
     };

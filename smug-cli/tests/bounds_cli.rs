@@ -10,10 +10,13 @@ use std::time::{Duration, Instant};
 #[test]
 fn a_plan_found_after_the_deadline_cut_a_search_is_written_and_marked() {
     let out = "target/cli-test-deadline-marked";
-    // The exact planner needs no growing roadmap; the sequencer's search is cut at once.
+    // LazyPRM* (the config's `auto` would plan exactly, and `visibility` does not watch
+    // the deadline): its first search is cut at once.
     let run = smug(&[
         "plan",
         "configs/indoor-disc.toml",
+        "--set",
+        "planner.type=lazy-prm-star",
         "--deadline",
         "0.000001",
         "--out",

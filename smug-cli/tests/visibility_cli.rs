@@ -7,6 +7,33 @@ mod common;
 
 use common::{assert_bad_input, smug, stderr, stdout};
 
+/// LazyPRM* instead of the configs' `auto` (which plans with `visibility` here).
+const LAZY: &str = "planner.type=lazy-prm-star";
+
+#[test]
+fn auto_plans_the_disc_configs_exactly() {
+    let root = std::env::temp_dir().join(format!("smug-visibility-auto-{}", std::process::id()));
+    for config in ["configs/imported-map.toml", "configs/indoor-disc.toml"] {
+        let auto = plan_cost_of(config, &root.join("auto"), &[]);
+        let exact = plan_cost_of(
+            config,
+            &root.join("exact"),
+            &["planner.type=visibility", "planner.params={}"],
+        );
+        assert_eq!(
+            auto.to_bits(),
+            exact.to_bits(),
+            "{config}: auto {auto}, exact {exact}"
+        );
+        let plan = std::fs::read_to_string(root.join("auto").join("plan.json")).unwrap();
+        assert!(
+            plan.contains("corners_hidden"),
+            "{config}: not the exact planner"
+        );
+    }
+    std::fs::remove_dir_all(&root).ok();
+}
+
 fn plan_cost(dir: &std::path::Path, set: &[&str]) -> f64 {
     plan_cost_of("configs/imported-map.toml", dir, set)
 }
@@ -33,7 +60,7 @@ fn plans_the_imported_map_mission_no_dearer_than_lazy_prm_star() {
         &root.join("exact"),
         &["planner.type=visibility", "planner.params={}"],
     );
-    let lazy = plan_cost(&root.join("lazy"), &[]);
+    let lazy = plan_cost(&root.join("lazy"), &[LAZY]);
     assert!(exact <= lazy, "exact {exact} > lazy {lazy}");
     // Same under pure length (no yaw term), where only the planar path differs.
     let set = [
@@ -49,7 +76,7 @@ fn plans_the_imported_map_mission_no_dearer_than_lazy_prm_star() {
             "planner.params={}",
         ],
     );
-    let lazy = plan_cost(&root.join("lazy0"), &set);
+    let lazy = plan_cost(&root.join("lazy0"), &[set[0], set[1], LAZY]);
     assert!(exact <= lazy, "exact {exact} > lazy {lazy} (length only)");
     std::fs::remove_dir_all(&root).ok();
 }
@@ -63,7 +90,7 @@ fn plans_the_indoor_mission_for_a_disc_no_dearer_than_lazy_prm_star() {
         &root.join("exact"),
         &["planner.type=visibility", "planner.params={}"],
     );
-    let lazy = plan_cost_of(config, &root.join("lazy"), &[]);
+    let lazy = plan_cost_of(config, &root.join("lazy"), &[LAZY]);
     assert!(exact <= lazy, "exact {exact} > lazy {lazy}");
     std::fs::remove_dir_all(&root).ok();
 }

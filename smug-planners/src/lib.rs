@@ -6,6 +6,7 @@
 
 #![warn(missing_docs)]
 
+pub mod auto;
 pub mod lattice;
 pub mod lazy_prm_star;
 pub mod nn;

@@ -265,3 +265,29 @@ fn tiny_maps_of_every_family_generate() {
         }
     }
 }
+
+#[test]
+fn polygons_are_open_ground_with_staircase_edged_obstacles() {
+    for seed in 1..4 {
+        let m = map(GridFamily::Polygons, 200, 200, seed);
+        let share = 1.0 - m.passable_count() as f64 / m.passable.len() as f64;
+        // Placement stops at the first polygon that reaches 20%; one polygon covers at
+        // most π·(200/12)² cells (2.2% of the map).
+        assert!((0.2..0.23).contains(&share), "seed {seed}: {share}");
+        // Rasterised diagonal edges: some blocked cell has a free cell diagonally
+        // beside it with both cells between free and blocked (a staircase step).
+        let steps = (1..199)
+            .flat_map(|y| (1..199).map(move |x| (x, y)))
+            .filter(|&(x, y)| {
+                !m.is_passable(x, y)
+                    && m.is_passable(x + 1, y + 1)
+                    && m.is_passable(x, y + 1) != m.is_passable(x + 1, y)
+            })
+            .count();
+        assert!(steps > 100, "seed {seed}: {steps} staircase steps");
+        assert!(
+            largest_component(&m) as f64 > 0.9 * m.passable_count() as f64,
+            "seed {seed}: ground split"
+        );
+    }
+}

@@ -89,7 +89,8 @@ pub fn is_movingai(name: &str) -> bool {
 }
 
 /// The generated maps of `--generated`, all with seed 1: random obstacles at 10% and
-/// 20%, rooms, a maze and open terrain.
+/// 20%, rooms, a maze, open terrain, and a 2000 × 2000 map of polygons (4 M cells,
+/// rasterised diagonal edges).
 pub fn generated_params() -> Vec<GridParams> {
     let with_density = |family, size, density| GridParams {
         density,
@@ -101,13 +102,14 @@ pub fn generated_params() -> Vec<GridParams> {
         GridParams::new(GridFamily::Rooms, 64, 64, 1),
         GridParams::new(GridFamily::Maze, 33, 33, 1),
         with_density(GridFamily::Terrain, 64, 0.2),
+        with_density(GridFamily::Polygons, 2000, 0.2),
     ]
 }
 
 /// The name of a generated map: family, size, density or room size, seed.
 pub fn generated_name(params: &GridParams) -> String {
     let detail = match params.family {
-        GridFamily::Random | GridFamily::Terrain => {
+        GridFamily::Random | GridFamily::Terrain | GridFamily::Polygons => {
             format!("-d{}", (params.density * 100.0).round())
         }
         GridFamily::Rooms => format!("-r{}", params.room_size),

@@ -49,10 +49,16 @@ pub struct BenchP2pArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
     /// The planners to bench on grid maps: `lazy-prm-star` (the config's planner, with
-    /// `--set`) and `visibility` (exact; its graph is built before the first query and
-    /// timed apart). The exact optimum of every scenario comes from `visibility`
-    /// whichever planners are benched.
-    #[arg(long, value_delimiter = ',', default_values_t = ["lazy-prm-star".to_string(), "visibility".to_string()])]
+    /// `--set`, yaw weight 0), `lazy-prm-star-default-metric` (the same with the
+    /// config's own metric, yaw weight 0.5) and `visibility` (exact; its grid, clearance
+    /// bounds and staircase corners are preprocessing, timed apart; its graph is built
+    /// lazily by the queries, timed with them). The exact optimum of every scenario
+    /// comes from `visibility` whichever planners are benched.
+    #[arg(long, value_delimiter = ',', default_values_t = [
+        "lazy-prm-star".to_string(),
+        "lazy-prm-star-default-metric".to_string(),
+        "visibility".to_string(),
+    ])]
     planners: Vec<String>,
     /// Write the Markdown report here.
     #[arg(long)]
@@ -80,7 +86,8 @@ struct MapResult {
     exact_ratio_worst: f64,
     /// Seconds for all queries (after preprocessing).
     time_s: f64,
-    /// Seconds of preprocessing before the first query (`visibility`: the whole graph).
+    /// Seconds of preprocessing before the first query (`visibility`: the grid, its
+    /// clearance bounds and staircase corners; the graph is built by the queries).
     preprocessing_s: f64,
     roadmap_vertices: u64,
     /// The planner's counters and time breakdown after the last query.
@@ -165,15 +172,22 @@ fn load_bench_map(
     })
 }
 
-/// The bench pipeline: `configs/p2p-grid.toml` with the disc robot, yaw weight 0.
-fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> crate::Result<Pipeline> {
+/// The bench pipeline: `configs/p2p-grid.toml` with the disc robot, yaw weight 0 (or
+/// the config's own metric with `default_metric`).
+fn bench_pipeline(
+    args: &BenchP2pArgs,
+    world: smug_core::World,
+    default_metric: bool,
+) -> crate::Result<Pipeline> {
     // The `smug p2p` disc robot, without the yaw term (grid paths have no heading).
     let mut set = vec![
         "space.type=se2".to_string(),
-        "space.params.rotation_weight=0".to_string(),
         "objective.type=path-length".to_string(),
-        "objective.params.rotation_weight=0".to_string(),
     ];
+    if !default_metric {
+        set.push("space.params.rotation_weight=0".to_string());
+        set.push("objective.params.rotation_weight=0".to_string());
+    }
     set.extend(args.set.iter().cloned());
     set.push(format!("validity.params.radius={}", args.radius));
     let loaded = LoadedConfig::from_text(
@@ -185,7 +199,8 @@ fn bench_pipeline(args: &BenchP2pArgs, world: smug_core::World) -> crate::Result
     Ok(Pipeline::assemble_with_world(&loaded, world)?)
 }
 
-/// The exact planner of the bench pipeline, its whole graph built (timed).
+/// The exact planner of the bench pipeline and its preprocessing time (its graph is
+/// built lazily by the queries).
 fn exact_planner(pipeline: &Pipeline) -> crate::Result<(Visibility, f64)> {
     let states = pipeline
         .state_validity
@@ -196,7 +211,7 @@ fn exact_planner(pipeline: &Pipeline) -> crate::Result<(Visibility, f64)> {
         .ok_or_else(|| crate::error::invalid!("the bench's checker is not a disc on a grid"))?;
     let started = Instant::now();
     let planner = Visibility::new(
-        VisibilityParams { build_all: true },
+        VisibilityParams::default(),
         disc,
         states,
         pipeline.objective.clone(),
@@ -277,10 +292,10 @@ fn run_map(
     scratch: &Path,
 ) -> crate::Result<Vec<MapResult>> {
     let map = load_bench_map(args, map, scen, scratch)?;
-    let pipeline = bench_pipeline(args, map.world.clone())?;
-    let (mut exact, preprocessing_s) = exact_planner(&pipeline)?;
-    // The exact optima, one query at a time (the graph is complete: the exact
-    // planner's own run below is timed the same way).
+    let pipeline = bench_pipeline(args, map.world.clone(), false)?;
+    // The exact optima, one query at a time, from a planner of their own (the
+    // `visibility` row below starts from a fresh one, its graph built by its queries).
+    let (mut exact, _) = exact_planner(&pipeline)?;
     let optima: Vec<Option<f64>> = map
         .queries
         .iter()
@@ -292,9 +307,13 @@ fn run_map(
     let mut results = Vec::new();
     for name in &args.planners {
         results.push(match name.as_str() {
-            "visibility" => run_planner(name, &map, &mut exact, &optima, preprocessing_s)?,
-            "lazy-prm-star" => {
-                let mut pipeline = bench_pipeline(args, map.world.clone())?;
+            "visibility" => {
+                let (mut exact, preprocessing_s) = exact_planner(&pipeline)?;
+                run_planner(name, &map, &mut exact, &optima, preprocessing_s)?
+            }
+            "lazy-prm-star" | "lazy-prm-star-default-metric" => {
+                let default_metric = name != "lazy-prm-star";
+                let mut pipeline = bench_pipeline(args, map.world.clone(), default_metric)?;
                 let planner = pipeline
                     .planner
                     .as_mut()
@@ -302,7 +321,8 @@ fn run_map(
                 run_planner(name, &map, planner.as_mut(), &optima, 0.0)?
             }
             other => crate::error::bail!(
-                "--planners: unknown planner `{other}`; known: lazy-prm-star, visibility"
+                "--planners: unknown planner `{other}`; known: lazy-prm-star, \
+                 lazy-prm-star-default-metric, visibility"
             ),
         });
     }
@@ -344,6 +364,17 @@ pub fn run(args: BenchP2pArgs) -> crate::Result<()> {
     }
     std::fs::remove_dir_all(&scratch).ok();
     let mut report = String::from("# Point-to-point benchmark\n\n");
+    // The command that made the report (a data folder named by its last component).
+    let command: Vec<String> = std::env::args()
+        .skip(1)
+        .map(|a| match (&args.data, Path::new(&a).file_name()) {
+            (Some(dir), Some(name)) if Path::new(&a) == dir.as_path() => {
+                format!("DIR/{}", name.to_string_lossy())
+            }
+            _ => a,
+        })
+        .collect();
+    report += &format!("Made by `smug {}`.\n\n", command.join(" "));
     if let Some(lunar) = &lunar {
         report += &lunar::markdown(lunar);
     }
@@ -369,10 +400,12 @@ fn movingai_folder(args: &BenchP2pArgs) -> crate::Result<Option<PathBuf>> {
 
 fn movingai_markdown(args: &BenchP2pArgs, results: &[MapResult]) -> String {
     let mut md = format!(
-        "## Grid maps\n\n`configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0, \
-         {} scenarios per map. Exact optimum: the `visibility` planner's length with exact \
-         arcs. `visibility` time per query is after preprocessing (its whole graph, \
-         timed apart).\n\n\
+        "## Grid maps\n\n`configs/p2p-grid.toml`{}, disc radius {} cell, yaw weight 0 \
+         (`lazy-prm-star-default-metric`: the config's own metric, yaw weight 0.5; its \
+         length is the path's cost, yaw included), {} scenarios per map. Exact optimum: \
+         the `visibility` planner's length with exact arcs. `visibility` preprocessing: \
+         the grid, its clearance bounds and hidden staircase corners; its time per query \
+         includes building the graph lazily, shared by the map's queries.\n\n\
          | map | planner | solved | paths touching a blocked cell | length / exact optimum, mean | \
          worst | length / optimal octile | ms per query | preprocessing (s) | roadmap vertices |\n\
          |---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",

@@ -123,15 +123,15 @@ impl LazyPrmStar {
         let mut waypoints = disc.corner_waypoints();
         waypoints.extend(disc.corridor_waypoints());
         waypoints.retain(|&[x, y]| self.bounds.contains(x, y));
-        for [x, y] in evenly_spaced(waypoints, self.params.max_samples) {
+        for [x, y] in evenly_spaced(waypoints, self.params.max_corner_vertices) {
             self.insert_sample(Pose2::new(x, y, 0.0));
         }
     }
 }
 
 /// At most `limit` of `items`, evenly spaced through them (all when they fit): a map
-/// with more corners than the sample budget keeps a roadmap the size the budget
-/// allows (the memory check of `max_samples` holds), its corners thinned evenly.
+/// with more corners than their budget (`max_corner_vertices`) keeps a roadmap the
+/// size the budget allows (its memory check holds), its corners thinned evenly.
 fn evenly_spaced<T: Copy>(items: Vec<T>, limit: u64) -> Vec<T> {
     let n = items.len() as u64;
     if n <= limit {

@@ -89,6 +89,7 @@ fn check_roadmap_size(params: &LazyPrmStarParams, memory: MemoryLimit) -> Result
     for (key, count) in [
         ("initial_samples", params.initial_samples),
         ("max_samples", params.max_samples),
+        ("max_corner_vertices", params.max_corner_vertices),
     ] {
         let what = format!("a roadmap of {key} = {count} vertices");
         memory
@@ -292,7 +293,8 @@ impl PointToPointPlanner for LazyPrmStar {
 /// The random stream of the endpoint expansions.
 const EXPANSION_STREAM: &str = "planner-expansion";
 
-fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
+/// LazyPRM* for the pipeline of `ctx`.
+pub(crate) fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
     Ok(LazyPrmStar::new_in(
         params,

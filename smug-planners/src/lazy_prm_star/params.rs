@@ -107,10 +107,15 @@ pub struct LazyPrmStarParams {
     /// vertex beside each convex corner of the blocked cells
     /// ([`DiscOnGrid::corner_waypoints`](smug_core::DiscOnGrid::corner_waypoints)):
     /// shortest paths bend there, so the roadmap holds every door and every side of
-    /// every obstacle before the first sample. At most `max_samples` of them (evenly
-    /// thinned on bigger maps). Other checkers, and curved motion models (a car's
-    /// heading at a corner matters as much as its place): no effect.
+    /// every obstacle before the first sample. At most `max_corner_vertices` of them
+    /// (evenly thinned on bigger maps). Other checkers, and curved motion models (a
+    /// car's heading at a corner matters as much as its place): no effect.
     pub corner_vertices: bool,
+    /// The budget of corner and corridor vertices (`corner_vertices`), apart from the
+    /// queries' `max_samples`: a maze's corners fill its corridors without eating a
+    /// query's samples, and a map with more of them keeps this many, evenly thinned
+    /// (the roadmap's memory check counts them).
+    pub max_corner_vertices: u64,
 }
 
 impl Default for LazyPrmStarParams {
@@ -137,6 +142,7 @@ impl Default for LazyPrmStarParams {
             one_to_many: true,
             one_to_many_density: 4.0,
             corner_vertices: true,
+            max_corner_vertices: 1_000_000,
         }
     }
 }

@@ -147,3 +147,65 @@ fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
     );
     assert_eq!(retried.stats().counters["cut_off_queries"], 0);
 }
+
+/// Free space that says it is a disc of radius 0.1 on a 10 × 10 grid of 1 m cells
+/// with every other cell of every other row blocked (many corners).
+struct Dotted;
+
+impl StateValidityChecker for Dotted {
+    fn is_valid(&self, _: &Pose2) -> bool {
+        true
+    }
+
+    fn disc_on_grid(&self) -> Option<smug_core::DiscOnGrid> {
+        Some(smug_core::DiscOnGrid {
+            radius: 0.1,
+            geometry: smug_core::GridGeometry::new([0.0, 0.0], 1.0, [10, 10]).unwrap(),
+            blocked: (0..100).map(|k| (k / 10) % 2 == 1 && k % 2 == 1).collect(),
+        })
+    }
+}
+
+impl MotionValidator for Dotted {
+    fn is_valid_motion(&self, _: &Pose2, _: &Pose2) -> bool {
+        true
+    }
+
+    fn check_motion(&self, _: &Pose2, _: &Pose2) -> smug_core::MotionCheck {
+        smug_core::MotionCheck::Valid
+    }
+}
+
+#[test]
+fn corner_vertices_have_their_own_budget_not_the_queries_samples() {
+    let waypoints = {
+        let disc = Dotted.disc_on_grid().unwrap();
+        let mut w = disc.corner_waypoints();
+        w.extend(disc.corridor_waypoints());
+        w.len() as u64
+    };
+    assert!(waypoints > 50, "{waypoints} waypoints");
+    let (s, g) = (Pose2::new(0.5, 0.5, 0.0), Pose2::new(9.5, 0.5, 0.0));
+    // A sample budget far below the corners: every corner still joins the roadmap.
+    let params = LazyPrmStarParams {
+        max_samples: 10,
+        ..Default::default()
+    };
+    let mut p = planner_on(params, 1, Dotted).unwrap();
+    p.plan(&s, &g).unwrap();
+    let vertices = p.stats().vertices;
+    assert!(
+        vertices >= waypoints,
+        "{vertices} vertices < {waypoints} waypoints"
+    );
+    // Their own budget thins them.
+    let params = LazyPrmStarParams {
+        max_samples: 10,
+        max_corner_vertices: 20,
+        ..Default::default()
+    };
+    let mut p = planner_on(params, 1, Dotted).unwrap();
+    p.plan(&s, &g).unwrap();
+    let vertices = p.stats().vertices;
+    assert!(vertices <= 20 + 10 + 2, "{vertices} vertices");
+}

@@ -52,6 +52,24 @@ impl Corner {
     /// The angle of normal `n` relative to the quadrant's start, in `[0, π/2]`, or
     /// `None` when `n` points outside the quadrant (beyond a tolerance).
     pub fn relative_angle(&self, n: Pt) -> Option<f64> {
+        // Most normals are far outside: a dot product with the quadrant's bisector
+        // (a bound slightly looser than the tolerance below) spares their atan2.
+        // (q0 is 0, π/2, −π/2 or −π: the bisector's signs.)
+        let (c, s) = if self.q0 == 0.0 {
+            (1.0, 1.0)
+        } else if self.q0 > 0.0 {
+            (-1.0, 1.0)
+        } else if self.q0 > -2.0 {
+            (1.0, -1.0)
+        } else {
+            (-1.0, -1.0)
+        };
+        let len2 = n[0] * n[0] + n[1] * n[1];
+        // cos(π/4 + 1e-6)·√2 = 1 − 1e-6 (to first order): n·(c, s)/√2 against it.
+        let dot = n[0] * c + n[1] * s;
+        if dot < 0.0 || dot * dot < len2 * (1.0 - 2.1e-6) {
+            return None;
+        }
         let mut rel = n[1].atan2(n[0]) - self.q0;
         while rel < -PI {
             rel += TAU;
@@ -83,22 +101,26 @@ pub struct Grid {
     pub corners: Vec<Corner>,
     /// Corner id of each grid vertex (`(ny+1)` rows of `(nx+1)`), `u32::MAX` if none.
     corner_at: Vec<u32>,
+    /// Per cell, a lower bound of its points' clearance (see `clearance_bounds`).
+    pub(super) clearance_bounds: Vec<f32>,
 }
 
 impl Grid {
     /// The grid of `blocked` (row-major, `nx × ny`).
     pub fn new(nx: usize, ny: usize, blocked: Vec<bool>) -> Self {
+        let clearance_bounds = super::clearance::clearance_bounds(nx, ny, &blocked);
         let mut grid = Self {
             nx,
             ny,
             blocked,
+            clearance_bounds,
             corners: Vec::new(),
             corner_at: vec![u32::MAX; (nx + 1) * (ny + 1)],
         };
         for y in 0..=ny as i64 {
             for x in 0..=nx as i64 {
                 let around = [(x - 1, y - 1), (x, y - 1), (x - 1, y), (x, y)];
-                let b: Vec<bool> = around.iter().map(|&(i, j)| grid.blocked(i, j)).collect();
+                let b = around.map(|(i, j)| grid.blocked(i, j));
                 if b.iter().filter(|&&v| v).count() != 1 {
                     continue;
                 }
@@ -161,7 +183,7 @@ impl Grid {
     /// True when every point of the segment `p → q` is at least `r` from every blocked
     /// cell (cells outside the grid included), checked exactly against each cell
     /// within `r` of the segment.
-    pub fn segment_clear(&self, p: Pt, q: Pt, r: f64) -> bool {
+    pub fn segment_clear_exact(&self, p: Pt, q: Pt, r: f64) -> bool {
         // Walk along the major axis; `swap` exchanges x and y.
         let swap = (q[1] - p[1]).abs() > (q[0] - p[0]).abs();
         let (a, b) = if swap {

@@ -8,8 +8,9 @@
 //! them (the tangent visibility graph, exact: no sampling, no discretisation). The
 //! graph is built lazily, corner by corner (the corners a corner may see come from a
 //! conservative shadowcast, each tangent segment's clearance is checked exactly against
-//! the cells near it), and shared by every query of the mission; A* answers one goal,
-//! Dijkstra one start and many goals ([`PointToPointPlanner::plan_many`]).
+//! the cells near it), and shared by every query of the mission; A* answers one goal
+//! and one start with many goals ([`PointToPointPlanner::plan_many`]; the heuristic
+//! is the distance to the nearest goal, Dijkstra beyond 64 goals).
 //!
 //! What is not exact: circles are planned with a radius 10⁻⁷ cell above the robot's
 //! (a margin so that rounding never puts the returned path inside an inflated cell),
@@ -27,8 +28,11 @@
 //! a cell on, arcs can pass near cells other than their corner's and are checked
 //! exactly too (the crossings of the circle with each nearby cell's inflated square).
 
+mod clearance;
 mod geometry;
 mod search;
+mod shadow;
+mod staircase;
 #[cfg(test)]
 mod tests;
 
@@ -52,6 +56,9 @@ pub struct VisibilityParams {
     /// Build the whole tangent graph when the planner is built (timed apart, as
     /// preprocessing) instead of corner by corner as queries reach them.
     pub build_all: bool,
+    /// Keep every convex corner in the graph: no staircase corner is left out until a
+    /// query needs it (a reference for the tests; slower on rasterised diagonals).
+    pub all_corners: bool,
 }
 
 /// A goal the exact search did not reach: it covered everything the start reaches.
@@ -120,7 +127,7 @@ impl Visibility {
         let started = Instant::now();
         let grid = Grid::new(g.size[0], g.size[1], disc.blocked);
         let r = radius + 2.0 * RADIUS_MARGIN;
-        let mut graph = TangentGraph::new(grid, r, radius + RADIUS_MARGIN);
+        let mut graph = TangentGraph::new(grid, r, radius + RADIUS_MARGIN, !params.all_corners);
         if params.build_all {
             graph.build_all();
         }
@@ -302,6 +309,10 @@ impl PointToPointPlanner for Visibility {
             },
             counters: BTreeMap::from([
                 ("corners".to_string(), self.graph.grid.corners.len() as u64),
+                (
+                    "corners_hidden".to_string(),
+                    self.graph.hidden_count() as u64,
+                ),
                 ("corners_built".to_string(), c.corners_built),
                 ("segment_checks".to_string(), c.segment_checks),
                 ("expansions".to_string(), c.expansions),
@@ -312,29 +323,45 @@ impl PointToPointPlanner for Visibility {
     }
 }
 
-fn build_planner(params: VisibilityParams, ctx: &BuildContext) -> Result<Visibility> {
+/// The exact planner for the pipeline of `ctx`: `Ok(Err(refusal))` when it does not
+/// apply (naming the config key), `Err` for any other failure.
+pub(crate) fn build_exact(
+    params: VisibilityParams,
+    ctx: &BuildContext,
+) -> Result<std::result::Result<Visibility, Error>> {
     let space = ctx.space();
     if !space.is_holonomic() {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "space.type",
             "the motion model is curved (a car), not straight holonomic motions",
-        ));
+        )));
     }
     let world = ctx.world()?;
     if world.traversability.is_some() {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "traversability.type",
             "a terrain world (it has a traversability layer); the exact planner plans on flat occupancy maps",
-        ));
+        )));
     }
     let states = ctx.state_validity()?;
     let Some(disc) = states.disc_on_grid() else {
-        return Err(refuse(
+        return Ok(Err(refuse(
             "validity.type",
             "the robot is not a disc on a 2D occupancy map (use `clearance-2d`)",
-        ));
+        )));
     };
-    Visibility::new(params, disc, states, ctx.objective())
+    let objective = ctx.objective();
+    if objective.se2_length_weights().is_none() {
+        return Ok(Err(refuse(
+            "objective.type",
+            "the objective is not the path length on a holonomic space",
+        )));
+    }
+    Visibility::new(params, disc, states, objective).map(Ok)
+}
+
+fn build_planner(params: VisibilityParams, ctx: &BuildContext) -> Result<Visibility> {
+    build_exact(params, ctx)?
 }
 
 smug_core::register_plugin!(

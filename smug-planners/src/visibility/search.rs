@@ -1,5 +1,6 @@
 //! The tangent graph of the `visibility` planner, built lazily corner by corner and
-//! shared by every query, and its exact search (A* for one goal, Dijkstra for many).
+//! shared by every query, and its exact search (A* towards the nearest goal; Dijkstra
+//! for more than 64 goals).
 //!
 //! A shortest path of a disc of radius `r` among blocked grid cells is a chain of
 //! straight segments tangent to the circles of radius `r` around the convex corners of
@@ -13,6 +14,8 @@
 mod build;
 
 use super::geometry::{circle_tangents, dist, point_tangents, Grid, Lane, Pt};
+use super::shadow::Lines;
+use super::staircase::{hidden_corners, Pocket};
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 
@@ -79,6 +82,10 @@ const VIA_CHAIN: Via = u32::MAX;
 /// See [`Via`].
 const VIA_START: Via = 1 << 31;
 
+/// Goals of one query up to which the search is A* towards the nearest (beyond:
+/// Dijkstra, the heuristic's cost per node growing with the goals).
+const MAX_AIMED_GOALS: usize = 64;
+
 /// Angles within this (radians) of an arrival count as at it.
 const REL_TOL: f64 = 1e-12;
 
@@ -128,8 +135,8 @@ struct GoalVia {
 
 /// One query's search: the heap, the goals' costs and how they were reached, the exits.
 struct Search {
-    single: bool,
-    target: Pt,
+    /// The goals the heuristic aims at (none: Dijkstra, for many goals).
+    targets: Vec<Pt>,
     /// Heap ids from this one on are goals (`goal_base + k`).
     goal_base: u32,
     goal_cost: Vec<f64>,
@@ -168,13 +175,19 @@ impl Search {
         }
     }
 
-    /// The heuristic: the straight-line distance to the goal of a one-goal query.
+    /// The heuristic: the straight-line distance to the nearest goal (a minimum of
+    /// consistent heuristics is consistent, and 0 at every goal); 0 with more than
+    /// [`MAX_AIMED_GOALS`] goals.
     fn h(&self, p: Pt) -> f64 {
-        if self.single {
-            let (dx, dy) = (p[0] - self.target[0], p[1] - self.target[1]);
-            (dx * dx + dy * dy).sqrt()
-        } else {
+        let mut best = f64::INFINITY;
+        for t in &self.targets {
+            let (dx, dy) = (p[0] - t[0], p[1] - t[1]);
+            best = best.min(dx * dx + dy * dy);
+        }
+        if self.targets.is_empty() {
             0.0
+        } else {
+            best.sqrt()
         }
     }
 
@@ -265,6 +278,8 @@ impl PartialOrd for Entry {
 pub struct TangentGraph {
     /// The grid.
     pub grid: Grid,
+    /// The grid's bit rows and corner lists, for the shadowcast.
+    lines: Lines,
     /// Radius of the circles (grid units), slightly above the robot's.
     pub r: f64,
     /// Clearance every segment must keep (grid units): the robot's radius plus a margin.
@@ -273,6 +288,10 @@ pub struct TangentGraph {
     /// a cell or more): arcs are then checked too.
     pub big: bool,
     lanes: Vec<Option<Lanes>>,
+    /// Corners in the graph: all but the hidden staircase corners not yet activated.
+    active: Vec<bool>,
+    /// The hidden corners and their pockets (see `staircase`), until activated.
+    hidden: Vec<(u32, Pocket)>,
     /// Every node's departure, corner by corner.
     nodes: Vec<Departure>,
     /// Corner of each node.
@@ -291,10 +310,27 @@ pub struct TangentGraph {
 }
 
 impl TangentGraph {
-    /// The graph of `grid` for circles of radius `r`, segments keeping clearance `r_check`.
-    pub fn new(grid: Grid, r: f64, r_check: f64) -> Self {
+    /// The graph of `grid` for circles of radius `r`, segments keeping clearance `r_check`;
+    /// with `collapse`, hidden staircase corners wait for a query beside them.
+    pub fn new(grid: Grid, r: f64, r_check: f64, collapse: bool) -> Self {
         let n = grid.corners.len();
+        let hidden: Vec<(u32, Pocket)> = if collapse {
+            hidden_corners(&grid, r, r_check)
+                .into_iter()
+                .enumerate()
+                .filter_map(|(c, p)| Some((c as u32, p?)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut active = vec![true; n];
+        for &(c, _) in &hidden {
+            active[c as usize] = false;
+        }
         Self {
+            active,
+            hidden,
+            lines: Lines::new(&grid),
             grid,
             r,
             r_check,
@@ -354,8 +390,12 @@ impl TangentGraph {
             self.exit_query.fill(0);
             self.query = 1;
         }
-        let single = goals.len() == 1;
-        let target = goals[0].0;
+        self.activate_pockets(s, goals);
+        let targets: Vec<Pt> = if goals.len() <= MAX_AIMED_GOALS {
+            goals.iter().map(|g| g.0).collect()
+        } else {
+            Vec::new()
+        };
         // Exits: segments from corners straight to each goal.
         let mut exits: HashMap<u32, Vec<Exit>> = HashMap::new();
         for (k, &(g, clear_g)) in goals.iter().enumerate() {
@@ -371,8 +411,7 @@ impl TangentGraph {
             }
         }
         let mut search = Search {
-            single,
-            target,
+            targets,
             goal_base: u32::MAX - goals.len() as u32,
             goal_cost: vec![f64::INFINITY; goals.len()],
             goal_via: vec![None; goals.len()],

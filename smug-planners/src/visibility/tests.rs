@@ -1,6 +1,7 @@
 //! The exact planner against independent brute force on small random grids.
 
 mod brute;
+mod staircases;
 
 use super::geometry::Grid;
 use super::*;
@@ -101,7 +102,16 @@ fn disc_case(
         return Ok(());
     }
     // The whole graph built first (preprocessing) answers the same.
-    let mut built = planner_with(nx, ny, &blocked, r, VisibilityParams { build_all: true });
+    let mut built = planner_with(
+        nx,
+        ny,
+        &blocked,
+        r,
+        VisibilityParams {
+            build_all: true,
+            ..Default::default()
+        },
+    );
     prop_assert_eq!(&built.plan(&sp, &gp).unwrap(), &outcome);
     let expected = brute_force_disc(&check, s, g, r);
     // The flood fill LazyPRM* proves "no path" with never contradicts a path.
@@ -380,4 +390,54 @@ fn an_arc_through_a_closed_diagonal_gap_is_refused() {
     assert!((optimum - expected).abs() < 1e-7, "{optimum} vs {expected}");
     // Around the far side of (7, 7), well beyond the corner hug (≈ 11.4).
     assert!(optimum > 13.0, "{optimum}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// The run-by-run shadowcast finds every corner beside a cell the cell-by-cell
+    /// shadowcast lights (so every corner a clear segment reaches).
+    #[test]
+    fn run_shadowcast_finds_every_corner_the_cell_shadowcast_finds(
+        (nx, ny, density) in (2usize..140, 2usize..40, 0.0f64..0.5),
+        seed in proptest::collection::vec(any::<u32>(), 140 * 40),
+        s in (0.0f64..1.0, 0.0f64..1.0), snap in 0u8..4,
+    ) {
+        let blocked: Vec<bool> = (0..nx * ny).map(|k| (seed[k] as f64 / u32::MAX as f64) < density).collect();
+        let grid = Grid::new(nx, ny, blocked);
+        let mut s = [s.0 * nx as f64, s.1 * ny as f64];
+        // Sources on grid lines and vertices too (corners are sources).
+        if snap & 1 == 1 { s[0] = s[0].round(); }
+        if snap & 2 == 2 { s[1] = s[1].round(); }
+        let lines = shadow::Lines::new(&grid);
+        let mut fast = std::collections::HashSet::new();
+        lines.visible_corners(s, |c| { fast.insert(c); });
+        let mut missed = Vec::new();
+        grid.visible_cells(s, |i, j| {
+            for (x, y) in [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)] {
+                if let Some(c) = grid.corner_at(x, y) {
+                    if !fast.contains(&c) { missed.push((x, y)); }
+                }
+            }
+        });
+        prop_assert!(missed.is_empty(), "from {:?}: missed corners {:?}", s, missed);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The segment check that jumps over open ground answers as the cell-by-cell one.
+    #[test]
+    fn jumping_segment_check_equals_the_exact_one(
+        (nx, ny, density) in (2usize..90, 2usize..90, 0.0f64..0.05),
+        seed in proptest::collection::vec(any::<u32>(), 90 * 90),
+        s in (-0.05f64..1.05, -0.05f64..1.05), t in (-0.05f64..1.05, -0.05f64..1.05),
+        r in 0.0f64..3.0,
+    ) {
+        let blocked: Vec<bool> = (0..nx * ny).map(|k| (seed[k] as f64 / u32::MAX as f64) < density).collect();
+        let grid = Grid::new(nx, ny, blocked);
+        let (s, t) = ([s.0 * nx as f64, s.1 * ny as f64], [t.0 * nx as f64, t.1 * ny as f64]);
+        prop_assert_eq!(grid.segment_clear(s, t, r), grid.segment_clear_exact(s, t, r));
+    }
 }

@@ -1,12 +1,13 @@
 //! Seeded generators of grid maps in the families path-planning benchmarks use:
 //! random obstacles, rooms joined by one-cell doors, mazes with one-cell corridors and
-//! open terrain with a few large obstacles.
+//! open terrain with a few large obstacles, and open ground with convex polygons.
 //!
 //! Every generator draws from one ChaCha8 stream ([`smug_core::rng::stage_rng`]) seeded
 //! by [`GridParams::seed`], so a seed gives the same map bit for bit on every platform.
 //! Maps are [`MovingAiMap`]s: write them with [`crate::movingai::write_map`].
 
 mod maze;
+mod polygons;
 mod random;
 mod rooms;
 mod terrain;
@@ -31,11 +32,20 @@ pub enum GridFamily {
     Maze,
     /// Open ground with a few large discs and rectangles covering about `density` of it.
     Terrain,
+    /// Open ground with random convex polygons (rasterised: their diagonal edges are
+    /// staircases) covering about `density` of it.
+    Polygons,
 }
 
 impl GridFamily {
     /// Every family, in documentation order.
-    pub const ALL: [GridFamily; 4] = [Self::Random, Self::Rooms, Self::Maze, Self::Terrain];
+    pub const ALL: [GridFamily; 5] = [
+        Self::Random,
+        Self::Rooms,
+        Self::Maze,
+        Self::Terrain,
+        Self::Polygons,
+    ];
 
     /// The family's name on the command line and in file names.
     pub fn name(self) -> &'static str {
@@ -44,6 +54,7 @@ impl GridFamily {
             Self::Rooms => "rooms",
             Self::Maze => "maze",
             Self::Terrain => "terrain",
+            Self::Polygons => "polygons",
         }
     }
 
@@ -51,7 +62,7 @@ impl GridFamily {
     pub fn default_density(self) -> f64 {
         match self {
             Self::Random => 0.1,
-            Self::Terrain => 0.2,
+            Self::Terrain | Self::Polygons => 0.2,
             Self::Rooms | Self::Maze => 0.0,
         }
     }
@@ -85,7 +96,7 @@ pub struct GridParams {
     pub height: usize,
     /// Seed of every random choice.
     pub seed: u64,
-    /// Blocked share of the cells, in `[0, 1)` (`random` and `terrain` only).
+    /// Blocked share of the cells, in `[0, 1)` (`random`, `terrain` and `polygons` only).
     pub density: f64,
     /// Interior side of a room in cells, ≥ 1 (`rooms` only).
     pub room_size: usize,
@@ -112,7 +123,7 @@ impl GridParams {
 #[derive(Debug, thiserror::Error)]
 pub enum GridGenError {
     /// The family name is not one of [`GridFamily::ALL`].
-    #[error("unknown map family `{0}` (expected random, rooms, maze or terrain)")]
+    #[error("unknown map family `{0}` (expected random, rooms, maze, terrain or polygons)")]
     UnknownFamily(String),
     /// A parameter is out of its domain.
     #[error("{0}")]
@@ -129,6 +140,7 @@ pub fn generate(params: &GridParams) -> Result<MovingAiMap, GridGenError> {
         GridFamily::Rooms => rooms::generate(w, h, params.room_size, &mut rng),
         GridFamily::Maze => maze::generate(w, h, &mut rng),
         GridFamily::Terrain => terrain::generate(w, h, params.density, &mut rng),
+        GridFamily::Polygons => polygons::generate(w, h, params.density, &mut rng),
     })
 }
 

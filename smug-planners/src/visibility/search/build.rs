@@ -35,15 +35,11 @@ impl TangentGraph {
             self.stamp = 1;
         }
         let mut found = Vec::new();
-        let (grid, stamps, stamp) = (&self.grid, &mut self.stamp_corner, self.stamp);
-        grid.visible_cells(s, |i, j| {
-            for (x, y) in [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)] {
-                if let Some(c) = grid.corner_at(x, y) {
-                    if stamps[c as usize] != stamp && Some(c) != skip {
-                        stamps[c as usize] = stamp;
-                        found.push(c);
-                    }
-                }
+        let (stamps, stamp, active) = (&mut self.stamp_corner, self.stamp, &self.active);
+        self.lines.visible_corners(s, |c| {
+            if stamps[c as usize] != stamp && Some(c) != skip && active[c as usize] {
+                stamps[c as usize] = stamp;
+                found.push(c);
             }
         });
         found
@@ -144,16 +140,18 @@ impl TangentGraph {
         let g = gcd(dx.unsigned_abs(), dy.unsigned_abs()) as i64;
         (1..g).any(|k| {
             let (x, y) = (a[0] as i64 + k * dx / g, a[1] as i64 + k * dy / g);
-            self.grid
-                .corner_at(x, y)
-                .is_some_and(|m| self.grid.corners[m as usize].relative_angle(n).is_some())
+            self.grid.corner_at(x, y).is_some_and(|m| {
+                self.active[m as usize] && self.grid.corners[m as usize].relative_angle(n).is_some()
+            })
         })
     }
 
     /// Builds every corner, and every node's successor along its segment.
     pub fn build_all(&mut self) {
         for a in 0..self.grid.corners.len() as u32 {
-            self.build_corner(a);
+            if self.active[a as usize] {
+                self.build_corner(a);
+            }
         }
         for id in 0..self.nodes.len() as u32 {
             self.successor(id);
@@ -185,5 +183,64 @@ impl TangentGraph {
         self.slot[i].succ = succ;
         self.slot[i].succ_cost = cost;
         succ
+    }
+}
+
+impl TangentGraph {
+    /// Hidden staircase corners still out of the graph.
+    pub fn hidden_count(&self) -> usize {
+        self.hidden.len()
+    }
+
+    /// Activates the hidden corners whose pocket may hold `s` or a goal (a shortest
+    /// path touches a hidden corner only from or to a point of its pocket).
+    pub(super) fn activate_pockets(&mut self, s: Pt, goals: &[(Pt, f64)]) {
+        let r = self.r;
+        let corners = &self.grid.corners;
+        let wake: Vec<u32> = self
+            .hidden
+            .iter()
+            .filter(|(c, pocket)| {
+                let at = corners[*c as usize].at;
+                pocket.may_hold(at, s, r) || goals.iter().any(|g| pocket.may_hold(at, g.0, r))
+            })
+            .map(|&(c, _)| c)
+            .collect();
+        if wake.is_empty() {
+            return;
+        }
+        self.hidden.retain(|(c, _)| !wake.contains(c));
+        for &c in &wake {
+            self.active[c as usize] = true;
+        }
+        for &c in &wake {
+            self.activate(c);
+        }
+    }
+
+    /// Builds the newly active corner `c`, and builds again every built corner it has
+    /// a tangent with (tangents are symmetric), so that their lanes hold it; nodes
+    /// arriving at a rebuilt corner find their successor again.
+    fn activate(&mut self, c: u32) {
+        self.lanes[c as usize] = None;
+        self.build_corner(c);
+        let range = self.lanes(c);
+        let ids = range.range(Lane::Ccw).chain(range.range(Lane::Cw));
+        let mut others: Vec<u32> = ids.map(|id| self.nodes[id].to).collect();
+        others.sort_unstable();
+        others.dedup();
+        for b in others {
+            if self.lanes[b as usize].is_none() {
+                continue;
+            }
+            self.lanes[b as usize] = None;
+            self.build_corner(b);
+            for slot in &mut self.slot {
+                if slot.arrive_at == b {
+                    slot.succ = SUCC_UNSET;
+                    slot.succ_cost = f64::INFINITY;
+                }
+            }
+        }
     }
 }
