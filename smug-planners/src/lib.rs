@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod auto;
+pub mod grid_disc;
 pub mod lattice;
 pub mod lazy_prm_star;
 pub mod nn;

@@ -27,4 +27,4 @@ pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionError, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
 pub use traversability::{CellRect, TraversabilityEstimator};
-pub use validity::{Counters, DiscOnGrid, EndpointFault, FreeRegions, StateValidityChecker};
+pub use validity::{Counters, DiscOnGrid, EndpointFault, StateValidityChecker};

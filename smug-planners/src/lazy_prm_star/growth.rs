@@ -120,8 +120,8 @@ impl LazyPrmStar {
         let Some(disc) = self.states.disc_on_grid() else {
             return;
         };
-        let mut waypoints = disc.corner_waypoints();
-        waypoints.extend(disc.corridor_waypoints());
+        let mut waypoints = crate::grid_disc::corner_waypoints(&disc);
+        waypoints.extend(crate::grid_disc::corridor_waypoints(&disc));
         waypoints.retain(|&[x, y]| self.bounds.contains(x, y));
         for [x, y] in evenly_spaced(waypoints, self.params.max_corner_vertices) {
             self.insert_sample(Pose2::new(x, y, 0.0));

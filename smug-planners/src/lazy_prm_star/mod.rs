@@ -32,16 +32,16 @@ use self::checks::{timed_state_check, Checks, CountedMotions, Counts};
 use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 pub use self::params::{LazyPrmStarParams, SearchMode};
+use crate::grid_disc::FreeRegions;
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use rayon::prelude::*;
 use smug_core::pose::angle_distance;
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    Bounds2, Budget, BuildContext, Deadline, Error, FreeRegions, InformedSet, MemoryLimit,
-    MotionValidator, NoPathReason, Objective, Path, PlannerOutcome, PlannerStats,
-    PointToPointPlanner, Pose2, Proof, Result, RunContext, Sampler, StateSpace,
-    StateValidityChecker, Termination,
+    Bounds2, Budget, BuildContext, Deadline, Error, InformedSet, MemoryLimit, MotionValidator,
+    NoPathReason, Objective, Path, PlannerOutcome, PlannerStats, PointToPointPlanner, Pose2, Proof,
+    Result, RunContext, Sampler, StateSpace, StateValidityChecker, Termination,
 };
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::atomic::Ordering::Relaxed;

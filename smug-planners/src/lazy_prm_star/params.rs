@@ -105,7 +105,7 @@ pub struct LazyPrmStarParams {
     pub one_to_many_density: f64,
     /// For a disc on a grid (a checker that says so), the roadmap starts with one
     /// vertex beside each convex corner of the blocked cells
-    /// ([`DiscOnGrid::corner_waypoints`](smug_core::DiscOnGrid::corner_waypoints)):
+    /// ([`corner_waypoints`](crate::grid_disc::corner_waypoints)):
     /// shortest paths bend there, so the roadmap holds every door and every side of
     /// every obstacle before the first sample. At most `max_corner_vertices` of them
     /// (evenly thinned on bigger maps). Other checkers, and curved motion models (a

@@ -180,8 +180,8 @@ impl MotionValidator for Dotted {
 fn corner_vertices_have_their_own_budget_not_the_queries_samples() {
     let waypoints = {
         let disc = Dotted.disc_on_grid().unwrap();
-        let mut w = disc.corner_waypoints();
-        w.extend(disc.corridor_waypoints());
+        let mut w = crate::grid_disc::corner_waypoints(&disc);
+        w.extend(crate::grid_disc::corridor_waypoints(&disc));
         w.len() as u64
     };
     assert!(waypoints > 50, "{waypoints} waypoints");

@@ -115,7 +115,7 @@ fn disc_case(
     prop_assert_eq!(&built.plan(&sp, &gp).unwrap(), &outcome);
     let expected = brute_force_disc(&check, s, g, r);
     // The flood fill LazyPRM* proves "no path" with never contradicts a path.
-    let regions = smug_core::FreeRegions::new(&disc(nx, ny, &blocked, r));
+    let regions = crate::grid_disc::FreeRegions::new(&disc(nx, ny, &blocked, r));
     prop_assert!(
         expected.is_none() || !regions.disconnected(&sp, &gp),
         "free-cell components separate a connected pair"
