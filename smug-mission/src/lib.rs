@@ -13,6 +13,7 @@ mod dead_ends;
 pub mod evaluation;
 mod joint;
 mod layout;
+mod lazy;
 pub mod post_process;
 mod replan;
 mod run;
