@@ -36,7 +36,7 @@ pub struct BenchModesArgs {
     #[arg(long, value_delimiter = ',', default_value = "full,lazy,joint")]
     modes: Vec<String>,
     /// A polygon map in the CRL `MAP_POINTS_CITY_POINTS` text format for the `data`
-    /// and `data-open` missions (rasterised at one map unit per cell, 2000 × 2000).
+    /// and `data-open` missions (rasterised to 2000 × 2000 square cells over its border).
     #[arg(long)]
     data: Option<PathBuf>,
     /// Override a config key (every run, after the mission's and the mode's overrides).

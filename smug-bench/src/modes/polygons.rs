@@ -1,6 +1,6 @@
 //! Polygon maps for `smug bench modes`: generated (seeded star-shaped polygons on a
 //! 2000 × 2000 cell map, cities in the free space) or read from a CRL
-//! `MAP_POINTS_CITY_POINTS` text file (`--data`), rasterised at one map unit per cell
+//! `MAP_POINTS_CITY_POINTS` text file (`--data`), rasterised to 2000 × 2000 square cells
 //! into a world for a disc robot: one PoI per city, facing east.
 
 use crate::error::{bail, ResultExt as _};
@@ -37,6 +37,10 @@ pub struct PolygonMap {
     pub start: usize,
     /// The end city of an open path, as the file gives it.
     pub end: Option<usize>,
+    /// Where the raster's corner cell starts, map units.
+    pub origin: [f64; 2],
+    /// The raster's cell side, map units.
+    pub cell: f64,
 }
 
 /// A seeded map of [`OBSTACLES`] star-shaped polygons (5 to 8 corners, 60 to 180
@@ -74,6 +78,8 @@ pub fn generated(targets: usize, seed: u64) -> crate::Result<PolygonMap> {
         cities: Vec::new(),
         start: 0,
         end: None,
+        origin: [0.0, 0.0],
+        cell: 1.0,
     };
     let blocked = rasterise(&map);
     let clear = |x: usize, y: usize| {
@@ -169,6 +175,22 @@ pub fn read_crl(path: &Path) -> crate::Result<PolygonMap> {
         }
     }
     let cities: Vec<[f64; 2]> = cities.into_iter().map(|c| c.1).collect();
+    // The raster covers the border (else every corner and city), square.
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let outline: Vec<[f64; 2]> = match &border {
+        Some(border) => border.clone(),
+        None => obstacles.iter().flatten().chain(&cities).copied().collect(),
+    };
+    for p in &outline {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let cell = (hi[0] - lo[0]).max(hi[1] - lo[1]) / SIDE as f64;
+    if !(cell.is_finite() && cell > 0.0) {
+        bail!("{}: the map has no extent", path.display());
+    }
     if cities.len() < 2 || start >= cities.len() || end.is_some_and(|e| e >= cities.len()) {
         bail!(
             "{}: needs two cities or more, and a start and end among them",
@@ -184,6 +206,8 @@ pub fn read_crl(path: &Path) -> crate::Result<PolygonMap> {
         cities,
         start,
         end,
+        origin: lo,
+        cell,
     })
 }
 
@@ -205,7 +229,13 @@ fn inside(polygon: &[[f64; 2]], p: [f64; 2]) -> bool {
 /// is inside an obstacle or outside the border.
 fn rasterise(map: &PolygonMap) -> Vec<bool> {
     let mut blocked = vec![false; SIDE * SIDE];
-    let centre = |i: usize, j: usize| [i as f64 + 0.5, j as f64 + 0.5];
+    let [x0, y0] = map.origin;
+    let centre = |i: usize, j: usize| {
+        [
+            x0 + (i as f64 + 0.5) * map.cell,
+            y0 + (j as f64 + 0.5) * map.cell,
+        ]
+    };
     if let Some(border) = &map.border {
         for j in 0..SIDE {
             for i in 0..SIDE {
@@ -221,11 +251,12 @@ fn rasterise(map: &PolygonMap) -> Vec<bool> {
                 hi[k] = hi[k].max(c[k]);
             }
         }
-        let cells = |lo: f64, hi: f64| {
+        let cells = |lo: f64, hi: f64, origin: f64| {
+            let (lo, hi) = ((lo - origin) / map.cell, (hi - origin) / map.cell);
             (lo.floor().max(0.0) as usize)..(hi.ceil().max(0.0) as usize).min(SIDE)
         };
-        for j in cells(lo[1], hi[1]) {
-            for i in cells(lo[0], hi[0]) {
+        for j in cells(lo[1], hi[1], y0) {
+            for i in cells(lo[0], hi[0], x0) {
                 if inside(polygon, centre(i, j)) {
                     blocked[j * SIDE + i] = true;
                 }
@@ -240,7 +271,7 @@ fn rasterise(map: &PolygonMap) -> Vec<bool> {
 /// to the file's end city (`open`, when it names one).
 pub fn world(map: &PolygonMap, open: bool) -> crate::Result<World> {
     let blocked = rasterise(map);
-    let geometry = GridGeometry::new([0.0, 0.0], 1.0, [SIDE, SIDE])
+    let geometry = GridGeometry::new(map.origin, map.cell, [SIDE, SIDE])
         .map_err(|e| crate::error::invalid!("{}: {e}", map.name))?;
     let elevation = GridLayer::from_fn(
         geometry,
@@ -309,6 +340,7 @@ mod tests {
         assert_eq!((map.start, map.end), (0, Some(1)));
         assert_eq!(map.obstacles.len(), 1);
         let blocked = rasterise(&map);
+        assert_eq!((map.origin, map.cell), ([0.0, 0.0], 1.0));
         assert!(blocked[1000 * SIDE + 1000], "inside the triangle");
         assert!(!blocked[100 * SIDE + 100]);
         let open = world(&map, true).unwrap();

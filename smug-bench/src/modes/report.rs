@@ -227,7 +227,7 @@ fn intro(missions: &[&Mission], modes: &[&Mode], seeds: u64, set: &[String]) -> 
             };
             let _ = writeln!(
                 md,
-                "- `{}`: {}: {source}, rasterised to 2000 × 2000 cells of 1 m, one PoI \
+                "- `{}`: {}: {source}, rasterised to 2000 × 2000 cells (of 1 m on a generated map), one PoI \
                  per city; `configs/p2p-grid.toml` with the `auto` sequencer, the `idp` \
                  selector and `{}`",
                 mission.name,
