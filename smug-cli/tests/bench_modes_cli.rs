@@ -15,7 +15,7 @@ fn positive(row: &serde_json::Value, key: &str) -> f64 {
 }
 
 #[test]
-fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
+fn modes_bench_on_lunar_writes_every_mode_and_the_differences() {
     let dir = scratch_dir("cli-test-bench-modes", "lunar");
     let out = dir.join("r.md");
     let run = smug(&[
@@ -36,8 +36,10 @@ fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
         "| lunar 13×10 | sequential, full matrix | 1 | 0 |",
         "| lunar 13×10 | sequential, lazy matrix | 1 | 0 |",
         "| lunar 13×10 | joint, auto | 1 | 0 |",
-        "| lunar 13×10 | full | 1 |",
-        "| lunar 13×10 | lazy | 1 |",
+        "| lunar 13×10 | joint − full | 1 |",
+        "| lunar 13×10 | joint − lazy | 1 |",
+        "| lunar 13×10 | lazy − full | 1 |",
+        "Command: `smug bench modes --missions lunar",
     ] {
         assert!(report.contains(row), "`{row}` missing from:\n{report}");
     }
@@ -65,8 +67,8 @@ fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
             positive(row, key);
         }
     }
-    let differences = json["joint_differences"].as_array().unwrap();
-    assert_eq!(differences.len(), 2, "{json}");
+    let differences = json["differences"].as_array().unwrap();
+    assert_eq!(differences.len(), 3, "{json}");
     for d in differences {
         assert!(d["mean"].as_f64().unwrap().is_finite(), "{d}");
         assert_eq!(d["per_seed"].as_array().unwrap().len(), 1, "{d}");
@@ -76,7 +78,25 @@ fn modes_bench_on_lunar_writes_every_mode_and_the_joint_differences() {
 #[test]
 fn modes_bench_with_an_unknown_mode_is_exit_2_naming_it() {
     let run = smug(&["bench", "modes", "--modes", "full,bogus", "--runs", "1"]);
-    assert_bad_input(&run, &["bogus", "--modes", "full, lazy, joint"]);
+    assert_bad_input(
+        &run,
+        &["bogus", "--modes", "full, lazy, lazy-unsettled, joint"],
+    );
+}
+
+#[test]
+fn modes_bench_on_the_data_map_without_data_is_exit_2_naming_the_flag() {
+    let run = smug(&[
+        "bench",
+        "modes",
+        "--missions",
+        "data",
+        "--modes",
+        "lazy",
+        "--runs",
+        "1",
+    ]);
+    assert_bad_input(&run, &["--data"]);
 }
 
 #[test]

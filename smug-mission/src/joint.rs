@@ -5,8 +5,8 @@
 //! planned legs only. With an exact GTSP solver the result is optimal for the planned
 //! costs (IDP's argument applied to the whole problem).
 
+use crate::lazy::{lazy_solve, tour_legs as legs};
 use crate::oracle::PathOracle;
-use crate::sequential::{lazy_solve, tour_legs as legs};
 use smug_core::error::Result;
 use smug_core::stages::{Clusters, Selection, Sequencer, TourKind};
 
@@ -41,6 +41,7 @@ pub(super) fn joint_tour(
         &nodes,
         kind,
         true,
+        false,
         |matrix, previous| match previous {
             Some(previous) => sequencer.solve_clusters_from(matrix, &clusters, kind, previous),
             None => sequencer.solve_clusters(matrix, &clusters, kind),

@@ -14,6 +14,7 @@ mod dead_ends;
 pub mod evaluation;
 mod joint;
 mod layout;
+mod lazy;
 pub mod oracle;
 pub mod post_process;
 mod replan;

@@ -144,6 +144,7 @@ fn order_then_select(
         targets,
         options.representative,
         options.sequencing_costs,
+        options.refine_legs,
     )?;
     *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
     let t = Instant::now();

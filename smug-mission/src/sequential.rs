@@ -2,6 +2,7 @@
 //! costs between one representative pose per target (full or lazy cost matrix).
 
 use crate::layout::Layout;
+use crate::lazy::lazy_solve;
 use crate::oracle::PathOracle;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
@@ -28,7 +29,10 @@ fn representative(
     layout.pois[target][best]
 }
 
-/// The visiting order of `targets` (indices into the mission).
+/// The visiting order of `targets` (indices into the mission). A lazy matrix
+/// (`"lazy"` costs) with `refine_legs` refines the early legs that decide the order
+/// ([`lazy_solve`]'s `settle`).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn sequence(
     pipeline: &Pipeline,
     oracle: &mut PathOracle,
@@ -37,6 +41,7 @@ pub(super) fn sequence(
     targets: &[usize],
     rule: Representative,
     costs: SequencingCosts,
+    refine_legs: bool,
 ) -> Result<Vec<usize>> {
     let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
         stage: "plan".into(),
@@ -59,7 +64,8 @@ pub(super) fn sequence(
         TourKind::Closed
     };
     let tour = if fills_lazily(oracle, costs) {
-        lazy_tour(sequencer.as_ref(), oracle, &nodes, kind)?
+        let settle = costs == SequencingCosts::Lazy && refine_legs;
+        lazy_tour(sequencer.as_ref(), oracle, &nodes, kind, settle)?
     } else {
         sequencer.solve(&full_matrix(oracle, &nodes)?, kind)?
     };
@@ -71,7 +77,7 @@ pub(super) fn sequence(
         .collect())
 }
 
-/// Whether the matrix is filled lazily ([`lazy_tour`]): with `"lazy"` costs, and with
+/// Whether the matrix is filled lazily ([`lazy_tour`]): with lazy costs, and with
 /// `"full"` costs on an oracle that serves answers kept from earlier missions (a
 /// [`MissionSession`](crate::MissionSession)'s replan). There the paths between the
 /// targets are known already, and the pairs it does not know (from the robot's new
@@ -81,7 +87,7 @@ pub(super) fn sequence(
 /// or lower bounds, whose own legs are all planned, is optimal on the planned costs),
 /// from a few paths instead of one per target.
 fn fills_lazily(oracle: &PathOracle, costs: SequencingCosts) -> bool {
-    costs == SequencingCosts::Lazy || oracle.has_known_answers()
+    costs != SequencingCosts::Full || oracle.has_known_answers()
 }
 
 /// Path costs between every pair of `nodes` (each pair planned once when the oracle is
@@ -116,90 +122,18 @@ pub(super) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<Co
 
 /// The tour over `nodes` on planned costs where known and lower bounds elsewhere,
 /// re-solved after planning its unplanned legs until it uses planned legs only (or a
-/// planned leg has no path: then the selection finds out which target is unreachable).
+/// planned leg has no path: then the selection finds out which target is unreachable);
+/// with `settle`, until refining the early legs cannot change the order either.
 fn lazy_tour(
     sequencer: &dyn Sequencer,
     oracle: &mut PathOracle,
     nodes: &[usize],
     kind: TourKind,
+    settle: bool,
 ) -> Result<Tour> {
-    lazy_solve(oracle, nodes, kind, false, |matrix, _| {
+    lazy_solve(oracle, nodes, kind, false, settle, |matrix, _| {
         sequencer.solve(matrix, kind)
     })
-}
-
-/// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
-/// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
-/// legs, repeat until the tour uses planned legs only (or one of them has no path).
-///
-/// With `warm`, each round is given the previous round's tour to start from; a warm
-/// round that ends on planned legs only is checked by one solve from scratch of the
-/// same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
-pub(super) fn lazy_solve(
-    oracle: &mut PathOracle,
-    nodes: &[usize],
-    kind: TourKind,
-    warm: bool,
-    mut solve: impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
-) -> Result<Tour> {
-    let mut previous: Option<Tour> = None;
-    loop {
-        let matrix = lazy_matrix(oracle, nodes)?;
-        let mut tour = solve(&matrix, previous.as_ref())?;
-        if previous.is_some() && unplanned_legs(oracle, nodes, &tour, kind).is_empty() {
-            let cold = solve(&matrix, None)?;
-            let cost = |t: &Tour| matrix.tour_cost(&t.order, kind);
-            if cost(&cold) >= cost(&tour) * (1.0 - 1e-9) {
-                return Ok(tour);
-            }
-            tour = cold;
-        }
-        let unplanned = unplanned_legs(oracle, nodes, &tour, kind);
-        if unplanned.is_empty() {
-            return Ok(tour);
-        }
-        let mut dead_end = false;
-        for (a, b) in unplanned {
-            dead_end |= !oracle.cost(a, b)?.is_finite();
-        }
-        if dead_end {
-            return Ok(tour);
-        }
-        previous = warm.then_some(tour);
-    }
-}
-
-/// The matrix of planned costs where known and lower bounds elsewhere.
-fn lazy_matrix(oracle: &PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
-    CostMatrix::from_fn_within(nodes.len(), oracle.run().memory, |i, j| {
-        if i == j {
-            0.0
-        } else {
-            oracle.cost_or_bound(nodes[i], nodes[j])
-        }
-    })
-}
-
-/// The legs of `tour` (as oracle index pairs) not planned yet.
-fn unplanned_legs(
-    oracle: &PathOracle,
-    nodes: &[usize],
-    tour: &Tour,
-    kind: TourKind,
-) -> Vec<(usize, usize)> {
-    tour_legs(tour, kind)
-        .map(|(a, b)| (nodes[a], nodes[b]))
-        .filter(|&(a, b)| !oracle.is_planned(a, b))
-        .collect()
-}
-
-/// The legs `(from, to)` of a tour, the return leg of a closed tour included.
-pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
-    let closing = match kind {
-        TourKind::Closed => tour.order.last().map(|&last| (last, tour.order[0])),
-        TourKind::OpenTo(_) => None,
-    };
-    tour.order.windows(2).map(|w| (w[0], w[1])).chain(closing)
 }
 
 #[cfg(test)]
@@ -346,7 +280,7 @@ pub(super) mod tests {
             let (mut full_oracle, nodes) = oracle(&poses, detours.clone());
             let full = Exhaustive.solve(&full_matrix(&mut full_oracle, &nodes).unwrap(), kind).unwrap();
             let (mut lazy_oracle, nodes) = oracle(&poses, detours);
-            let lazy = lazy_tour(&Exhaustive, &mut lazy_oracle, &nodes, kind).unwrap();
+            let lazy = lazy_tour(&Exhaustive, &mut lazy_oracle, &nodes, kind, false).unwrap();
             let true_cost = full_matrix(&mut full_oracle, &nodes).unwrap().tour_cost(&lazy.order, kind);
             prop_assert!((true_cost - full.cost).abs() < 1e-9, "lazy {true_cost} vs full {}", full.cost);
             prop_assert!((lazy.cost - true_cost).abs() < 1e-9, "the lazy tour's legs are all planned");
@@ -375,7 +309,7 @@ pub(super) mod tests {
             let (warm, nodes) = oracle(&poses, detours);
             let mut warm = warm.with_known(earlier.take_known_answers());
             prop_assert!(fills_lazily(&warm, SequencingCosts::Full));
-            let tour = lazy_tour(&Exhaustive, &mut warm, &nodes, kind).unwrap();
+            let tour = lazy_tour(&Exhaustive, &mut warm, &nodes, kind, false).unwrap();
             let true_cost = full_matrix(&mut full_oracle, &nodes).unwrap().tour_cost(&tour.order, kind);
             prop_assert!((true_cost - full.cost).abs() < 1e-9, "warm {true_cost} vs full {}", full.cost);
             let row = n as u64 - 1;

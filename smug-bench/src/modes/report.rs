@@ -1,7 +1,7 @@
 //! `smug bench modes`' summaries (per mission and mode; joint minus sequential per
 //! seed) and its Markdown report.
 
-use super::runs::{Mission, Mode, Run};
+use super::runs::{Mission, Mode, Polygons, Run, POLYGON_SET};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -26,21 +26,27 @@ pub struct ModeRow {
     pub mean_planning_s: Option<f64>,
 }
 
-/// Joint minus a sequential mode on one mission, per seed where both planned.
+/// One mode minus another on one mission, per seed where both planned (joint minus
+/// each sequential mode, lazy minus full).
 #[derive(Debug, Serialize)]
-pub struct JointDifference {
+pub struct Difference {
     /// The mission's name.
     pub mission: String,
-    /// The sequential mode's name (`full` or `lazy`).
+    /// The mode whose cost comes first (`joint` or `lazy`).
+    pub mode: String,
+    /// The mode subtracted (`full` or `lazy`).
     pub against: String,
-    /// `(seed, joint cost − the other mode's cost)`.
+    /// `(seed, the mode's cost − the other mode's cost)`.
     pub per_seed: Vec<(u64, f64)>,
     /// Mean difference.
     pub mean: Option<f64>,
-    /// Largest difference (joint's worst showing).
+    /// Largest difference (the mode's worst showing).
     pub worst: Option<f64>,
-    /// Seeds on which joint is strictly cheaper.
-    pub joint_cheaper: usize,
+    /// Seeds on which the mode is strictly cheaper.
+    pub cheaper: usize,
+    /// Seeds on which both chose the same target order (or, on a closed tour, the same
+    /// order backwards).
+    pub same_order: usize,
 }
 
 /// Everything the report shows besides the failures.
@@ -48,8 +54,9 @@ pub struct JointDifference {
 pub struct Summary {
     /// One row per mission and mode.
     pub modes: Vec<ModeRow>,
-    /// Joint against each sequential mode, per mission (when joint and it ran).
-    pub joint_differences: Vec<JointDifference>,
+    /// Joint against each sequential mode and lazy against full, per mission (when
+    /// both ran).
+    pub differences: Vec<Difference>,
 }
 
 impl Summary {
@@ -62,16 +69,20 @@ impl Summary {
             for mode in modes {
                 rows.push(mode_row(mission.name, mode.name, runs));
             }
-            for against in ["full", "lazy"]
-                .into_iter()
-                .filter(|m| has("joint") && has(m))
-            {
-                differences.push(joint_difference(mission.name, against, runs));
+            for (mode, against) in [
+                ("joint", "full"),
+                ("joint", "lazy"),
+                ("lazy", "full"),
+                ("lazy-unsettled", "full"),
+            ] {
+                if has(mode) && has(against) {
+                    differences.push(difference(mission, mode, against, runs));
+                }
             }
         }
         Self {
             modes: rows,
-            joint_differences: differences,
+            differences,
         }
     }
 }
@@ -105,25 +116,35 @@ fn mode_row(mission: &str, mode: &str, runs: &[Run]) -> ModeRow {
     }
 }
 
-fn cost_of(runs: &[Run], mission: &str, mode: &str, seed: u64) -> Option<f64> {
+fn run_of<'a>(runs: &'a [Run], mission: &str, mode: &str, seed: u64) -> Option<&'a Run> {
     runs.iter()
-        .find(|r| r.mission == mission && r.mode == mode && r.seed == seed)
-        .and_then(|r| r.cost)
+        .find(|r| r.mission == mission && r.mode == mode && r.seed == seed && r.cost.is_some())
 }
 
-fn joint_difference(mission: &str, against: &str, runs: &[Run]) -> JointDifference {
-    let per_seed: Vec<(u64, f64)> = runs
+fn difference(mission: &Mission, mode: &str, against: &str, runs: &[Run]) -> Difference {
+    let closed = !matches!(mission.polygons, Some(Polygons::Data { open: true }));
+    let pairs: Vec<(&Run, &Run)> = runs
         .iter()
-        .filter(|r| r.mission == mission && r.mode == "joint")
-        .filter_map(|r| Some((r.seed, r.cost? - cost_of(runs, mission, against, r.seed)?)))
+        .filter(|r| r.mission == mission.name && r.mode == mode && r.cost.is_some())
+        .filter_map(|r| Some((r, run_of(runs, mission.name, against, r.seed)?)))
         .collect();
+    let per_seed: Vec<(u64, f64)> = pairs
+        .iter()
+        .filter_map(|(r, o)| Some((r.seed, r.cost? - o.cost?)))
+        .collect();
+    let same = |a: &[String], b: &[String]| a == b || (closed && a.iter().eq(b.iter().rev()));
     let diffs: Vec<f64> = per_seed.iter().map(|&(_, d)| d).collect();
-    JointDifference {
-        mission: mission.into(),
+    Difference {
+        mission: mission.name.into(),
+        mode: mode.into(),
         against: against.into(),
         mean: mean(&diffs),
         worst: max(&diffs),
-        joint_cheaper: diffs.iter().filter(|&&d| d < 0.0).count(),
+        cheaper: diffs.iter().filter(|&&d| d < 0.0).count(),
+        same_order: pairs
+            .iter()
+            .filter(|(r, o)| same(&r.order, &o.order))
+            .count(),
         per_seed,
     }
 }
@@ -194,6 +215,27 @@ fn intro(missions: &[&Mission], modes: &[&Mode], seeds: u64, set: &[String]) -> 
     );
     md.push_str("Missions (`--missions`) and modes (`--modes`), with their overrides:\n\n");
     for mission in missions {
+        if let Some(polygons) = mission.polygons {
+            let source = match polygons {
+                Polygons::Generated(_) => {
+                    "a map generated for each seed (28 star-shaped \
+                                           polygons of 5–8 corners, 60–180 cells across; \
+                                           cities ≥ 4 cells from them; the first city is \
+                                           the start)"
+                }
+                Polygons::Data { .. } => "the `--data` file",
+            };
+            let _ = writeln!(
+                md,
+                "- `{}`: {}: {source}, rasterised to 2000 × 2000 cells (of 1 m on a generated map), one PoI \
+                 per city; `configs/p2p-grid.toml` with the `auto` sequencer, the `idp` \
+                 selector and `{}`",
+                mission.name,
+                mission.label,
+                POLYGON_SET.join("`, `")
+            );
+            continue;
+        }
         let set = if mission.set.is_empty() {
             String::new()
         } else {
@@ -222,25 +264,29 @@ fn intro(missions: &[&Mission], modes: &[&Mode], seeds: u64, set: &[String]) -> 
 }
 
 fn differences(md: &mut String, missions: &[&Mission], summary: &Summary) {
-    if summary.joint_differences.is_empty() {
+    if summary.differences.is_empty() {
         return;
     }
     md.push_str(
-        "\nJoint minus sequential, per seed where both planned: mean, worst (largest) \
-         difference, and the seeds on which joint is cheaper.\n\n\
-         | mission | joint − | seeds | mean | worst | joint cheaper |\n\
-         |---|---|---:|---:|---:|---:|\n",
+        "\nOne mode minus another, per seed where both planned: mean, worst (largest) \
+         difference, the seeds on which the first is cheaper, and the seeds on which both \
+         chose the same target order (on a closed tour, or the same order backwards).\n\n\
+         | mission | difference | seeds | mean | worst | cheaper | same order |\n\
+         |---|---|---:|---:|---:|---:|---:|\n",
     );
-    for d in &summary.joint_differences {
+    for d in &summary.differences {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {}/{} |",
+            "| {} | {} − {} | {} | {} | {} | {}/{} | {}/{} |",
             label(missions, &d.mission),
+            d.mode,
             d.against,
             d.per_seed.len(),
             signed(d.mean),
             signed(d.worst),
-            d.joint_cheaper,
+            d.cheaper,
+            d.per_seed.len(),
+            d.same_order,
             d.per_seed.len(),
         );
     }
@@ -277,6 +323,7 @@ mod tests {
             cost,
             paths_planned: cost.map(|_| 10),
             planning_s: cost.map(|_| 0.5),
+            order: vec!["a".into(), "b".into()],
             error: cost.is_none().then(|| "no safe path".into()),
         }
     }
@@ -290,7 +337,7 @@ mod tests {
             run("joint", 2, Some(12.0)),
         ];
         let missions = [&MISSIONS[0]];
-        let modes = [&MODES[0], &MODES[2]];
+        let modes = [&MODES[0], &MODES[3]];
         let summary = Summary::of(&missions, &modes, &runs);
         let full = &summary.modes[0];
         assert_eq!((full.runs, full.failures), (2, 1));
@@ -300,10 +347,10 @@ mod tests {
             (joint.mean_cost, joint.worst_cost),
             (Some(10.5), Some(12.0))
         );
-        assert_eq!(summary.joint_differences.len(), 1);
-        let d = &summary.joint_differences[0];
+        assert_eq!(summary.differences.len(), 1);
+        let d = &summary.differences[0];
         assert_eq!(d.per_seed, [(1, -1.0)]);
-        assert_eq!(d.joint_cheaper, 1);
+        assert_eq!((d.cheaper, d.same_order), (1, 1));
         let md = report(&missions, &modes, 2, &[], &summary, &runs);
         assert!(
             md.contains("| lunar 13×10 | sequential, full matrix | 2 | 1 | 10.00 |"),

@@ -14,27 +14,45 @@ pub struct Mission {
     pub config: &'static str,
     /// Overrides applied on top of the config.
     pub set: &'static [&'static str],
+    /// A polygon map instead of the config's world (`config` is then empty).
+    pub polygons: Option<Polygons>,
+}
+
+/// Where a polygon mission's map comes from.
+#[derive(Clone, Copy, Debug)]
+pub enum Polygons {
+    /// Generated for each seed with this many targets.
+    Generated(usize),
+    /// The `--data` map: a closed tour from its start city, or (`open`) a path to its
+    /// end city.
+    Data {
+        /// A path to the file's end city instead of back to the start.
+        open: bool,
+    },
 }
 
 /// Every mission `--missions` knows.
-pub const MISSIONS: [Mission; 4] = [
+pub const MISSIONS: [Mission; 15] = [
     Mission {
         name: "lunar",
         label: "lunar 13×10",
         config: "configs/lunar.toml",
         set: &[],
+        polygons: None,
     },
     Mission {
         name: "indoor",
         label: "indoor 12×2",
         config: "configs/indoor.toml",
         set: &[],
+        polygons: None,
     },
     Mission {
         name: "lunar-48x6",
         label: "lunar 48×6",
         config: "configs/lunar.toml",
         set: &["world.params.targets=48", "world.params.pois_per_target=6"],
+        polygons: None,
     },
     Mission {
         name: "lunar-200x10",
@@ -47,7 +65,80 @@ pub const MISSIONS: [Mission; 4] = [
             // One search per source: the paper's one query per pair takes ~330 s here.
             "planner.params.one_to_many=true",
         ],
+        polygons: None,
     },
+    shipped("flat-demo", "flat demo", "configs/flat-demo.toml"),
+    shipped(
+        "flat-dubins",
+        "flat, Dubins car",
+        "configs/flat-dubins.toml",
+    ),
+    shipped(
+        "imported-map",
+        "imported map 32×32",
+        "configs/imported-map.toml",
+    ),
+    shipped(
+        "indoor-disc",
+        "indoor, disc robot",
+        "configs/indoor-disc.toml",
+    ),
+    shipped(
+        "lunar-wheeled",
+        "lunar, wheeled robot",
+        "configs/lunar-wheeled.toml",
+    ),
+    shipped(
+        "lunar-rover",
+        "lunar, rover (lattice)",
+        "configs/lunar-rover.toml",
+    ),
+    polygon_mission("poly-20", "polygons 2000² 20×1", Polygons::Generated(20)),
+    polygon_mission("poly-40", "polygons 2000² 40×1", Polygons::Generated(40)),
+    polygon_mission("poly-60", "polygons 2000² 60×1", Polygons::Generated(60)),
+    polygon_mission(
+        "data",
+        "--data map, closed tour",
+        Polygons::Data { open: false },
+    ),
+    polygon_mission(
+        "data-open",
+        "--data map, open path",
+        Polygons::Data { open: true },
+    ),
+];
+
+/// A shipped config's own mission.
+const fn shipped(name: &'static str, label: &'static str, config: &'static str) -> Mission {
+    Mission {
+        name,
+        label,
+        config,
+        set: &[],
+        polygons: None,
+    }
+}
+
+/// A mission on a polygon map.
+const fn polygon_mission(name: &'static str, label: &'static str, polygons: Polygons) -> Mission {
+    Mission {
+        name,
+        label,
+        config: "",
+        set: &[],
+        polygons: Some(polygons),
+    }
+}
+
+/// The pipeline of the polygon missions: `configs/p2p-grid.toml` (a disc on the
+/// grid, LazyPRM* with its corner vertices) with the `auto` sequencer and the `idp`
+/// selector, these overrides on top.
+pub const POLYGON_SET: [&str; 5] = [
+    "space.type=se2",
+    "space.params.rotation_weight=0",
+    "objective.type=path-length",
+    "objective.params.rotation_weight=0",
+    "validity.params.radius=0.5",
 ];
 
 /// A planning mode: the overrides that select it.
@@ -62,7 +153,7 @@ pub struct Mode {
 }
 
 /// Every mode `--modes` knows.
-pub const MODES: [Mode; 3] = [
+pub const MODES: [Mode; 4] = [
     Mode {
         name: "full",
         label: "sequential, full matrix",
@@ -78,6 +169,15 @@ pub const MODES: [Mode; 3] = [
         set: &[
             "plan.mode=sequential",
             "plan.sequencing_costs=lazy",
+            "plan.refine_legs=true",
+        ],
+    },
+    Mode {
+        name: "lazy-unsettled",
+        label: "sequential, lazy matrix, early legs not planned again",
+        set: &[
+            "plan.mode=sequential",
+            "plan.sequencing_costs=lazy-unsettled",
             "plan.refine_legs=true",
         ],
     },
@@ -107,6 +207,9 @@ pub struct Run {
     pub paths_planned: Option<u64>,
     /// The plan's `total` time minus the pipeline's build times, seconds.
     pub planning_s: Option<f64>,
+    /// The plan's target order (`sequence`).
+    #[serde(default)]
+    pub order: Vec<String>,
     /// Why planning failed.
     pub error: Option<String>,
 }

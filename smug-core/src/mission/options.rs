@@ -21,9 +21,14 @@ pub enum SequencingCosts {
     /// costs) where no path is planned yet, plan the tour's unplanned legs, repeat until
     /// the tour uses planned legs only. With an exact solver the order is optimal for
     /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
-    /// applied to sequencing).
+    /// applied to sequencing). With `refine_legs`, legs planned on a sparser roadmap
+    /// are planned again where they decide the order, until it is optimal even if every
+    /// leg not planned twice fell to its lower bound.
     #[default]
     Lazy,
+    /// `Lazy` without planning legs again for the order (faster; on a roadmap that
+    /// grows during the run the order can be a little worse than the full matrix's).
+    LazyUnsettled,
     /// Plan a path between every pair of representatives (the paper's way). A
     /// [`MissionSession`](super::MissionSession)'s replans serve the pairs it kept paths
     /// for and fill the others lazily (only the pairs the tour uses are planned).

@@ -1,0 +1,402 @@
+//! The lazy loop of both modes: solve on planned costs where known and admissible lower
+//! bounds elsewhere, plan the legs the tour uses, re-solve until the tour uses planned
+//! legs only. With `settle`, legs planned on a sparser roadmap than today's are planned
+//! again where they decide the order, until the order is optimal even if each leg not
+//! planned twice fell to its lower bound.
+
+use crate::oracle::PathOracle;
+use smug_core::error::Result;
+use smug_core::stages::{CostMatrix, Tour, TourKind};
+use std::collections::HashSet;
+
+/// Relative slack of the cost comparisons (rounding in sums of floating-point legs).
+const SLACK: f64 = 1e-9;
+
+/// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
+/// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
+/// legs, repeat until the tour uses planned legs only (or one of them has no path).
+///
+/// With `warm`, each round is given the previous round's tour to start from; a warm
+/// round that ends on planned legs only is checked by one solve from scratch of the
+/// same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
+///
+/// With `settle`, a planned leg is final only once it has been planned again
+/// ([`PathOracle::refine`], on the roadmap as grown since: a leg planned on a sparser
+/// roadmap can cost more than planning it again gives) or when it costs its lower
+/// bound. Once the tour uses planned legs only, its own legs are refined, and the
+/// matrix with final legs at their cost and every other leg at its lower bound is
+/// solved: if that tour is cheaper, its planned legs are refined and its unplanned
+/// legs planned, and the loop goes on; else the tour is optimal (with an exact solver)
+/// for any costs that refining or planning the other legs could give. Each leg is
+/// planned at most twice, so the loop ends.
+pub(super) fn lazy_solve(
+    oracle: &mut PathOracle,
+    nodes: &[usize],
+    kind: TourKind,
+    warm: bool,
+    settle: bool,
+    mut solve: impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
+) -> Result<Tour> {
+    let mut previous: Option<Tour> = None;
+    let mut refined = Refined::new(oracle.is_symmetric());
+    loop {
+        let (tour, dead_end) = converge(oracle, nodes, kind, previous.take(), warm, &mut solve)?;
+        if dead_end || !settle {
+            return Ok(tour);
+        }
+        for (a, b) in tour_legs(&tour, kind) {
+            refined.refine(oracle, nodes, a, b)?;
+        }
+        let cost = lazy_matrix(oracle, nodes)?.tour_cost(&tour.order, kind);
+        let optimistic = CostMatrix::from_fn_within(nodes.len(), oracle.run().memory, |i, j| {
+            if i == j {
+                0.0
+            } else if refined.is_final(oracle, nodes, i, j) {
+                oracle.cost_or_bound(nodes[i], nodes[j])
+            } else {
+                oracle.lower_bound(nodes[i], nodes[j])
+            }
+        })?;
+        let rival = solve(&optimistic, Some(&tour))?;
+        if optimistic.tour_cost(&rival.order, kind) >= cost * (1.0 - SLACK) {
+            return Ok(tour);
+        }
+        let doubtful: Vec<(usize, usize)> = tour_legs(&rival, kind)
+            .filter(|&(a, b)| !refined.is_final(oracle, nodes, a, b))
+            .collect();
+        if doubtful.is_empty() {
+            // Cheaper on final costs alone (a heuristic solver missed it before).
+            return Ok(rival);
+        }
+        for (a, b) in doubtful {
+            if oracle.is_planned(nodes[a], nodes[b]) {
+                refined.refine(oracle, nodes, a, b)?;
+            } else {
+                oracle.cost(nodes[a], nodes[b])?;
+            }
+        }
+        previous = warm.then_some(rival);
+    }
+}
+
+/// The loop without settling: the tour, and whether one of its planned legs has no path.
+fn converge(
+    oracle: &mut PathOracle,
+    nodes: &[usize],
+    kind: TourKind,
+    mut previous: Option<Tour>,
+    warm: bool,
+    solve: &mut impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
+) -> Result<(Tour, bool)> {
+    loop {
+        let matrix = lazy_matrix(oracle, nodes)?;
+        let mut tour = solve(&matrix, previous.as_ref())?;
+        if previous.is_some() && unplanned_legs(oracle, nodes, &tour, kind).is_empty() {
+            let cold = solve(&matrix, None)?;
+            let cost = |t: &Tour| matrix.tour_cost(&t.order, kind);
+            if cost(&cold) >= cost(&tour) * (1.0 - SLACK) {
+                return Ok((tour, false));
+            }
+            tour = cold;
+        }
+        let unplanned = unplanned_legs(oracle, nodes, &tour, kind);
+        if unplanned.is_empty() {
+            return Ok((tour, false));
+        }
+        let mut dead_end = false;
+        for (a, b) in unplanned {
+            dead_end |= !oracle.cost(a, b)?.is_finite();
+        }
+        if dead_end {
+            return Ok((tour, true));
+        }
+        previous = warm.then_some(tour);
+    }
+}
+
+/// The legs (positions in `nodes`) planned again since the loop began.
+struct Refined {
+    legs: HashSet<(usize, usize)>,
+    symmetric: bool,
+}
+
+impl Refined {
+    fn new(symmetric: bool) -> Self {
+        Self {
+            legs: HashSet::new(),
+            symmetric,
+        }
+    }
+
+    fn key(&self, i: usize, j: usize) -> (usize, usize) {
+        if self.symmetric {
+            (i.min(j), i.max(j))
+        } else {
+            (i, j)
+        }
+    }
+
+    /// True when the leg `i → j` is planned and planning it again would not be
+    /// cheaper: refined already, at its lower bound, or without a path.
+    fn is_final(&self, oracle: &PathOracle, nodes: &[usize], i: usize, j: usize) -> bool {
+        oracle.is_planned(nodes[i], nodes[j])
+            && (self.legs.contains(&self.key(i, j)) || !above_bound(oracle, nodes[i], nodes[j]))
+    }
+
+    /// Plans the planned leg `i → j` again, keeping the cheaper path, unless it is
+    /// final already.
+    fn refine(
+        &mut self,
+        oracle: &mut PathOracle,
+        nodes: &[usize],
+        i: usize,
+        j: usize,
+    ) -> Result<()> {
+        if !self.is_final(oracle, nodes, i, j) && self.legs.insert(self.key(i, j)) {
+            oracle.refine(nodes[i], nodes[j])?;
+        }
+        Ok(())
+    }
+}
+
+/// True when the pair is planned at a finite cost above its lower bound (planning it
+/// again may find it cheaper).
+fn above_bound(oracle: &PathOracle, a: usize, b: usize) -> bool {
+    let Some(cost) = oracle.planned_cost(a, b) else {
+        return false;
+    };
+    let bound = oracle.lower_bound(a, b);
+    cost.is_finite() && cost > bound + SLACK * bound.abs().max(1.0)
+}
+
+/// The matrix of planned costs where known and lower bounds elsewhere.
+pub(super) fn lazy_matrix(oracle: &PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
+    CostMatrix::from_fn_within(nodes.len(), oracle.run().memory, |i, j| {
+        if i == j {
+            0.0
+        } else {
+            oracle.cost_or_bound(nodes[i], nodes[j])
+        }
+    })
+}
+
+/// The legs of `tour` (as oracle index pairs) not planned yet.
+fn unplanned_legs(
+    oracle: &PathOracle,
+    nodes: &[usize],
+    tour: &Tour,
+    kind: TourKind,
+) -> Vec<(usize, usize)> {
+    tour_legs(tour, kind)
+        .map(|(a, b)| (nodes[a], nodes[b]))
+        .filter(|&(a, b)| !oracle.is_planned(a, b))
+        .collect()
+}
+
+/// The legs `(from, to)` of a tour, the return leg of a closed tour included.
+pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let closing = match kind {
+        TourKind::Closed => tour.order.last().map(|&last| (last, tour.order[0])),
+        TourKind::OpenTo(_) => None,
+    };
+    tour.order.windows(2).map(|w| (w[0], w[1])).chain(closing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sequential::full_matrix;
+    use crate::sequential::tests::Exhaustive;
+    use proptest::prelude::*;
+    use smug_core::objective::PathLength;
+    use smug_core::path::Path;
+    use smug_core::pose::Pose2;
+    use smug_core::stages::Sequencer;
+    use smug_core::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner, SelectionProblem};
+    use std::collections::HashMap;
+    use std::sync::Arc;
+
+    /// A straight path whose cost is the objective's cost times the pair's fixed detour
+    /// (≥ 1, symmetric), times `1 + inflation` of the pair on its first query only (a
+    /// leg planned on a sparse roadmap); `inflation` all zero: fixed leg costs.
+    struct FixedCosts {
+        poses: Vec<Pose2>,
+        detours: Vec<f64>,
+        inflation: Vec<f64>,
+        asked: HashMap<(usize, usize), u32>,
+    }
+
+    impl FixedCosts {
+        fn pair(&self, a: &Pose2, b: &Pose2) -> (usize, usize) {
+            let index = |p: &Pose2| self.poses.iter().position(|q| q == p).unwrap();
+            let (i, j) = (index(a), index(b));
+            (i.min(j), i.max(j))
+        }
+
+        /// The cost a pair settles at (its second and later answers).
+        fn settled(&self, (i, j): (usize, usize)) -> f64 {
+            let n = self.poses.len();
+            PathLength::default().motion_cost(&self.poses[i], &self.poses[j])
+                * self.detours[i * n + j]
+        }
+    }
+
+    impl PointToPointPlanner for FixedCosts {
+        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+            let key = self.pair(start, goal);
+            let asked = self.asked.entry(key).or_insert(0);
+            *asked += 1;
+            let factor = if *asked == 1 {
+                1.0 + self.inflation[key.0 * self.poses.len() + key.1]
+            } else {
+                1.0
+            };
+            let mut path = Path::new(vec![*start, *goal], &PathLength::default());
+            path.cost = self.settled(key) * factor;
+            Ok(PlannerOutcome::Exact(path))
+        }
+
+        fn stats(&self) -> PlannerStats {
+            PlannerStats::default()
+        }
+    }
+
+    use smug_core::objective::Objective as _;
+
+    /// An oracle over `FixedCosts` and the oracle indices of `poses`.
+    fn oracle(poses: &[Pose2], detours: &[f64], inflation: &[f64]) -> (PathOracle, Vec<usize>) {
+        let planner = FixedCosts {
+            poses: poses.to_vec(),
+            detours: detours.to_vec(),
+            inflation: inflation.to_vec(),
+            asked: HashMap::new(),
+        };
+        let mut oracle = PathOracle::new(Arc::new(PathLength::default()), Box::new(planner));
+        let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
+        (oracle, nodes)
+    }
+
+    /// A generated mission: the start, groups of PoIs, the end of an open one.
+    #[derive(Clone, Debug)]
+    struct Generated {
+        poses: Vec<Pose2>,
+        sizes: Vec<usize>,
+        open: bool,
+        detours: Vec<f64>,
+        inflation: Vec<f64>,
+    }
+
+    fn generated(max_pois: usize) -> impl Strategy<Value = Generated> {
+        (
+            prop::collection::vec(1usize..=max_pois, 2..=6),
+            any::<bool>(),
+        )
+            .prop_flat_map(|(sizes, open)| {
+                let total = sizes.iter().sum::<usize>() + 1 + usize::from(open);
+                (
+                    prop::collection::vec((0.0..20.0f64, 0.0..20.0f64, -3.0..3.0f64), total),
+                    prop::collection::vec(1.0..2.0f64, total * total),
+                    prop::collection::vec(0.0..0.5f64, total * total),
+                    Just(sizes),
+                    Just(open),
+                )
+                    .prop_map(|(points, detours, inflation, sizes, open)| {
+                        Generated {
+                            poses: points
+                                .iter()
+                                .map(|&(x, y, yaw)| Pose2::new(x, y, yaw))
+                                .collect(),
+                            sizes,
+                            open,
+                            detours,
+                            inflation,
+                        }
+                    })
+            })
+    }
+
+    /// The sequential mode on `mission`: the order of the targets (from their first PoIs,
+    /// exhaustive solver; the lazy matrix when `lazy`, settled) and the exact selection's
+    /// cost along it.
+    fn plan(mission: &Generated, lazy: bool, inflation: &[f64]) -> (Vec<usize>, f64, PathOracle) {
+        let (mut oracle, nodes) = oracle(&mission.poses, &mission.detours, inflation);
+        let mut groups = Vec::new();
+        let mut next = 1;
+        for &size in &mission.sizes {
+            groups.push(nodes[next..next + size].to_vec());
+            next += size;
+        }
+        let end = if mission.open { nodes[next] } else { nodes[0] };
+        let mut reps = vec![nodes[0]];
+        reps.extend(groups.iter().map(|g| g[0]));
+        let kind = if mission.open {
+            reps.push(end);
+            TourKind::OpenTo(reps.len() - 1)
+        } else {
+            TourKind::Closed
+        };
+        let tour = if lazy {
+            lazy_solve(&mut oracle, &reps, kind, false, true, |m, _| {
+                Exhaustive.solve(m, kind)
+            })
+            .unwrap()
+        } else {
+            Exhaustive
+                .solve(&full_matrix(&mut oracle, &reps).unwrap(), kind)
+                .unwrap()
+        };
+        let order: Vec<usize> = tour
+            .order
+            .iter()
+            .copied()
+            .filter(|&v| v != 0 && v <= groups.len())
+            .map(|v| v - 1)
+            .collect();
+        let problem = SelectionProblem {
+            start: nodes[0],
+            groups: order.iter().map(|&g| groups[g].clone()).collect(),
+            end,
+        };
+        let (_, cost) = problem.solve_layers(|i, j| oracle.cost(i, j)).unwrap();
+        (order, cost, oracle)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// Exact sequencing and selection with fixed leg costs: the settled lazy matrix
+        /// gives the full matrix's order (or, on a closed tour of symmetric costs, the
+        /// same order backwards, which costs the same) and the full matrix's cost.
+        #[test]
+        fn settled_lazy_order_and_cost_equal_the_full_matrix(mission in generated(3)) {
+            let none = vec![0.0; mission.detours.len()];
+            let (full_order, full_cost, _) = plan(&mission, false, &none);
+            let (lazy_order, lazy_cost, _) = plan(&mission, true, &none);
+            let backwards: Vec<usize> = full_order.iter().rev().copied().collect();
+            prop_assert!(
+                lazy_order == full_order || (!mission.open && lazy_order == backwards),
+                "lazy order {lazy_order:?}, full order {full_order:?}"
+            );
+            prop_assert!((lazy_cost - full_cost).abs() <= 1e-9 * full_cost, "lazy {lazy_cost} vs full {full_cost}");
+        }
+
+        /// A leg's first answer dearer than its later ones (a sparse roadmap): the
+        /// settled lazy tour is optimal for the later answers, since every leg that
+        /// could decide the order was planned again.
+        #[test]
+        fn settled_lazy_order_is_optimal_for_refined_costs(mission in generated(1)) {
+            let n = mission.sizes.len() + 1 + usize::from(mission.open);
+            let kind = if mission.open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
+            let (mut lazy, nodes) = oracle(&mission.poses, &mission.detours, &mission.inflation);
+            let tour = lazy_solve(&mut lazy, &nodes, kind, false, true, |m, _| Exhaustive.solve(m, kind)).unwrap();
+            let none = vec![0.0; mission.detours.len()];
+            let (mut settled, nodes) = oracle(&mission.poses, &mission.detours, &none);
+            let truth = full_matrix(&mut settled, &nodes).unwrap();
+            let best = Exhaustive.solve(&truth, kind).unwrap();
+            let cost = truth.tour_cost(&tour.order, kind);
+            prop_assert!((cost - best.cost).abs() <= 1e-9 * best.cost, "lazy {cost} vs optimum {}", best.cost);
+            let known = lazy_matrix(&lazy, &nodes).unwrap().tour_cost(&tour.order, kind);
+            prop_assert!((known - cost).abs() <= 1e-9 * cost, "every leg of the tour refined");
+        }
+    }
+}
