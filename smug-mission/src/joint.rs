@@ -81,8 +81,8 @@ fn layout(problem: &JointProblem) -> Result<(Vec<usize>, Clusters)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sequential::full_matrix;
-    use crate::sequential::tests::{oracle, Exhaustive};
+    use crate::matrix::full_matrix;
+    use crate::test_support::{oracle, Exhaustive};
     use proptest::prelude::*;
     use smug_core::pose::Pose2;
 

@@ -205,8 +205,8 @@ pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (us
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sequential::full_matrix;
-    use crate::sequential::tests::Exhaustive;
+    use crate::matrix::full_matrix;
+    use crate::test_support::Exhaustive;
     use proptest::prelude::*;
     use smug_core::objective::PathLength;
     use smug_core::path::Path;

@@ -15,12 +15,15 @@ pub mod evaluation;
 mod joint;
 mod layout;
 mod lazy;
+mod matrix;
 pub mod oracle;
 pub mod post_process;
 mod replan;
 mod run;
 mod sequential;
 mod session;
+#[cfg(test)]
+mod test_support;
 
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
 pub use replan::{

@@ -3,13 +3,14 @@
 
 use crate::layout::Layout;
 use crate::lazy::lazy_solve;
+use crate::matrix::full_matrix;
 use crate::oracle::PathOracle;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{Representative, SequencingCosts};
 use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
-use smug_core::stages::{CostMatrix, Sequencer, Tour, TourKind};
+use smug_core::stages::{Sequencer, Tour, TourKind};
 
 /// The target's stand-in for sequencing.
 fn representative(
@@ -90,36 +91,6 @@ fn fills_lazily(oracle: &PathOracle, costs: SequencingCosts) -> bool {
     costs != SequencingCosts::Full || oracle.has_known_answers()
 }
 
-/// Path costs between every pair of `nodes` (each pair planned once when the oracle is
-/// symmetric, both ways otherwise).
-pub(super) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<CostMatrix> {
-    let n = nodes.len();
-    let mut costs = vec![0.0; n * n];
-    if oracle.answers_many() {
-        // One search per row (the rest of the row for a symmetric oracle), side by
-        // side where the planner can.
-        let rows: Vec<(usize, Vec<usize>)> = (0..n)
-            .map(|i| {
-                let from = if oracle.is_symmetric() { i + 1 } else { 0 };
-                (nodes[i], nodes[from..].to_vec())
-            })
-            .collect();
-        oracle.plan_rows(&rows)?;
-    }
-    for i in 0..n {
-        for j in i + 1..n {
-            let c = oracle.cost(nodes[i], nodes[j])?;
-            costs[i * n + j] = c;
-            costs[j * n + i] = if oracle.is_symmetric() {
-                c
-            } else {
-                oracle.cost(nodes[j], nodes[i])?
-            };
-        }
-    }
-    CostMatrix::from_rows(n, costs)
-}
-
 /// The tour over `nodes` on planned costs where known and lower bounds elsewhere,
 /// re-solved after planning its unplanned legs until it uses planned legs only (or a
 /// planned leg has no path: then the selection finds out which target is unreachable);
@@ -137,132 +108,10 @@ fn lazy_tour(
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::*;
+    use crate::test_support::{oracle, Exhaustive};
     use proptest::prelude::*;
-    use smug_core::objective::PathLength;
-    use smug_core::path::Path;
-    use smug_core::stages::Clusters;
-    use smug_core::stages::{PlannerOutcome, PlannerStats, PointToPointPlanner};
-    use std::sync::Arc;
-
-    /// Answers every query with a straight path whose cost is the objective's cost
-    /// times a fixed detour factor of the pair (≥ 1, symmetric).
-    struct DetourPlanner {
-        poses: Vec<Pose2>,
-        detours: Vec<f64>,
-        objective: PathLength,
-    }
-
-    impl DetourPlanner {
-        fn index(&self, pose: &Pose2) -> usize {
-            self.poses.iter().position(|p| p == pose).unwrap()
-        }
-    }
-
-    impl PointToPointPlanner for DetourPlanner {
-        fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
-            let (i, j) = (self.index(start), self.index(goal));
-            let n = self.poses.len();
-            let factor = self.detours[i.min(j) * n + i.max(j)];
-            let mut path = Path::new(vec![*start, *goal], &self.objective);
-            path.cost *= factor;
-            Ok(PlannerOutcome::Exact(path))
-        }
-
-        fn stats(&self) -> PlannerStats {
-            PlannerStats::default()
-        }
-    }
-
-    /// The best tour by trying every order (small n only).
-    pub(crate) struct Exhaustive;
-
-    impl Sequencer for Exhaustive {
-        fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour> {
-            let n = costs.len();
-            let mut rest: Vec<usize> = (1..n).collect();
-            let mut best = Tour {
-                order: vec![],
-                cost: f64::INFINITY,
-            };
-            permute(&mut rest, 0, &mut |p| {
-                let order: Vec<usize> = std::iter::once(0).chain(p.iter().copied()).collect();
-                let cost = costs.tour_cost(&order, kind);
-                if cost < best.cost {
-                    best = Tour { order, cost };
-                }
-            });
-            Ok(best)
-        }
-
-        fn solve_clusters(
-            &self,
-            costs: &CostMatrix,
-            clusters: &Clusters,
-            kind: TourKind,
-        ) -> Result<Tour> {
-            let m = clusters.len();
-            let end = match kind {
-                TourKind::OpenTo(c) => Some(c),
-                TourKind::Closed => None,
-            };
-            let mut middle: Vec<usize> = (1..m).filter(|&c| Some(c) != end).collect();
-            let mut best = Tour {
-                order: vec![],
-                cost: f64::INFINITY,
-            };
-            permute(&mut middle, 0, &mut |p| {
-                let order: Vec<usize> = std::iter::once(0)
-                    .chain(p.iter().copied())
-                    .chain(end)
-                    .collect();
-                let mut choices = vec![Vec::new()];
-                for &c in &order {
-                    choices = choices
-                        .iter()
-                        .flat_map(|prefix: &Vec<usize>| {
-                            clusters.members(c).iter().map(move |&v| {
-                                let mut next = prefix.clone();
-                                next.push(v);
-                                next
-                            })
-                        })
-                        .collect();
-                }
-                for nodes in choices {
-                    let cost = costs.tour_cost(&nodes, kind);
-                    if cost < best.cost {
-                        best = Tour { order: nodes, cost };
-                    }
-                }
-            });
-            Ok(best)
-        }
-    }
-
-    fn permute(items: &mut [usize], k: usize, visit: &mut impl FnMut(&[usize])) {
-        if k == items.len() {
-            return visit(items);
-        }
-        for i in k..items.len() {
-            items.swap(k, i);
-            permute(items, k + 1, visit);
-            items.swap(k, i);
-        }
-    }
-
-    pub(crate) fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
-        let objective = PathLength::default();
-        let planner = DetourPlanner {
-            poses: poses.to_vec(),
-            detours,
-            objective: objective.clone(),
-        };
-        let mut oracle = PathOracle::new(Arc::new(objective), Box::new(planner));
-        let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
-        (oracle, nodes)
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]

@@ -108,7 +108,7 @@ pub struct Grid {
 impl Grid {
     /// The grid of `blocked` (row-major, `nx × ny`).
     pub fn new(nx: usize, ny: usize, blocked: Vec<bool>) -> Self {
-        let clearance_bounds = super::clearance::clearance_bounds(nx, ny, &blocked);
+        let clearance_bounds = super::clearance_bounds::clearance_bounds(nx, ny, &blocked);
         let mut grid = Self {
             nx,
             ny,

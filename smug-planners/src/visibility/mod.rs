@@ -29,6 +29,7 @@
 //! exactly too (the crossings of the circle with each nearby cell's inflated square).
 
 mod clearance;
+mod clearance_bounds;
 mod geometry;
 mod search;
 mod shadow;
