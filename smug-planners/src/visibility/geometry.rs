@@ -264,29 +264,11 @@ impl Grid {
                         continue;
                     }
                     // The slopes of rays entering this blocked cell's interior.
-                    let (mut smin, mut smax) = (f64::INFINITY, f64::NEG_INFINITY);
-                    for (cu, cw) in [
-                        (iu as f64, iw as f64),
-                        (iu as f64 + 1.0, iw as f64),
-                        (iu as f64, iw as f64 + 1.0),
-                        (iu as f64 + 1.0, iw as f64 + 1.0),
-                    ] {
-                        let (du, dw) = (cu - su, cw - sw);
-                        let m = if du > 0.0 {
-                            dw / du
-                        } else if dw > 0.0 {
-                            f64::INFINITY
-                        } else if dw < 0.0 {
-                            f64::NEG_INFINITY
-                        } else {
-                            continue;
-                        };
-                        smin = smin.min(m);
-                        smax = smax.max(m);
-                    }
-                    if smax - smin > 2.0 * EPS {
-                        cuts.push((smin + EPS, smax - EPS));
-                    }
+                    cuts.extend(slopes_into(
+                        [su, sw],
+                        iu as f64,
+                        [iw as f64, iw as f64 + 1.0],
+                    ));
                     if on_line && iw as f64 == sw && {
                         let (bi, bj) = to_cell(iu, iw - 1);
                         self.blocked(bi, bj)
@@ -294,30 +276,54 @@ impl Grid {
                         cuts.push((-2.0 * EPS, 2.0 * EPS));
                     }
                 }
-                // The window less the cuts (open intervals), in order.
-                cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let (mut from, mut alive) = (lo, true);
-                for &(a, b) in &cuts {
-                    if a > hi {
-                        break;
-                    }
-                    if a >= from {
-                        next.push((from, a));
-                    }
-                    from = from.max(b);
-                    if from > hi {
-                        alive = false;
-                        break;
-                    }
-                }
-                if alive {
-                    next.push((from, hi));
-                }
+                push_uncut(lo, hi, &mut cuts, &mut next);
             }
             std::mem::swap(&mut windows, &mut next);
             iu += 1;
         }
     }
+}
+
+/// The open interval of slopes (across over along, in a shadowcast's cone) of the rays
+/// from `s` that enter the interior of the box spanning `[u, u + 1]` along and `w`
+/// across, narrowed by `EPS` at both ends; `None` when it is that thin or thinner.
+pub(super) fn slopes_into(s: Pt, u: f64, w: [f64; 2]) -> Option<(f64, f64)> {
+    let (mut smin, mut smax) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (cu, cw) in [(u, w[0]), (u + 1.0, w[0]), (u, w[1]), (u + 1.0, w[1])] {
+        let (du, dw) = (cu - s[0], cw - s[1]);
+        let m = if du > 0.0 {
+            dw / du
+        } else if dw > 0.0 {
+            f64::INFINITY
+        } else if dw < 0.0 {
+            f64::NEG_INFINITY
+        } else {
+            continue;
+        };
+        smin = smin.min(m);
+        smax = smax.max(m);
+    }
+    (smax - smin > 2.0 * EPS).then_some((smin + EPS, smax - EPS))
+}
+
+/// Pushes onto `next` the parts of the window `[lo, hi]` that no cut covers (the
+/// window less the open intervals `cuts`, in order); sorts `cuts`.
+pub(super) fn push_uncut(lo: f64, hi: f64, cuts: &mut [(f64, f64)], next: &mut Vec<(f64, f64)>) {
+    cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut from = lo;
+    for &(a, b) in cuts.iter() {
+        if a > hi {
+            break;
+        }
+        if a >= from {
+            next.push((from, a));
+        }
+        from = from.max(b);
+        if from > hi {
+            return;
+        }
+    }
+    next.push((from, hi));
 }
 
 /// Distance from `p` to cell `(i, j)`.

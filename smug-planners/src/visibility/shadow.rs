@@ -9,7 +9,7 @@
 //! What it returns is a superset of [`Grid::visible_cells`]'s corners: every corner of
 //! a free cell in a lit stretch of a scanned column.
 
-use super::geometry::{Grid, Pt, EPS};
+use super::geometry::{push_uncut, slopes_into, Grid, Pt, EPS};
 
 /// Bit rows of the blocked cells along both axes, and the corners on each vertex line.
 #[derive(Clone, Debug)]
@@ -219,29 +219,11 @@ impl Lines {
                 self.blocked_runs(along_y, line, w0, w1, |b0, b1| {
                     // The slopes of rays entering the run's interior: the extremes are
                     // at its first cell's lower corners and its last cell's upper ones.
-                    let (mut smin, mut smax) = (f64::INFINITY, f64::NEG_INFINITY);
-                    for (cu, cw) in [
-                        (iu as f64, b0 as f64),
-                        (iu as f64 + 1.0, b0 as f64),
-                        (iu as f64, b1 as f64 + 1.0),
-                        (iu as f64 + 1.0, b1 as f64 + 1.0),
-                    ] {
-                        let (du, dw) = (cu - su, cw - sw);
-                        let m = if du > 0.0 {
-                            dw / du
-                        } else if dw > 0.0 {
-                            f64::INFINITY
-                        } else if dw < 0.0 {
-                            f64::NEG_INFINITY
-                        } else {
-                            continue;
-                        };
-                        smin = smin.min(m);
-                        smax = smax.max(m);
-                    }
-                    if smax - smin > 2.0 * EPS {
-                        cuts.push((smin + EPS, smax - EPS));
-                    }
+                    cuts.extend(slopes_into(
+                        [su, sw],
+                        iu as f64,
+                        [b0 as f64, b1 as f64 + 1.0],
+                    ));
                     // A source on a grid line: the ray along it between two blocked
                     // cells (a zero-width gap no disc passes) is cut.
                     let w = sw as i64;
@@ -252,25 +234,7 @@ impl Lines {
                         cuts.push((-2.0 * EPS, 2.0 * EPS));
                     }
                 });
-                // The window less the cuts (open intervals), in order.
-                cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                let (mut from, mut alive) = (lo, true);
-                for &(a, b) in &cuts {
-                    if a > hi {
-                        break;
-                    }
-                    if a >= from {
-                        next.push((from, a));
-                    }
-                    from = from.max(b);
-                    if from > hi {
-                        alive = false;
-                        break;
-                    }
-                }
-                if alive {
-                    next.push((from, hi));
-                }
+                push_uncut(lo, hi, &mut cuts, &mut next);
             }
             std::mem::swap(&mut windows, &mut next);
             iu += 1;
