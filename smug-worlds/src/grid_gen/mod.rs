@@ -10,6 +10,7 @@ mod maze;
 mod polygons;
 mod random;
 mod rooms;
+mod shapes;
 mod terrain;
 
 use crate::movingai::MovingAiMap;

@@ -3,6 +3,7 @@
 //! placed until they cover the requested share of the cells: the rasterised diagonal
 //! edges are staircases, as on maps made from polygon benchmarks.
 
+use super::shapes::{block, place_until_covered};
 use crate::movingai::MovingAiMap;
 use rand::Rng;
 use std::f64::consts::TAU;
@@ -17,15 +18,9 @@ pub(super) fn generate(
     density: f64,
     rng: &mut impl Rng,
 ) -> MovingAiMap {
-    let mut map = MovingAiMap::filled(width, height, true);
-    let target = (density * (width * height) as f64).round() as usize;
     let side = width.min(height) as f64;
     let (small, large) = ((side / 40.0).max(0.5), (side / 12.0).max(1.0));
-    let mut blocked = 0;
-    for _ in 0..MAX_POLYGONS {
-        if blocked >= target {
-            break;
-        }
+    place_until_covered(width, height, density, MAX_POLYGONS, |map| {
         let radius = rng.random_range(small..=large);
         let (cx, cy) = (
             rng.random_range(0.0..width as f64),
@@ -46,14 +41,14 @@ pub(super) fn generate(
             })
         };
         let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n);
+        let mut blocked = 0;
         for y in clamp(cy - radius, height)..clamp(cy + radius + 1.0, height) {
             for x in clamp(cx - radius, width)..clamp(cx + radius + 1.0, width) {
-                if inside(x as f64 + 0.5, y as f64 + 0.5) && map.is_passable(x, y) {
-                    map.set_passable(x, y, false);
+                if inside(x as f64 + 0.5, y as f64 + 0.5) && block(map, x, y) {
                     blocked += 1;
                 }
             }
         }
-    }
-    map
+        blocked
+    })
 }
