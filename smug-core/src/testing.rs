@@ -12,9 +12,11 @@
 //! Objective authors check their objective the same way with [`check_objective`] on
 //! random motions and [`check_objective_path`] on random multi-motion paths.
 
+use crate::grid::GridGeometry;
 use crate::objective::Objective;
 use crate::pose::{angle_distance, Pose2};
 use crate::space::StateSpace;
+use crate::stages::DiscOnGrid;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use std::f64::consts::PI;
@@ -212,4 +214,16 @@ pub fn check_metric_axioms(
         "interpolation leaves the geodesic: c(a, m) + c(m, b) = {split} vs c(a, b) = {ab}"
     );
     Ok(())
+}
+
+/// A disc of radius 0.25 m on a 5×3 grid of 1 m cells with a wall at column 2 (a
+/// small map with two free regions, for grid-disc tests).
+pub fn walled_disc() -> DiscOnGrid {
+    let geometry = GridGeometry::new([0.0, 0.0], 1.0, [5, 3]).unwrap();
+    let blocked = (0..15).map(|k| k % 5 == 2).collect();
+    DiscOnGrid {
+        radius: 0.25,
+        geometry,
+        blocked,
+    }
 }

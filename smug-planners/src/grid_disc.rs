@@ -183,17 +183,7 @@ impl FreeRegions {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A 5×3 grid, 1 m cells, with a wall at column 2.
-    fn walled() -> DiscOnGrid {
-        let geometry = GridGeometry::new([0.0, 0.0], 1.0, [5, 3]).unwrap();
-        let blocked = (0..15).map(|k| k % 5 == 2).collect();
-        DiscOnGrid {
-            radius: 0.25,
-            geometry,
-            blocked,
-        }
-    }
+    use smug_core::testing::walled_disc as walled;
 
     #[test]
     fn one_blocked_cell_has_four_corner_waypoints_outside_its_inflation() {

@@ -127,39 +127,3 @@ impl DiscOnGrid {
         (nearest <= r).then_some(EndpointFault::InInflatedObstacle { distance: nearest })
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A 5×3 grid, 1 m cells, with a wall at column 2.
-    fn walled() -> DiscOnGrid {
-        let geometry = GridGeometry::new([0.0, 0.0], 1.0, [5, 3]).unwrap();
-        let blocked = (0..15).map(|k| k % 5 == 2).collect();
-        DiscOnGrid {
-            radius: 0.25,
-            geometry,
-            blocked,
-        }
-    }
-
-    #[test]
-    fn faults_name_the_map_border_and_the_inflated_obstacle() {
-        let disc = walled();
-        assert_eq!(disc.fault(&Pose2::new(1.5, 1.5, 0.0)), None);
-        assert_eq!(
-            disc.fault(&Pose2::new(0.1, 1.5, 0.0)),
-            Some(EndpointFault::OffMap)
-        );
-        match disc.fault(&Pose2::new(1.9, 1.5, 0.0)) {
-            Some(EndpointFault::InInflatedObstacle { distance }) => {
-                assert!((distance - 0.1).abs() < 1e-12)
-            }
-            other => panic!("{other:?}"),
-        }
-        assert!(matches!(
-            disc.fault(&Pose2::new(2.5, 1.5, 0.0)),
-            Some(EndpointFault::InInflatedObstacle { distance }) if distance == 0.0
-        ));
-    }
-}
