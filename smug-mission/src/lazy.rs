@@ -6,6 +6,7 @@
 
 use crate::oracle::PathOracle;
 use smug_core::error::Result;
+use smug_core::stages::PathCosts;
 use smug_core::stages::{CostMatrix, Tour, TourKind};
 use std::collections::HashSet;
 

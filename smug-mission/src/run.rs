@@ -17,6 +17,7 @@ use smug_core::mission::Mission;
 use smug_core::mission::{PlanMode, PlanOptions};
 use smug_core::pipeline::Pipeline;
 use smug_core::plan::Plan;
+use smug_core::stages::PathCosts;
 use smug_core::stages::{Selection, SelectionError, SelectionProblem};
 use smug_core::world::World;
 use std::time::Instant;

@@ -180,12 +180,6 @@ impl PathOracle {
             .map(|p| p.cost)
     }
 
-    /// The planned cost if planned, else the lower bound.
-    pub fn cost_or_bound(&self, i: usize, j: usize) -> f64 {
-        self.planned_cost(i, j)
-            .unwrap_or_else(|| self.lower_bound(i, j))
-    }
-
     /// The path from `i` to `j`, planned on first request and cached.
     pub fn path(&mut self, i: usize, j: usize) -> Result<Arc<PlannedPath>> {
         if let Some(hit) = self.cache.get(&(i, j)) {
