@@ -189,3 +189,29 @@ fn bad_radii_unknown_models_and_oversized_robots_name_the_key() {
         );
     }
 }
+
+#[test]
+fn a_dubins_car_on_lunar_ends_in_seconds_naming_the_stones_it_cannot_serve() {
+    // The paper's config with its robot swapped for a forward-only car by the space
+    // alone: `auto` plans it on the lattice, which proves that a car facing a stone up
+    // close cannot leave it. Every PoI is such a dead end, so the mission ends without
+    // searching the map (it used to run for minutes with LazyPRM*, saying nothing).
+    let out_dir = workspace().join("target/cli-test-robots/dubins-lunar");
+    let started = std::time::Instant::now();
+    let run = smug(&[
+        "plan",
+        "configs/lunar.toml",
+        "--set",
+        "space.type=\"dubins\"",
+        "--set",
+        "space.params.turning_radius=1.5",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let seconds = started.elapsed().as_secs_f64();
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(err.contains("`stone-01`"), "{err}");
+    assert!(err.contains("the end cannot be reached from it"), "{err}");
+    assert!(seconds < 60.0, "{seconds} s");
+}

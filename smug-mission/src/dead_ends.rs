@@ -16,12 +16,16 @@ use smug_core::plan::DeadEndPoi;
 /// poses a boxed-in car reaches, far too few to search a map.
 const PROOF_EFFORT: u64 = 20_000;
 
-/// Drops from `layout` the PoIs of `targets` that the start provably cannot reach or
-/// that provably cannot reach the end, for directed models (symmetric ones: the
+/// Drops from `layout` the PoIs of `targets` that provably cannot reach the end or
+/// that the start provably cannot reach, for directed models (symmetric ones: the
 /// start's reach decides both ways, checked later for whole targets) and planners that
-/// prove dead ends cheaply (others are not asked: their plans do not change). Plans the start's
-/// row of paths to every PoI (one search where the planner answers many; the sequencer
-/// and selector reuse it).
+/// prove dead ends cheaply (others are not asked: their plans do not change).
+///
+/// The cheap proofs come first: a small search from each PoI (a car boxed in where it
+/// stands runs out of poses within [`PROOF_EFFORT`] expansions). The start's row of
+/// paths (one search where the planner answers many; the sequencer and selector reuse
+/// it) is then planned only to the PoIs left, and not at all when none is: a mission
+/// whose every PoI is a dead end ends without searching the map.
 pub(super) fn drop_dead_ends(
     oracle: &mut PathOracle,
     mission: &Mission,
@@ -32,18 +36,52 @@ pub(super) fn drop_dead_ends(
     if oracle.is_symmetric() || !oracle.proves_dead_ends() {
         return Ok(Vec::new());
     }
-    let all: Vec<usize> = targets
+    let mut dropped = Vec::new();
+    drop_where(
+        oracle,
+        mission,
+        given,
+        layout,
+        targets,
+        &mut dropped,
+        cannot_leave,
+    )?;
+    let left: Vec<usize> = targets
         .iter()
         .flat_map(|&t| layout.pois[t].iter().copied())
         .collect();
-    if oracle.answers_many() {
-        oracle.plan_from(layout.start, &all)?;
+    if !left.is_empty() && oracle.answers_many() {
+        oracle.plan_from(layout.start, &left)?;
     }
-    let mut dropped = Vec::new();
+    drop_where(
+        oracle,
+        mission,
+        given,
+        layout,
+        targets,
+        &mut dropped,
+        cannot_enter,
+    )?;
+    Ok(dropped)
+}
+
+/// Why PoI `p` cannot be part of a route, when a proof says so.
+type DeadEndProof = fn(&mut PathOracle, &Layout, usize) -> Result<Option<String>>;
+
+/// Drops the PoIs of `targets` that `proof` rules out, recording each in `dropped`.
+fn drop_where(
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    given: &Mission,
+    layout: &mut Layout,
+    targets: &[usize],
+    dropped: &mut Vec<DeadEndPoi>,
+    proof: DeadEndProof,
+) -> Result<()> {
     for &t in targets {
         let mut kept = Vec::with_capacity(layout.pois[t].len());
         for &p in &layout.pois[t] {
-            match closed_way(oracle, layout, p)? {
+            match proof(oracle, layout, p)? {
                 None => kept.push(p),
                 Some(why) => {
                     let pose = *oracle.pose(p);
@@ -59,19 +97,24 @@ pub(super) fn drop_dead_ends(
         }
         layout.pois[t] = kept;
     }
-    Ok(dropped)
+    Ok(())
 }
 
-/// Why PoI `p` cannot be part of a route, when the planner proves it.
-fn closed_way(oracle: &mut PathOracle, layout: &Layout, p: usize) -> Result<Option<String>> {
+/// The proof, when a small search finds one, that the end cannot be reached from PoI
+/// `p`.
+fn cannot_leave(oracle: &mut PathOracle, layout: &Layout, p: usize) -> Result<Option<String>> {
+    Ok(oracle
+        .prove_unreachable(p, layout.end, PROOF_EFFORT)?
+        .map(|reason| format!("the end cannot be reached from it: {reason}")))
+}
+
+/// The proof, when the start's search gives one, that PoI `p` cannot be reached from
+/// the start.
+fn cannot_enter(oracle: &mut PathOracle, layout: &Layout, p: usize) -> Result<Option<String>> {
     let from_start = oracle.path(layout.start, p)?;
-    if let Some(reason) = from_start.outcome.no_path_reason() {
-        if reason.is_proved() {
-            return Ok(Some(format!("cannot be reached from the start: {reason}")));
-        }
-    }
-    if let Some(reason) = oracle.prove_unreachable(p, layout.end, PROOF_EFFORT)? {
-        return Ok(Some(format!("the end cannot be reached from it: {reason}")));
-    }
-    Ok(None)
+    Ok(from_start
+        .outcome
+        .no_path_reason()
+        .filter(|reason| reason.is_proved())
+        .map(|reason| format!("cannot be reached from the start: {reason}")))
 }

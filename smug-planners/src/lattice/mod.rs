@@ -459,7 +459,9 @@ impl PointToPointPlanner for LatticePlanner {
     }
 }
 
-fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
+/// The lattice planner on the pipeline of `ctx` (its world, space, objective, checkers
+/// and deadline).
+pub(crate) fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
     let world = ctx.world()?;
     Ok(LatticePlanner::new(
         params,
