@@ -122,14 +122,14 @@ impl DiscreteMotionValidator {
 
     /// [`Self::inclination_ok`] for every pair of consecutive states of the
     /// `n`-segment motion `a → b`, looking each state's height up once.
-    fn slopes_ok(&self, a: &Pose2, b: &Pose2, n: usize) -> bool {
+    fn slopes_ok(&self, a: &Pose2, b: &Pose2, along: &mut Along) -> bool {
         let Some((world, limit)) = &self.terrain else {
             return true;
         };
         let mut p = *a;
         let mut zp = world.height_at(p.x, p.y);
-        for k in 1..=n {
-            let q = self.state_at(a, b, k, n);
+        for k in 1..=along.segments() {
+            let q = along.state(self, a, b, k);
             let zq = world.height_at(q.x, q.y);
             if !slope_ok(p.xy_distance(&q), (zp, zq), *limit) {
                 return false;
@@ -207,17 +207,38 @@ impl DiscreteMotionValidator {
 
     /// True when every position of the `n`-segment motion `a → b` is valid: traced
     /// through the checker's clearance when it has one, else its states at the
-    /// resolution, the ends first, then in bisection order.
-    fn states_valid(&self, a: &Pose2, b: &Pose2, n: usize) -> bool {
+    /// resolution, the ends first (unless `ends_known_valid`), then the inner ones in
+    /// bisection order (each computed once, into `along`).
+    fn states_valid(
+        &self,
+        a: &Pose2,
+        b: &Pose2,
+        along: &mut Along,
+        ends_known_valid: bool,
+    ) -> bool {
         match self.swept_either_way(a, b) {
             Some(swept) => swept == Swept::Clear,
             None => {
-                self.is_valid_state(b)
-                    && self.is_valid_state(a)
+                let n = along.segments();
+                (ends_known_valid || (self.is_valid_state(b) && self.is_valid_state(a)))
                     && Self::bisection_order(n)
-                        .all(|k| self.is_valid_state(&self.state_at(a, b, k, n)))
+                        .all(|k| self.is_valid_state(&along.state(self, a, b, k)))
             }
         }
+    }
+
+    /// [`MotionValidator::is_valid_motion`], with the ends' checks skipped when
+    /// `ends_known_valid`.
+    fn motion_valid(&self, a: &Pose2, b: &Pose2, ends_known_valid: bool) -> bool {
+        self.motions_checked.fetch_add(1, Relaxed);
+        let mut along = Along::new(self.segment_count(a, b));
+        // The states first: a blocked motion usually ends within a few of them, where
+        // the slopes look up every state's height.
+        let states_valid = match self.exact_segment(a, b) {
+            Some(valid) => valid,
+            None => self.states_valid(a, b, &mut along, ends_known_valid),
+        };
+        states_valid && self.slopes_ok(a, b, &mut along)
     }
 
     /// Interior state indices `1..n` in bisection order (midpoints first).
@@ -237,6 +258,37 @@ impl DiscreteMotionValidator {
     }
 }
 
+/// The states of an `n`-segment motion at the resolution, each interpolated once
+/// (the state checks and the slope checks ask for the same ones).
+struct Along {
+    states: Vec<Option<Pose2>>,
+}
+
+impl Along {
+    fn new(segments: usize) -> Self {
+        Self {
+            states: vec![None; segments + 1],
+        }
+    }
+
+    /// Segments of the motion.
+    fn segments(&self) -> usize {
+        self.states.len() - 1
+    }
+
+    /// State `k` of the motion `a → b`, interpolated on first use.
+    fn state(
+        &mut self,
+        validator: &DiscreteMotionValidator,
+        a: &Pose2,
+        b: &Pose2,
+        k: usize,
+    ) -> Pose2 {
+        let n = self.segments();
+        *self.states[k].get_or_insert_with(|| validator.state_at(a, b, k, n))
+    }
+}
+
 /// True when the slope between two states `horizontal` apart with heights `(zp, zq)`
 /// is at most `limit` (no horizontal move: always; a height off the map: never).
 fn slope_ok(horizontal: f64, (zp, zq): (Option<f64>, Option<f64>), limit: f64) -> bool {
@@ -251,15 +303,11 @@ fn slope_ok(horizontal: f64, (zp, zq): (Option<f64>, Option<f64>), limit: f64) -
 
 impl MotionValidator for DiscreteMotionValidator {
     fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
-        self.motions_checked.fetch_add(1, Relaxed);
-        let n = self.segment_count(a, b);
-        // The states first: a blocked motion usually ends within a few of them, where
-        // the slopes look up every state's height.
-        let states_valid = match self.exact_segment(a, b) {
-            Some(valid) => valid,
-            None => self.states_valid(a, b, n),
-        };
-        states_valid && self.slopes_ok(a, b, n)
+        self.motion_valid(a, b, false)
+    }
+
+    fn is_valid_motion_between_valid(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.motion_valid(a, b, true)
     }
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
@@ -431,6 +479,28 @@ mod tests {
 
         fn is_holonomic(&self) -> bool {
             false
+        }
+    }
+
+    #[test]
+    fn motions_between_valid_ends_get_the_same_verdict_with_two_checks_fewer() {
+        let v = validator(0.5, None);
+        let checked = |v: &DiscreteMotionValidator| v.states_checked.load(Relaxed);
+        for (a, b) in [
+            (Pose2::new(1.0, 5.0, 0.0), Pose2::new(9.0, 5.0, 0.0)),
+            (Pose2::new(1.0, 1.0, 0.0), Pose2::new(9.0, 1.0, 0.3)),
+            (Pose2::new(3.0, 3.0, 0.0), Pose2::new(5.0, 7.0, 2.0)),
+        ] {
+            assert!(DiscObstacle.is_valid(&a) && DiscObstacle.is_valid(&b));
+            let before = checked(&v);
+            let full = v.is_valid_motion(&a, &b);
+            let with_ends = checked(&v) - before;
+            let between = v.is_valid_motion_between_valid(&a, &b);
+            let without_ends = checked(&v) - before - with_ends;
+            assert_eq!(full, between, "{a:?} → {b:?}");
+            if full {
+                assert_eq!(without_ends + 2, with_ends, "{a:?} → {b:?}");
+            }
         }
     }
 

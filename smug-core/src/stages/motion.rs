@@ -28,6 +28,13 @@ pub trait MotionValidator: Send + Sync {
     /// in whatever order finds collisions soonest.
     fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool;
 
+    /// [`is_valid_motion`](Self::is_valid_motion) for a caller that knows both
+    /// endpoints valid (it asked the pipeline's state checker): the validator may skip
+    /// them. A lattice planner, whose poses are each the end of many motions, asks this.
+    fn is_valid_motion_between_valid(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.is_valid_motion(a, b)
+    }
+
     /// Checks the motion `a → b` in order from `a`, reporting the last valid state
     /// before the first invalid one.
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck;

@@ -275,6 +275,10 @@ impl PathOracle {
     /// [`plan_rows`](Self::plan_rows)) when the planner searches rows side by side,
     /// else one after another as [`path`](Self::path) would.
     pub fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+        if self.planner.answers_many() {
+            let rows = self.rows_of(pairs);
+            return self.plan_rows(&rows);
+        }
         if !self.planner.plans_rows_side_by_side() {
             for &(i, j) in pairs {
                 self.path(i, j)?;
@@ -283,6 +287,32 @@ impl PathOracle {
         }
         let rows: Vec<(usize, Vec<usize>)> = pairs.iter().map(|&(i, j)| (i, vec![j])).collect();
         self.plan_rows(&rows)
+    }
+
+    /// `pairs` grouped into rows by their source, in the order the sources first
+    /// appear; with a symmetric planner each pair is searched from whichever of its
+    /// poses more pairs share (the lower index on a tie), so a PoI's legs to every PoI
+    /// of the next target are one search, not one each.
+    fn rows_of(&self, pairs: &[(usize, usize)]) -> Vec<(usize, Vec<usize>)> {
+        let mut shares: HashMap<usize, usize> = HashMap::new();
+        for &(i, j) in pairs {
+            *shares.entry(i).or_default() += 1;
+            *shares.entry(j).or_default() += 1;
+        }
+        let hub = |k: usize| (shares[&k], std::cmp::Reverse(k));
+        let mut rows: Vec<(usize, Vec<usize>)> = Vec::new();
+        for &(i, j) in pairs {
+            let (from, to) = if self.symmetric && hub(j) > hub(i) {
+                (j, i)
+            } else {
+                (i, j)
+            };
+            match rows.iter_mut().find(|(source, _)| *source == from) {
+                Some((_, goals)) => goals.push(to),
+                None => rows.push((from, vec![to])),
+            }
+        }
+        rows
     }
 
     /// Plans the cached pair `i → j` again on the roadmap as it is now (grown by every

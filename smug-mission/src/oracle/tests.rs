@@ -194,3 +194,55 @@ fn asymmetric_oracle_plans_both_directions() {
     o.cost(1, 0).unwrap();
     assert_eq!(o.stats().paths_planned, 2);
 }
+
+/// A straight-line planner that answers many goals at once and records each search's
+/// start and goals.
+struct ManyAtOnce {
+    objective: PathLength,
+    searches: Arc<std::sync::Mutex<Vec<(f64, usize)>>>,
+}
+
+impl PointToPointPlanner for ManyAtOnce {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        Ok(self.plan_many(start, std::slice::from_ref(goal))?.remove(0))
+    }
+
+    fn plan_many(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Vec<PlannerOutcome>> {
+        self.searches.lock().unwrap().push((start.x, goals.len()));
+        Ok(goals
+            .iter()
+            .map(|g| PlannerOutcome::Exact(Path::new(vec![*start, *g], &self.objective)))
+            .collect())
+    }
+
+    fn answers_many(&self) -> bool {
+        true
+    }
+
+    fn stats(&self) -> PlannerStats {
+        PlannerStats::default()
+    }
+}
+
+#[test]
+fn pairs_that_share_a_pose_are_one_search_from_it() {
+    let objective = PathLength::default();
+    let searches = Arc::new(std::sync::Mutex::new(Vec::new()));
+    let planner = ManyAtOnce {
+        objective: objective.clone(),
+        searches: searches.clone(),
+    };
+    let mut o = PathOracle::new(Arc::new(objective), Box::new(planner));
+    for x in 0..5 {
+        o.add_pose(Pose2::new(x as f64, 1.0, 0.0));
+    }
+    // Pose 4 is in every pair, on either side: one search from it (the model is
+    // symmetric), then every pair is served both ways without planning again.
+    o.plan_pairs(&[(0, 4), (4, 1), (2, 4), (3, 4)]).unwrap();
+    assert_eq!(*searches.lock().unwrap(), vec![(4.0, 4)]);
+    for j in 0..4 {
+        assert_eq!(o.cost(j, 4).unwrap(), o.cost(4, j).unwrap());
+    }
+    assert_eq!(o.stats().paths_planned, 4);
+    assert_eq!(searches.lock().unwrap().len(), 1);
+}

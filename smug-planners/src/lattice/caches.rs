@@ -7,20 +7,19 @@
 //! value), so threads that race to fill one store the same value, and what a search
 //! finds never depends on which entries other searches filled first.
 
-use super::primitives::StateId;
+use super::primitives::{Lattice, StateId};
+use lru::LruCache;
 use smug_core::Pose2;
-use std::collections::HashMap;
+use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicU32, AtomicU8, Ordering::Relaxed};
 use std::sync::{Arc, Mutex};
 
-/// How many obstacle-aware heuristics of goal sets are kept.
-const HEURISTICS_KEPT: usize = 32;
+/// Bytes of obstacle-aware heuristics of goal sets kept (a mission's selection asks
+/// for each PoI's again and again: on lunar, 56 kB each, every one is kept).
+const HEURISTIC_BYTES: usize = 64 << 20;
 
-/// A shot's key: the lattice pose it leaves from and the goal pose's bits.
-pub(crate) type ShotKey = (StateId, [u64; 3]);
-
-/// A goal set's heuristic: the goals' positions as bits, and the distances per point.
-type KeptHeuristic = (Vec<u64>, Arc<Vec<f32>>);
+/// Bytes of shot tables kept (on lunar about half a megabyte per goal).
+const SHOT_BYTES: usize = 96 << 20;
 
 /// How many proofs of unreachable goals are kept.
 const PROOFS_KEPT: usize = 8;
@@ -41,22 +40,29 @@ pub(crate) struct Caches {
     /// bits of an `f32`: 0.0 unknown, infinity invalid, else the objective's cost of
     /// the motion, negative while its validity is not known.
     edge: Vec<AtomicU32>,
-    /// Shots checked from lattice poses → valid.
-    shots: Mutex<HashMap<ShotKey, bool>>,
-    /// Obstacle-aware heuristics of recent goal sets, the latest last.
-    heuristics: Mutex<Vec<KeptHeuristic>>,
+    /// The shot tables of recent goals (by their poses as bits): [`SHOT_BYTES`]
+    /// worth, at least 2.
+    shots: Mutex<LruCache<[u64; 3], Arc<ShotTable>>>,
+    /// Obstacle-aware heuristics of recent goal sets (by the goals' positions as
+    /// bits): [`HEURISTIC_BYTES`] worth, at least 2.
+    heuristics: Mutex<LruCache<Vec<u64>, Arc<Vec<f32>>>>,
     /// Proofs of unreachable goals from recent exhausted searches, the latest last.
     proofs: Mutex<Vec<KeptProof>>,
 }
 
 impl Caches {
-    /// Empty caches for `poses` lattice poses of at most `stride` primitives each.
-    pub(crate) fn new(poses: usize, stride: usize) -> Self {
+    /// Empty caches for `lattice`, whose poses have at most `stride` primitives each,
+    /// with shots from within `shot_radius` of a goal.
+    pub(crate) fn new(lattice: &Lattice, stride: usize, shot_radius: f64) -> Self {
+        let poses = lattice.len();
+        let table_bytes = ShotTable::box_poses(lattice, shot_radius) * ShotTable::BYTES_PER_POSE;
         Self {
             state: (0..poses).map(|_| AtomicU8::new(0)).collect(),
             edge: (0..poses * stride).map(|_| AtomicU32::new(0)).collect(),
-            shots: Mutex::new(HashMap::new()),
-            heuristics: Mutex::new(Vec::new()),
+            shots: Mutex::new(LruCache::new(at_least_two(SHOT_BYTES / table_bytes.max(1)))),
+            heuristics: Mutex::new(LruCache::new(at_least_two(
+                HEURISTIC_BYTES / (4 * lattice.points().max(1)),
+            ))),
             proofs: Mutex::new(Vec::new()),
         }
     }
@@ -98,36 +104,28 @@ impl Caches {
         }
     }
 
-    /// A shot's validity, if known.
-    pub(crate) fn shot(&self, key: &ShotKey) -> Option<bool> {
-        self.shots.lock().expect("shot cache").get(key).copied()
+    /// The shot table of `goal`: the one kept, or a new one from `make` (then kept).
+    pub(crate) fn shot_table(
+        &self,
+        goal: &Pose2,
+        make: impl FnOnce() -> ShotTable,
+    ) -> Arc<ShotTable> {
+        let mut kept = self.shots.lock().expect("shot tables");
+        kept.get_or_insert(pose_bits(goal), || Arc::new(make()))
+            .clone()
     }
 
-    /// Records a shot's validity.
-    pub(crate) fn set_shot(&self, key: ShotKey, valid: bool) {
-        self.shots.lock().expect("shot cache").insert(key, valid);
-    }
-
-    /// The heuristic kept for the goal set `key`, if any (then the latest).
+    /// The heuristic kept for the goal set `key`, if any.
     pub(crate) fn heuristic(&self, key: &[u64]) -> Option<Arc<Vec<f32>>> {
         let mut kept = self.heuristics.lock().expect("heuristic cache");
-        let pos = kept.iter().position(|(k, _)| k == key)?;
-        let hit = kept.remove(pos);
-        let values = hit.1.clone();
-        kept.push(hit);
-        Some(values)
+        kept.get(key).cloned()
     }
 
-    /// Keeps a goal set's heuristic (the oldest goes when [`HEURISTICS_KEPT`] are).
+    /// Keeps a goal set's heuristic (the least recently used goes when as many as
+    /// [`HEURISTIC_BYTES`] allow are kept).
     pub(crate) fn keep_heuristic(&self, key: Vec<u64>, values: Arc<Vec<f32>>) {
         let mut kept = self.heuristics.lock().expect("heuristic cache");
-        if kept.iter().any(|(k, _)| *k == key) {
-            return;
-        }
-        if kept.len() >= HEURISTICS_KEPT {
-            kept.remove(0);
-        }
-        kept.push((key, values));
+        kept.put(key, values);
     }
 
     /// True when a kept proof shows `goal` unreachable from every pose of `joined`
@@ -150,5 +148,65 @@ impl Caches {
             kept.remove(0);
         }
         kept.push((closed, goals.iter().map(pose_bits).collect()));
+    }
+}
+
+/// `n`, at least 2, as a cache capacity.
+fn at_least_two(n: usize) -> NonZeroUsize {
+    NonZeroUsize::new(n.max(2)).expect("at least 2")
+}
+
+/// An unknown cost's bits (a NaN no cost has).
+pub(crate) const UNKNOWN_COST: u32 = u32::MAX;
+
+/// The shots to one goal from the lattice poses within the shot radius of it.
+pub(crate) struct ShotTable {
+    /// Column and row of the first point of the box of points around the goal.
+    corner: (i64, i64),
+    /// Points per side of the box.
+    side: usize,
+    /// Per pose of the box: the cost rounded down to an `f32`, as bits.
+    pub(crate) costs: Vec<AtomicU32>,
+    /// Per pose of the box: 0 unknown, 1 valid, 2 invalid.
+    pub(crate) valid: Vec<AtomicU8>,
+}
+
+impl ShotTable {
+    /// Bytes a table takes per pose of its box.
+    const BYTES_PER_POSE: usize = 5;
+
+    /// How far the box reaches from the goal's point, in points, for shots from
+    /// within `radius`.
+    fn reach(lattice: &Lattice, radius: f64) -> i64 {
+        (radius / lattice.cell).ceil() as i64 + 1
+    }
+
+    /// Poses in the box of a table for shots from within `radius`.
+    fn box_poses(lattice: &Lattice, radius: f64) -> usize {
+        let side = (2 * Self::reach(lattice, radius) + 1) as usize;
+        side * side * lattice.headings
+    }
+
+    /// An empty table for the poses of `lattice` within `radius` of `goal`.
+    pub(crate) fn new(lattice: &Lattice, goal: &Pose2, radius: f64) -> Self {
+        let reach = Self::reach(lattice, radius);
+        let column = ((goal.x - lattice.origin[0]) / lattice.cell).round() as i64;
+        let row = ((goal.y - lattice.origin[1]) / lattice.cell).round() as i64;
+        let side = (2 * reach + 1) as usize;
+        let poses = Self::box_poses(lattice, radius);
+        Self {
+            corner: (column - reach, row - reach),
+            side,
+            costs: (0..poses).map(|_| AtomicU32::new(UNKNOWN_COST)).collect(),
+            valid: (0..poses).map(|_| AtomicU8::new(0)).collect(),
+        }
+    }
+
+    /// The table's slot for lattice pose `id`, when it lies in the box.
+    pub(crate) fn slot(&self, lattice: &Lattice, id: StateId) -> Option<usize> {
+        let (ix, iy, k) = lattice.decode(id);
+        let (dx, dy) = (ix as i64 - self.corner.0, iy as i64 - self.corner.1);
+        let inside = (0..self.side as i64).contains(&dx) && (0..self.side as i64).contains(&dy);
+        inside.then(|| (dy as usize * self.side + dx as usize) * lattice.headings + k)
     }
 }

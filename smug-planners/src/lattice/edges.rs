@@ -5,31 +5,11 @@
 
 use super::heuristic;
 use super::primitives::{Layout, StateId};
-use super::search::{Goal, Worker, START};
+use super::search::Worker;
 use smug_core::Pose2;
 use std::sync::Arc;
 
 impl Worker<'_> {
-    /// Whether the shot from `from` (at `pose`) to `target` is valid: cached for lattice
-    /// poses (the same goals come back in a mission's later searches).
-    pub(super) fn shot_valid(&mut self, from: u32, pose: &Pose2, target: &Pose2) -> bool {
-        let key = (
-            from,
-            [target.x.to_bits(), target.y.to_bits(), target.yaw.to_bits()],
-        );
-        if from != START {
-            if let Some(valid) = self.sh.caches.shot(&key) {
-                return valid;
-            }
-        }
-        self.me.counts.shot_checks += 1;
-        let valid = self.sh.motions.is_valid_motion(pose, target);
-        if from != START {
-            self.sh.caches.set_shot(key, valid);
-        }
-        valid
-    }
-
     /// The objective's bound as its contract gives it without solving for a curve:
     /// `w_t·‖Δxy‖ + w_r·d(yaw)`.
     pub(super) fn cheap_bound(&self, a: &Pose2, b: &Pose2) -> f64 {
@@ -41,7 +21,7 @@ impl Worker<'_> {
     /// the objective's contract bound to it (`w_t·‖Δxy‖ + w_r·d(yaw)`), the larger.
     /// (The model's curve bound, solved per queued pose, cost a tenth more time on
     /// lunar for the same plans.)
-    pub(super) fn heuristic(&self, id: u32, goals: &[Goal], h2d: Option<&Vec<f32>>) -> f64 {
+    pub(super) fn heuristic(&self, id: u32, goals: &[Pose2], h2d: Option<&Vec<f32>>) -> f64 {
         let mut h = 0.0;
         if let Some(d) = h2d {
             h = d[id as usize / self.sh.lattice.headings] as f64;
@@ -52,7 +32,7 @@ impl Worker<'_> {
             h *= 1.0 - 1e-6;
         }
         if let [goal] = goals {
-            h = h.max(self.cheap_bound(&self.sh.lattice.pose(id), &goal.pose));
+            h = h.max(self.cheap_bound(&self.sh.lattice.pose(id), goal));
         }
         h
     }
@@ -125,7 +105,7 @@ impl Worker<'_> {
         }
         self.me.counts.edge_checks += 1;
         sh.motions
-            .is_valid_motion(start, to)
+            .is_valid_motion_between_valid(start, to)
             .then(|| (id, sh.objective.motion_cost(start, to), reverse))
     }
 
@@ -173,7 +153,7 @@ impl Worker<'_> {
         }
         self.me.counts.edge_checks += 1;
         let (a, b) = (self.sh.lattice.pose(from), self.sh.lattice.pose(to));
-        self.sh.motions.is_valid_motion(&a, &b)
+        self.sh.motions.is_valid_motion_between_valid(&a, &b)
     }
 
     /// Whether a lattice pose is valid (cached).
@@ -196,10 +176,10 @@ impl Worker<'_> {
     }
 
     /// The obstacle-aware distances to a goal set, from the cache or computed.
-    pub(super) fn goal_heuristic(&mut self, goals: &[Goal]) -> Arc<Vec<f32>> {
+    pub(super) fn goal_heuristic(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
         let key: Vec<u64> = goals
             .iter()
-            .flat_map(|g| [g.pose.x.to_bits(), g.pose.y.to_bits()])
+            .flat_map(|g| [g.x.to_bits(), g.y.to_bits()])
             .collect();
         if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
@@ -208,12 +188,9 @@ impl Worker<'_> {
         let (w_t, _) = sh.objective.bound_weights();
         let mut seeds = Vec::new();
         for goal in goals {
-            for (ix, iy) in sh
-                .lattice
-                .points_near(goal.pose.x, goal.pose.y, sh.shot_radius)
-            {
+            for (ix, iy) in sh.lattice.points_near(goal.x, goal.y, sh.shot_radius) {
                 let [x, y] = sh.lattice.position(ix, iy);
-                seeds.push(((ix, iy), w_t * (x - goal.pose.x).hypot(y - goal.pose.y)));
+                seeds.push(((ix, iy), w_t * (x - goal.x).hypot(y - goal.y)));
             }
         }
         let weighted: Vec<(i32, i32, f64)> = sh

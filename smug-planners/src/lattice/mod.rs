@@ -27,6 +27,7 @@ mod edges;
 mod heuristic;
 mod primitives;
 mod search;
+mod shots;
 #[cfg(test)]
 mod tests;
 
@@ -216,10 +217,9 @@ impl LatticePlanner {
             ));
         }
         let displacements = distinct_displacements(&primitives, cell);
-        let n = lattice.len();
         Ok(Self {
             shared: Shared {
-                caches: caches::Caches::new(n, primitives.stride),
+                caches: caches::Caches::new(&lattice, primitives.stride, shot_radius),
                 params,
                 lattice,
                 primitives,

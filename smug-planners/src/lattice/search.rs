@@ -3,10 +3,11 @@
 //! analytic shots, caches of state and primitive validity kept across queries.
 
 use super::buffers::{Node, Searcher};
+use super::caches::ShotTable;
 use super::Shared;
+use dary_heap::OctonaryHeap as BinaryHeap;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -82,6 +83,10 @@ impl Item {
     }
 }
 
+/// A search with goals left re-aims its heuristic at them whenever at most this
+/// many are left (and whenever half of those aimed at are settled).
+const REFOCUS_BELOW: usize = 8;
+
 /// One goal of a search.
 pub(super) struct Goal {
     /// Where it is.
@@ -91,6 +96,8 @@ pub(super) struct Goal {
     /// Proved unreachable before the search (by an earlier search's exhaustion): the
     /// search does not wait for it.
     pub(super) proved_out: bool,
+    /// The shots to it known so far (shared with every search to it).
+    pub(super) shots: Arc<ShotTable>,
 }
 
 /// How a search ended.
@@ -107,6 +114,8 @@ struct Run {
     /// Goals neither settled nor proved unreachable.
     open_goals: usize,
     h2d: Option<Arc<Vec<f32>>>,
+    /// The goals the heuristic aims at: those not settled when it was last focused.
+    aimed: Vec<Pose2>,
     /// The start's curves onto the lattice (taken when the start is expanded).
     joins: Vec<(u32, f64, bool)>,
 }
@@ -167,6 +176,9 @@ impl Worker<'_> {
                     pose: *goal,
                     reached: None,
                     proved_out: false,
+                    shots: self.sh.caches.shot_table(goal, || {
+                        ShotTable::new(&self.sh.lattice, goal, self.sh.shot_radius)
+                    }),
                 });
             }
         }
@@ -229,15 +241,14 @@ impl Worker<'_> {
             goals,
             open_goals,
             h2d: None,
+            aimed: Vec::new(),
             joins,
         };
         self.apply_kept_proofs(start, &mut run);
         if run.open_goals == 0 {
             return (run.goals, End::AllReached);
         }
-        if self.sh.params.obstacle_heuristic {
-            run.h2d = Some(self.goal_heuristic(&run.goals));
-        }
+        self.aim(&mut run);
         run.push(
             0.0,
             Item::Node {
@@ -312,8 +323,11 @@ impl Worker<'_> {
             if !self.sh.caches.proved_unreachable(&joined, &pose) {
                 continue;
             }
-            let direct = start.xy_distance(&pose) <= self.sh.shot_radius
-                && self.shot_valid(START, start, &pose);
+            let direct = start.xy_distance(&pose) <= self.sh.shot_radius && {
+                let goal = &run.goals[k];
+                let (shots, pose) = (goal.shots.clone(), goal.pose);
+                self.shot_valid(START, start, &pose, &shots)
+            };
             if !direct {
                 run.goals[k].proved_out = true;
                 run.open_goals -= 1;
@@ -463,7 +477,7 @@ impl Worker<'_> {
         if b.is_closed(i) || b.beaten(i, g, parent, prim, reverse) {
             return;
         }
-        let h = self.heuristic(to, &run.goals, run.h2d.as_deref());
+        let h = self.heuristic(to, &run.aimed, run.h2d.as_deref());
         if h.is_infinite() {
             return; // no goal reachable from there
         }
@@ -504,14 +518,14 @@ impl Worker<'_> {
             return;
         }
         let pose = self.pose_of(start, from);
-        let target = run.goals[goal].pose;
+        let (target, shots) = (run.goals[goal].pose, run.goals[goal].shots.clone());
         let g = if from == START {
             0.0
         } else {
             self.me.buffers.nodes[from as usize].g
         };
         if !costed {
-            let cost = self.sh.objective.motion_cost(&pose, &target);
+            let cost = self.shot_cost_below(from, &pose, &target, &shots);
             if !cost.is_finite() {
                 return;
             }
@@ -525,12 +539,69 @@ impl Worker<'_> {
                 return;
             }
         }
-        if self.shot_valid(from, &pose, &target) {
+        if self.shot_valid(from, &pose, &target, &shots) {
             let cost = g + self.sh.objective.motion_cost(&pose, &target);
             run.goals[goal].reached = Some((cost, from));
             if !run.goals[goal].proved_out {
                 run.open_goals -= 1;
             }
+            if run.open_goals > 0 && self.worth_refocusing(run) {
+                self.refocus(run);
+            }
         }
+    }
+
+    /// Aims the heuristic at the goals not settled yet (those proved unreachable
+    /// included, so that they order the search as if they were not).
+    fn aim(&mut self, run: &mut Run) {
+        run.aimed = run
+            .goals
+            .iter()
+            .filter(|g| g.reached.is_none())
+            .map(|g| g.pose)
+            .collect();
+        run.h2d = self
+            .sh
+            .params
+            .obstacle_heuristic
+            .then(|| self.goal_heuristic(&run.aimed));
+    }
+
+    /// Whether the goals left are few enough, against those the heuristic aims at, for
+    /// a sharper heuristic to pay for re-keying the heap: at most [`REFOCUS_BELOW`],
+    /// or half of those aimed at.
+    fn worth_refocusing(&self, run: &Run) -> bool {
+        let left = run.goals.iter().filter(|g| g.reached.is_none()).count();
+        left < run.aimed.len() && (left <= REFOCUS_BELOW || 2 * left <= run.aimed.len())
+    }
+
+    /// Once a goal is settled, aims the heuristic at the goals left and re-keys the
+    /// queue with it (the search would otherwise keep expanding towards settled
+    /// goals). The new heuristic is consistent too, so every pose still closes at its
+    /// optimal cost; shots to settled goals and poses that reach no goal left go.
+    fn refocus(&mut self, run: &mut Run) {
+        self.aim(run);
+        let entries = std::mem::take(&mut run.heap).into_vec();
+        let weight = self.sh.params.heuristic_weight;
+        let mut kept = Vec::with_capacity(entries.len());
+        for entry in entries {
+            match entry.item {
+                Item::Node { id, g, .. } => {
+                    let h = self.heuristic(id, &run.aimed, run.h2d.as_deref());
+                    if h.is_finite() {
+                        kept.push(Entry {
+                            key: g + weight * h,
+                            item: entry.item,
+                        });
+                    }
+                }
+                Item::Shot { goal, .. } => {
+                    if run.goals[goal as usize].reached.is_none() {
+                        kept.push(entry);
+                    }
+                }
+            }
+        }
+        run.heap = BinaryHeap::from(kept);
     }
 }

@@ -1,0 +1,94 @@
+//! Shots, the model's curves from lattice poses to a goal off the lattice: what each
+//! costs and whether it is valid, kept per goal in a table over the lattice poses
+//! around it, so every search to that goal (a cost-matrix row, a DP layer, the legs of
+//! each IDP round) solves and checks each shot once.
+//!
+//! A shot's cost is kept as an `f32` rounded down: a lower bound that orders the
+//! search's queue, the same whichever search computed it first; the goal's cost once a
+//! shot settles it is the objective's own, solved again.
+
+use super::caches::{ShotTable, UNKNOWN_COST};
+use super::search::{Worker, START};
+use smug_core::Pose2;
+use std::sync::atomic::Ordering::Relaxed;
+
+/// `cost` rounded down to an `f32` (a lower bound of it).
+fn f32_below(cost: f64) -> f32 {
+    let rounded = cost as f32;
+    if f64::from(rounded) > cost {
+        rounded.next_down()
+    } else {
+        rounded
+    }
+}
+
+impl Worker<'_> {
+    /// A lower bound of the cost of the shot from `from` (at `pose`) to `goal`, within
+    /// an `f32` step of it: kept in the goal's table `shots`.
+    pub(super) fn shot_cost_below(
+        &self,
+        from: u32,
+        pose: &Pose2,
+        goal: &Pose2,
+        shots: &ShotTable,
+    ) -> f64 {
+        let slot = (from != START)
+            .then(|| shots.slot(&self.sh.lattice, from))
+            .flatten();
+        if let Some(slot) = slot {
+            let bits = shots.costs[slot].load(Relaxed);
+            if bits != UNKNOWN_COST {
+                return f64::from(f32::from_bits(bits));
+            }
+        }
+        let below = f32_below(self.sh.objective.motion_cost(pose, goal));
+        if let Some(slot) = slot {
+            shots.costs[slot].store(below.to_bits(), Relaxed);
+        }
+        f64::from(below)
+    }
+
+    /// Whether the shot from `from` (at `pose`) to `goal` is valid: kept in the goal's
+    /// table `shots`.
+    pub(super) fn shot_valid(
+        &mut self,
+        from: u32,
+        pose: &Pose2,
+        goal: &Pose2,
+        shots: &ShotTable,
+    ) -> bool {
+        let slot = (from != START)
+            .then(|| shots.slot(&self.sh.lattice, from))
+            .flatten();
+        if let Some(slot) = slot {
+            match shots.valid[slot].load(Relaxed) {
+                1 => return true,
+                2 => return false,
+                _ => {}
+            }
+        }
+        self.me.counts.shot_checks += 1;
+        let valid = self.sh.motions.is_valid_motion_between_valid(pose, goal);
+        if let Some(slot) = slot {
+            shots.valid[slot].store(if valid { 1 } else { 2 }, Relaxed);
+        }
+        valid
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn costs_are_rounded_down_to_the_nearest_f32() {
+        for cost in [0.0, 1.0, 0.1, 1.0 / 3.0, 12_345.678_901_234, f64::INFINITY] {
+            let below = f32_below(cost);
+            assert!(f64::from(below) <= cost, "{cost}");
+            assert!(
+                f64::from(below.next_up()) > cost || cost.is_infinite(),
+                "{cost}"
+            );
+        }
+    }
+}
