@@ -9,6 +9,7 @@
 
 pub mod error;
 pub mod gtsp;
+pub mod lattice;
 pub mod modes;
 pub mod objectives;
 pub mod output;

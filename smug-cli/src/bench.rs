@@ -3,7 +3,7 @@
 
 use crate::Outcome;
 use clap::Subcommand;
-use smug_bench::{gtsp, modes, objectives, p2p, paper, replan, robots, tsp, validity};
+use smug_bench::{gtsp, lattice, modes, objectives, p2p, paper, replan, robots, tsp, validity};
 
 /// Arguments of `smug bench`.
 #[derive(clap::Args, Debug)]
@@ -37,6 +37,9 @@ enum BenchCommand {
     /// Every robot profile (and the car models with the lattice planner) on each world:
     /// cost, wall time and its ratio to ANYmal's, paths planned, PoIs dropped and why.
     Robots(robots::BenchRobotsArgs),
+    /// The lattice planner against LazyPRM* with ten times its budget, query by query,
+    /// on generated maps for every car model: costlier how often, by how much, time.
+    Lattice(lattice::BenchLatticeArgs),
 }
 
 /// Runs `smug bench`.
@@ -51,6 +54,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Replan(args) => replan::run(args),
         BenchCommand::Modes(args) => modes::run(args),
         BenchCommand::Robots(args) => robots::run(args),
+        BenchCommand::Lattice(args) => lattice::run(&args),
     }?;
     Ok(Outcome::Ok)
 }

@@ -411,12 +411,15 @@ impl Worker<'_> {
         }
     }
 
-    /// Pushes the shots from `id` to the goals near it and relaxes its successors.
+    /// Pushes the shots from `id` to the goals near it (from the start: to every goal,
+    /// however far, as Hybrid A*'s analytic expansion: the model's own curve is often
+    /// the way) and relaxes its successors.
     fn expand(&mut self, start: &Pose2, id: u32, g: f64, run: &mut Run) {
         let pose = self.pose_of(start, id);
         for j in 0..run.goals.len() {
             let goal = &run.goals[j];
-            if goal.reached.is_none() && pose.xy_distance(&goal.pose) <= self.sh.shot_radius {
+            let near = id == START || pose.xy_distance(&goal.pose) <= self.sh.shot_radius;
+            if goal.reached.is_none() && near {
                 let bound = self.cheap_bound(&pose, &goal.pose);
                 if bound.is_finite() {
                     let item = Item::Shot {
