@@ -3,11 +3,14 @@
 //!
 //! A pipeline is assembled from a TOML config: each stage (`world`, `traversability`,
 //! `space`, `objective`, `validity`, `motion`, `sampler`, `planner`, `sequencer`,
-//! `selector`) names a
+//! `selector`: the stage table in `stage_table.rs`, [`registry::STAGE_KEYS`]) names a
 //! registered plugin with `type = "…"` and gives its parameters in `params`.
 //! Plugins register themselves with [`register_plugin!`].
 
 #![warn(missing_docs)]
+
+#[macro_use]
+mod stage_table;
 
 mod builtins;
 pub mod config;

@@ -65,7 +65,7 @@ fn updated_world(
         .map_err(|e| Error::stage("replan", e))?;
     let fingerprint = Fingerprint::of(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
-    Ok((world, mission, pipeline.context().clone(), fingerprint))
+    Ok((world, mission, pipeline.context(), fingerprint))
 }
 
 /// Assembles the config's pipeline on its world updated with the state's obstacles
