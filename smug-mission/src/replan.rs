@@ -63,7 +63,7 @@ fn updated_world(
     state
         .check(&mission, &world.bounds(), path)
         .map_err(|e| Error::stage("replan", e))?;
-    let fingerprint = Fingerprint::of(loaded, &world);
+    let fingerprint = crate::fingerprint::fingerprint(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
     Ok((world, mission, pipeline.context(), fingerprint))
 }
