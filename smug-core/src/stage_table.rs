@@ -8,7 +8,7 @@
 //! pipeline's assembly.
 
 /// Calls `$then!` with every pipeline stage, in pipeline order (config sections,
-/// `smug plugins`, assembly). Each entry reads
+/// `smug plugins`, assembly: each stage's plugin may use the stages before it). Each entry reads
 ///
 /// ```text
 /// /// Extra doc lines for the config field.
@@ -22,15 +22,15 @@
 macro_rules! stage_table {
     ($then:ident) => {
         $then! {
+            /// Default `se2`.
+            space: SpaceStage = "motion model: k-NN distance and the local motion between states",
+                dyn $crate::space::StateSpace, Some("se2");
             /// Where the maps and the mission come from.
             world: WorldStage = "terrain maps and the mission",
                 $crate::world::Scenario, None;
             /// Absent: the world's own layer, if any, is kept.
             traversability: TraversabilityStage = "traversability layer from the world's maps",
                 dyn $crate::stages::TraversabilityEstimator, None;
-            /// Default `se2`.
-            space: SpaceStage = "motion model: k-NN distance and the local motion between states",
-                dyn $crate::space::StateSpace, Some("se2");
             /// Default `path-length`.
             objective: ObjectiveStage = "cost of motions and paths, with an admissible lower bound",
                 dyn $crate::objective::Objective, Some("path-length");

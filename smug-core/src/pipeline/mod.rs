@@ -126,8 +126,9 @@ impl Pipeline {
             return Err(loaded.sources.key_error(&key, REMOVED_COST).into());
         }
         let mut pipeline = Self::empty(loaded);
+        pipeline.run_steps(&steps::BEFORE_WORLD, Phase::Assemble, None)?;
         pipeline.build_world(loaded, given_world, given_estimator)?;
-        pipeline.run_steps(Phase::Assemble, None)?;
+        pipeline.run_steps(&steps::AFTER_WORLD, Phase::Assemble, None)?;
         Ok(pipeline)
     }
 

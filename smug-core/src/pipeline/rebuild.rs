@@ -2,6 +2,7 @@
 //! world (what a `MissionSession` does per new obstacle), and what plugins are told
 //! about the change.
 
+use super::steps::AFTER_WORLD;
 use super::{Phase, Pipeline};
 use crate::context::WorldChange;
 use crate::error::Result;
@@ -25,7 +26,7 @@ impl Pipeline {
     ) -> Result<()> {
         // On an error the world stays the one the stages were built for.
         let previous = self.world.replace(world);
-        let rebuilt = self.run_steps(Phase::Rebuild, change.map(Arc::new));
+        let rebuilt = self.run_steps(&AFTER_WORLD, Phase::Rebuild, change.map(Arc::new));
         if rebuilt.is_err() {
             self.world = previous;
         }

@@ -1,7 +1,7 @@
-//! The stage steps after the world, in the stage table's order: each builds its
-//! stage from the config's section (or the stage's default plugin) and puts it where
-//! the pipeline holds it, once. The steps of stages that read the world run again in
-//! [`Pipeline::rebuild_on_world`].
+//! The stage steps around the world's (`world.rs`), in the stage table's order: each
+//! builds its stage from the config's section (or the stage's default plugin) and
+//! puts it where the pipeline holds it, once. The steps of stages that read the world
+//! run again in [`Pipeline::rebuild_on_world`].
 
 use super::{prune_mission, Phase, Pipeline};
 use crate::config::PluginSection;
@@ -23,16 +23,18 @@ pub(super) struct Step {
     run: fn(&mut Pipeline, &BuildContext, &PluginSection, Phase) -> Result<()>,
 }
 
-/// Every stage after `world` and `traversability` (built with the world), in order.
-pub(super) const STEPS: [Step; 8] = [
-    Step {
-        key: SpaceStage::NAME,
-        reads_world: false,
-        run: |p, ctx, section, phase| {
-            p.space = p.build_stage_in::<SpaceStage>(ctx, section, phase)?.into();
-            Ok(())
-        },
+/// The stages before the world.
+pub(super) const BEFORE_WORLD: [Step; 1] = [Step {
+    key: SpaceStage::NAME,
+    reads_world: false,
+    run: |p, ctx, section, phase| {
+        p.space = p.build_stage_in::<SpaceStage>(ctx, section, phase)?.into();
+        Ok(())
     },
+}];
+
+/// The stages after `world` and `traversability` (built with the world), in order.
+pub(super) const AFTER_WORLD: [Step; 7] = [
     Step {
         key: ObjectiveStage::NAME,
         reads_world: true,
@@ -115,15 +117,16 @@ fn validity(
 }
 
 impl Pipeline {
-    /// Runs the steps (when rebuilding, those that read the world, told `change`), each
+    /// Runs `steps` (when rebuilding, those that read the world, told `change`), each
     /// in a context holding the stages built before it; a stage without a section and
     /// without a default plugin is not built.
     pub(super) fn run_steps(
         &mut self,
+        steps: &[Step],
         phase: Phase,
         change: Option<Arc<WorldChange>>,
     ) -> Result<()> {
-        let steps = STEPS
+        let steps = steps
             .iter()
             .filter(|step| phase == Phase::Assemble || step.reads_world);
         for step in steps {
@@ -139,14 +142,17 @@ impl Pipeline {
 
 #[cfg(test)]
 mod tests {
-    use super::STEPS;
+    use super::{AFTER_WORLD, BEFORE_WORLD};
     use crate::registry::{Stage, TraversabilityStage, WorldStage, STAGE_KEYS};
 
     #[test]
     fn the_pipeline_builds_every_stage_of_the_table_in_its_order() {
-        let built: Vec<&str> = [WorldStage::NAME, TraversabilityStage::NAME]
-            .into_iter()
-            .chain(STEPS.iter().map(|step| step.key))
+        let with_world = [WorldStage::NAME, TraversabilityStage::NAME];
+        let built: Vec<&str> = BEFORE_WORLD
+            .iter()
+            .map(|step| step.key)
+            .chain(with_world)
+            .chain(AFTER_WORLD.iter().map(|step| step.key))
             .collect();
         assert_eq!(built, STAGE_KEYS);
     }
