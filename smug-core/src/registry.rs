@@ -17,9 +17,6 @@ pub trait Stage: Sized + 'static {
     const NAME: &'static str;
     /// What the stage does, one line.
     const SUMMARY: &'static str;
-    /// The plugin built when the config has no section for the stage (`None`: the
-    /// stage is then not built).
-    const DEFAULT_PLUGIN: Option<&'static str>;
     /// What a plugin of this stage builds (usually `dyn Trait`).
     type Object: ?Sized + 'static;
     /// The stage's lookup table, built once from every linked plugin.
@@ -100,14 +97,13 @@ pub fn params_table<P: Serialize>(params: &P) -> toml::Table {
 }
 
 macro_rules! define_stage {
-    ($(#[$doc:meta])* $marker:ident, $name:expr, $summary:literal, $object:ty, $default:expr) => {
+    ($(#[$doc:meta])* $marker:ident, $name:expr, $summary:literal, $object:ty) => {
         $(#[$doc])*
         pub enum $marker {}
 
         impl Stage for $marker {
             const NAME: &'static str = $name;
             const SUMMARY: &'static str = $summary;
-            const DEFAULT_PLUGIN: Option<&'static str> = $default;
             type Object = $object;
 
             fn registry() -> std::result::Result<&'static Registry<Self>, RegistryError> {
@@ -128,7 +124,7 @@ macro_rules! define_stages {
     ($($(#[$doc:meta])* $key:ident: $marker:ident = $summary:literal, $object:ty, $default:expr;)*) => {
         $(define_stage!(
             #[doc = concat!("The `", stringify!($key), "` stage: ", $summary, ".")]
-            $marker, stringify!($key), $summary, $object, $default
+            $marker, stringify!($key), $summary, $object
         );)*
 
         /// Every stage's config key, in pipeline order.

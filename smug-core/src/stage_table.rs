@@ -2,10 +2,11 @@
 //! that generates what every stage needs: the registry's stage markers and the
 //! catalogue (`registry.rs`), and the config's section fields, their keys and the
 //! default plugins (`config/schema.rs`). The pipeline assembles the stages in this
-//! order (`pipeline.rs`).
+//! order (`pipeline/steps.rs`, checked against [`STAGE_KEYS`](crate::registry::STAGE_KEYS)
+//! by a test).
 //!
-//! A new stage is its trait in `stages/`, one line here, and its step in the
-//! pipeline's assembly.
+//! A new stage is its trait in `stages/`, one entry here, and its step and field in
+//! the pipeline (`pipeline/steps.rs`, `pipeline/mod.rs`).
 
 /// Calls `$then!` with every pipeline stage, in pipeline order (config sections,
 /// `smug plugins`, assembly: each stage's plugin may use the stages before it). Each entry reads

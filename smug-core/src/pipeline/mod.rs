@@ -1,7 +1,9 @@
-//! Assembling a pipeline from config: each stage is built by its registered plugin,
-//! in dependency order, through a [`BuildContext`] that hands out what earlier stages built.
+//! A pipeline assembled from config: each stage built by its registered plugin, in the
+//! stage table's order (`assemble.rs`: the steps of `steps.rs` around the world's of
+//! `world.rs`), through a [`BuildContext`] that hands out what earlier stages built
+//! ([`Pipeline::context`], composed from the stages the pipeline holds, once each).
 
-use crate::config::{KeyPath, LoadedConfig, PipelineConfig, PluginSection, SourceMap};
+use crate::config::{LoadedConfig, PipelineConfig, PluginSection, SourceMap};
 use crate::error::Result;
 use crate::mission::Mission;
 use crate::objective::Objective;
@@ -10,25 +12,19 @@ use crate::run_context::RunContext;
 use crate::space::StateSpace;
 use crate::stages::{
     MotionValidator, PoiSelector, PointToPointPlanner, Sequencer, StateValidityChecker,
-    TraversabilityEstimator,
 };
 use crate::world::World;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
+mod assemble;
 mod prune;
 mod rebuild;
 mod steps;
 mod world;
 pub use crate::context::{BuildContext, WorldChange};
 pub use prune::{prune_mission, DroppedPoi};
-
-/// The message for a config that still has the `[cost]` section of earlier versions.
-const REMOVED_COST: &str =
-    "`[cost]` was split into `[space]` (the motion model and k-NN distance, \
-     e.g. type = \"se2\") and `[objective]` (what a path costs, e.g. type = \"path-length\"); \
-     both take the weights `translation_weight` and `rotation_weight`: move the section there";
 
 /// Whether a stage step builds the pipeline for the first time or again on a changed
 /// world ([`Pipeline::rebuild_on_world`]: nothing recorded again, the mission kept).
@@ -93,48 +89,9 @@ pub struct Pipeline {
 }
 
 impl Pipeline {
-    /// Builds every stage the config names.
-    pub fn assemble(loaded: &LoadedConfig) -> Result<Self> {
-        Self::assemble_inner(loaded, None, None)
-    }
-
-    /// Builds every stage, using `world` (maps only, no mission: point-to-point
-    /// queries) instead of the config's `[world]` section.
-    pub fn assemble_with_world(loaded: &LoadedConfig, world: World) -> Result<Self> {
-        Self::assemble_inner(loaded, Some((world, None)), None)
-    }
-
-    /// Builds every stage, with `world` and its mission (when given) instead of the
-    /// config's `[world]` section and `estimator` (when given) instead of its
-    /// `[traversability]` section. The estimator is recorded as stage
-    /// `traversability`, plugin `name`.
-    pub fn assemble_with(
-        loaded: &LoadedConfig,
-        world: Option<(World, Option<Mission>)>,
-        estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
-    ) -> Result<Self> {
-        Self::assemble_inner(loaded, world, estimator)
-    }
-
-    fn assemble_inner(
-        loaded: &LoadedConfig,
-        given_world: world::GivenWorld,
-        given_estimator: world::GivenEstimator<'_>,
-    ) -> Result<Self> {
-        if loaded.config.cost.is_some() {
-            let key = KeyPath::dotted("cost");
-            return Err(loaded.sources.key_error(&key, REMOVED_COST).into());
-        }
-        let mut pipeline = Self::empty(loaded);
-        pipeline.run_steps(&steps::BEFORE_WORLD, Phase::Assemble, None)?;
-        pipeline.build_world(loaded, given_world, given_estimator)?;
-        pipeline.run_steps(&steps::AFTER_WORLD, Phase::Assemble, None)?;
-        Ok(pipeline)
-    }
-
     /// A pipeline of `loaded`'s config with nothing built yet (the default space and
     /// objective).
-    fn empty(loaded: &LoadedConfig) -> Self {
+    pub(super) fn empty(loaded: &LoadedConfig) -> Self {
         let config = loaded.config.clone();
         let ctx = BuildContext::new(config.seed, config.robot);
         Pipeline {
