@@ -126,6 +126,7 @@ impl Pipeline {
         self.build_stage_in::<S>(ctx, section, Phase::Assemble)
     }
 
+    /// [`build_stage`](Self::build_stage) in `phase` (a rebuild records nothing again).
     fn build_stage_in<S: Stage>(
         &mut self,
         ctx: &BuildContext,
