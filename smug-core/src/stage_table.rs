@@ -2,14 +2,15 @@
 //! that generates what every stage needs: the registry's stage markers and the
 //! catalogue (`registry.rs`), and the config's section fields, their keys and the
 //! default plugins (`config/schema.rs`). The pipeline assembles the stages in this
-//! order (`pipeline/steps.rs`, checked against [`STAGE_KEYS`](crate::registry::STAGE_KEYS)
-//! by a test).
+//! order, the space first (`pipeline/steps.rs`, checked against
+//! [`STAGE_KEYS`](crate::registry::STAGE_KEYS) by a test).
 //!
 //! A new stage is its trait in `stages/`, one entry here, and its step and field in
 //! the pipeline (`pipeline/steps.rs`, `pipeline/mod.rs`).
 
 /// Calls `$then!` with every pipeline stage, in pipeline order (config sections,
-/// `smug plugins`, assembly: each stage's plugin may use the stages before it). Each entry reads
+/// `smug plugins`; assembly too, except that the space, which needs nothing, is built
+/// first: each stage's plugin may use the stages built before it). Each entry reads
 ///
 /// ```text
 /// /// Extra doc lines for the config field.
@@ -23,15 +24,15 @@
 macro_rules! stage_table {
     ($then:ident) => {
         $then! {
-            /// Default `se2`.
-            space: SpaceStage = "motion model: k-NN distance and the local motion between states",
-                dyn $crate::space::StateSpace, Some("se2");
             /// Where the maps and the mission come from.
             world: WorldStage = "terrain maps and the mission",
                 $crate::world::Scenario, None;
             /// Absent: the world's own layer, if any, is kept.
             traversability: TraversabilityStage = "traversability layer from the world's maps",
                 dyn $crate::stages::TraversabilityEstimator, None;
+            /// Default `se2`.
+            space: SpaceStage = "motion model: k-NN distance and the local motion between states",
+                dyn $crate::space::StateSpace, Some("se2");
             /// Default `path-length`.
             objective: ObjectiveStage = "cost of motions and paths, with an admissible lower bound",
                 dyn $crate::objective::Objective, Some("path-length");

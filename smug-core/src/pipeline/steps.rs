@@ -143,10 +143,10 @@ impl Pipeline {
 #[cfg(test)]
 mod tests {
     use super::{AFTER_WORLD, BEFORE_WORLD};
-    use crate::registry::{Stage, TraversabilityStage, WorldStage, STAGE_KEYS};
+    use crate::registry::{SpaceStage, Stage, TraversabilityStage, WorldStage, STAGE_KEYS};
 
     #[test]
-    fn the_pipeline_builds_every_stage_of_the_table_in_its_order() {
+    fn the_pipeline_builds_every_stage_of_the_table_in_its_order_the_space_first() {
         let with_world = [WorldStage::NAME, TraversabilityStage::NAME];
         let built: Vec<&str> = BEFORE_WORLD
             .iter()
@@ -154,6 +154,9 @@ mod tests {
             .chain(with_world)
             .chain(AFTER_WORLD.iter().map(|step| step.key))
             .collect();
-        assert_eq!(built, STAGE_KEYS);
+        let mut table = STAGE_KEYS.to_vec();
+        table.retain(|key| *key != SpaceStage::NAME);
+        table.insert(0, SpaceStage::NAME);
+        assert_eq!(built, table);
     }
 }
