@@ -152,6 +152,14 @@ macro_rules! pipeline_config {
                 }
             }
 
+            /// Removes every stage section whose key is not in `keep` (to build part of
+            /// a pipeline, e.g. only its world).
+            pub fn keep_sections(&mut self, keep: &[&str]) {
+                $(if !keep.contains(&stringify!($key)) {
+                    self.$key = None;
+                })*
+            }
+
             pub(super) fn assign_section_keys(&mut self) {
                 $(if let Some(section) = &mut self.$key {
                     section.key = stringify!($key).to_string();
