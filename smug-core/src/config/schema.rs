@@ -170,3 +170,36 @@ macro_rules! pipeline_config {
 }
 
 stage_table!(pipeline_config);
+
+#[cfg(test)]
+mod tests {
+    use super::{PipelineConfig, PluginSection};
+
+    fn config(text: &str) -> PipelineConfig {
+        let mut config: PipelineConfig = toml::from_str(text).unwrap();
+        config.assign_section_keys();
+        config
+    }
+
+    #[test]
+    fn an_absent_section_is_its_stage_default_or_none() {
+        let c = config("[planner]\ntype = \"lazy-prm-star\"\n");
+        assert_eq!(c.section("space"), Some(PluginSection::new("space", "se2")));
+        let objective = PluginSection::new("objective", "path-length");
+        assert_eq!(c.section("objective"), Some(objective));
+        assert_eq!(c.section("validity"), None);
+        assert_eq!(c.section("planner").unwrap().kind, "lazy-prm-star");
+        assert_eq!(c.section("planner").unwrap().key, "planner");
+        assert_eq!(c.section("no-such-stage"), None);
+    }
+
+    #[test]
+    fn keep_sections_clears_the_other_stages_only() {
+        let mut c = config("seed = 3\n[world]\ntype = \"flat\"\n[planner]\ntype = \"x\"\n");
+        c.keep_sections(&["world", "space"]);
+        assert_eq!(c.world.as_ref().unwrap().kind, "flat");
+        assert!(c.planner.is_none());
+        assert_eq!(c.seed, 3);
+        assert_eq!(c.sections().len(), 1);
+    }
+}
