@@ -138,7 +138,8 @@ fn a_replan_on_the_warm_roadmap_after_the_three_events_is_valid() {
     for name in ["lunar.toml", "lunar-wheeled.toml", "flat-dubins.toml"] {
         let loaded = config(name, &[]);
         let (plan, pipeline) = original(&loaded);
-        let snapshot = pipeline.planner.as_ref().unwrap().save_roadmap().unwrap();
+        let saved = pipeline.planner.as_ref().unwrap().save_roadmap().unwrap();
+        let snapshot = smug_planners::RoadmapSnapshot::from_bytes(&saved).unwrap();
         let half = plan.sequence.len() / 2;
         let here = plan.pois[half - 1].pose;
         let next = &plan.pois[half];
@@ -157,7 +158,7 @@ fn a_replan_on_the_warm_roadmap_after_the_three_events_is_valid() {
         let mut pipeline = assemble_replan(&loaded, &state, "state.toml").unwrap();
         let changed = changed_discs(&state, &loaded.config.robot);
         let planner = pipeline.planner.as_mut().unwrap();
-        planner.load_roadmap(snapshot.clone(), &changed).unwrap();
+        planner.load_roadmap(&saved, &changed).unwrap();
         let options = pipeline.config.plan;
         let replanned = replan_mission(&mut pipeline, options, &state)
             .unwrap_or_else(|e| panic!("{name}: {e}"));

@@ -23,7 +23,7 @@ pub enum AppError {
     Map(#[from] smug_worlds::MapFileError),
     /// A roadmap file could not be written or read.
     #[error(transparent)]
-    RoadmapFile(#[from] smug_core::RoadmapFileError),
+    RoadmapFile(#[from] smug_planners::RoadmapFileError),
     /// The configured planner keeps no roadmap to save.
     #[error("{}: cannot save a roadmap: the configured planner keeps none", file.display())]
     NoRoadmapToSave {

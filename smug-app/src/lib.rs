@@ -34,7 +34,7 @@ pub mod roadmap;
 
 pub use error::{AppError, Result};
 pub use outcome::{one_line, NoSolution, Outcome};
-pub use plan::{load_config, plan, Planned};
+pub use plan::{load_config, plan, Planned, WORLD_STAGES};
 pub use replan::{replan, ReplanRequest};
 pub use roadmap::{load_roadmap, save_roadmap};
 /// The long-lived mission session (plan, then replan in place as the robot goes), for

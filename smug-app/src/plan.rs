@@ -1,6 +1,7 @@
 //! Planning a mission from a config, as `smug plan` and `smug.plan` do.
 
 use crate::{AppError, Outcome, Result};
+use smug_core::registry::{ObjectiveStage, SpaceStage, Stage, TraversabilityStage, WorldStage};
 use smug_core::{LoadedConfig, Mission, Pipeline, Plan, TraversabilityEstimator, World};
 use smug_mission::plan_mission;
 use std::path::Path;
@@ -15,6 +16,16 @@ pub struct Planned {
     /// The world the plan was made in.
     pub world: Arc<World>,
 }
+
+/// The stages that build a world with its layers, the sections to keep
+/// ([`PipelineConfig::keep_sections`](smug_core::PipelineConfig::keep_sections)) to
+/// assemble a config's world alone (`smug worlds`, `smug.load_world`).
+pub const WORLD_STAGES: [&str; 4] = [
+    WorldStage::NAME,
+    TraversabilityStage::NAME,
+    SpaceStage::NAME,
+    ObjectiveStage::NAME,
+];
 
 /// Loads a config with `--set` overrides and a seed, as `smug plan --set … --seed N`.
 pub fn load_config(config: &Path, set: &[String], seed: Option<u64>) -> Result<LoadedConfig> {

@@ -4,7 +4,8 @@
 use crate::{one_line, AppError, Result};
 use smug_core::mission::MissionState;
 use smug_core::{Fingerprint, LoadedConfig, Pipeline, World};
-use smug_mission::changed_discs;
+use smug_mission::{changed_discs, fingerprint};
+use smug_planners::{read_roadmap, write_roadmap};
 use std::path::Path;
 
 /// Writes the planner's roadmap after a mission to `file`, fingerprinted for `loaded`
@@ -15,14 +16,14 @@ pub fn save_roadmap(
     world: &World,
     file: &Path,
 ) -> Result<()> {
-    let snapshot = pipeline
+    let saved = pipeline
         .planner
         .as_ref()
         .and_then(|p| p.save_roadmap())
         .ok_or_else(|| AppError::NoRoadmapToSave {
             file: file.to_path_buf(),
         })?;
-    smug_core::write_roadmap(file, &snapshot, &Fingerprint::of(loaded, world))?;
+    write_roadmap(file, &saved, &fingerprint(loaded, world))?;
     Ok(())
 }
 
@@ -36,7 +37,7 @@ pub fn load_roadmap(
     fingerprint: &Fingerprint,
     file: &Path,
 ) -> Result<()> {
-    let snapshot = smug_core::read_roadmap(file, fingerprint)?;
+    let saved = read_roadmap(file, fingerprint)?;
     let changed = changed_discs(state, &loaded.config.robot);
     let planner = pipeline
         .planner
@@ -45,7 +46,7 @@ pub fn load_roadmap(
             file: file.to_path_buf(),
         })?;
     planner
-        .load_roadmap(snapshot, &changed)
+        .load_roadmap(&saved, &changed)
         .map_err(|e| AppError::RoadmapRefused {
             file: file.to_path_buf(),
             message: one_line(&e),

@@ -151,7 +151,7 @@ fn measure(
     let options = pipeline.config.plan;
     let plan = plan_mission(&mut pipeline, options)?;
     let plan_s = started.elapsed().as_secs_f64();
-    let snapshot = pipeline
+    let saved = pipeline
         .planner
         .as_ref()
         .and_then(|p| p.save_roadmap())
@@ -168,12 +168,11 @@ fn measure(
         let state = event_state(event, &plan, [s.x, s.y, s.yaw]);
         let (replan_s, replanned) = replan_from_scratch(&loaded, &state, event);
         let (scratch_lazy_s, scratch_lazy) = replan_from_scratch(&lazy, &state, event);
-        let warm_snapshot = snapshot.clone();
         let changed = changed_discs(&state, &loaded.config.robot);
         let started = Instant::now();
         let warm = assemble_replan(&loaded, &state, event).and_then(|mut p| {
             if let Some(planner) = p.planner.as_mut() {
-                planner.load_roadmap(warm_snapshot, &changed)?;
+                planner.load_roadmap(&saved, &changed)?;
             }
             let options = p.config.plan;
             replan_mission(&mut p, options, &state)

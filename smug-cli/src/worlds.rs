@@ -280,13 +280,7 @@ fn load_world(source: &WorldSource) -> anyhow::Result<(World, Option<Mission>)> 
 /// Builds the world and traversability stages of a config (the others are not needed);
 /// the world and its mission.
 fn build_world(mut loaded: LoadedConfig) -> anyhow::Result<(World, Option<Mission>)> {
-    let config = &mut loaded.config;
-    config.validity = None;
-    config.motion = None;
-    config.sampler = None;
-    config.planner = None;
-    config.sequencer = None;
-    config.selector = None;
+    loaded.config.keep_sections(&smug_app::WORLD_STAGES);
     let pipeline = Pipeline::assemble(&loaded)?;
     match pipeline.world {
         Some(world) => Ok((World::clone(&world), pipeline.given_mission)),

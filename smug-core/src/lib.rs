@@ -3,16 +3,20 @@
 //!
 //! A pipeline is assembled from a TOML config: each stage (`world`, `traversability`,
 //! `space`, `objective`, `validity`, `motion`, `sampler`, `planner`, `sequencer`,
-//! `selector`) names a
+//! `selector`: the stage table in `stage_table.rs`, [`registry::STAGE_KEYS`]) names a
 //! registered plugin with `type = "…"` and gives its parameters in `params`.
 //! Plugins register themselves with [`register_plugin!`].
 
 #![warn(missing_docs)]
 
+#[macro_use]
+mod stage_table;
+
 mod builtins;
 pub mod config;
 pub mod context;
 pub mod deadline;
+pub mod digest;
 pub mod error;
 pub mod grid;
 pub mod limits;
@@ -46,7 +50,7 @@ pub use objective::{Objective, PathLength};
 pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline, WorldChange};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
-pub use pose::{Bounds2, Point3, Pose2, Waypoint};
+pub use pose::{Bounds2, Point3, Pose2, PoseBits, Waypoint};
 pub use run_context::{ProgressFn, RunContext};
 pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};
 pub use stages::*;

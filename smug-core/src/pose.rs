@@ -168,6 +168,27 @@ impl Bounds2 {
     }
 }
 
+/// A pose as the bits of its `x`, `y` and `yaw`: a hash key, and what a saved roadmap
+/// stores (bit-identical when read back).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct PoseBits(pub [u64; 3]);
+
+impl From<Pose2> for PoseBits {
+    fn from(p: Pose2) -> Self {
+        Self([p.x.to_bits(), p.y.to_bits(), p.yaw.to_bits()])
+    }
+}
+
+impl From<PoseBits> for Pose2 {
+    fn from(p: PoseBits) -> Self {
+        Pose2 {
+            x: f64::from_bits(p.0[0]),
+            y: f64::from_bits(p.0[1]),
+            yaw: f64::from_bits(p.0[2]),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

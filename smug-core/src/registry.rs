@@ -6,13 +6,7 @@ use crate::config::KeyPath;
 use crate::config::PluginSection;
 use crate::context::BuildContext;
 use crate::error::{RegistryError, Result};
-use crate::objective::Objective;
-use crate::stages::{
-    MotionValidator, PoiSelector, PointToPointPlanner, Sampler, Sequencer, StateValidityChecker,
-    TraversabilityEstimator,
-};
-use crate::world::Scenario;
-use crate::StateSpace;
+use crate::stages::Sampler;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -103,7 +97,7 @@ pub fn params_table<P: Serialize>(params: &P) -> toml::Table {
 }
 
 macro_rules! define_stage {
-    ($(#[$doc:meta])* $marker:ident, $name:literal, $summary:literal, $object:ty) => {
+    ($(#[$doc:meta])* $marker:ident, $name:expr, $summary:literal, $object:ty) => {
         $(#[$doc])*
         pub enum $marker {}
 
@@ -126,46 +120,24 @@ macro_rules! define_stage {
     };
 }
 
-define_stage!(
-    /// Worlds: terrain maps and a mission (procedural or imported).
-    WorldStage, "world", "terrain maps and the mission", Scenario
-);
-define_stage!(
-    /// State spaces (motion models): k-NN distance and local motions.
-    SpaceStage, "space", "motion model: k-NN distance and the local motion between states", dyn StateSpace
-);
-define_stage!(
-    /// Objectives: motion costs over the world's layers and admissible bounds.
-    ObjectiveStage, "objective", "cost of motions and paths, with an admissible lower bound", dyn Objective
-);
-define_stage!(
-    /// Traversability estimators.
-    TraversabilityStage, "traversability", "traversability layer from the world's maps", dyn TraversabilityEstimator
-);
-define_stage!(
-    /// State validity checkers.
-    ValidityStage, "validity", "is the robot safe at a pose", dyn StateValidityChecker
-);
-define_stage!(
-    /// Motion validators.
-    MotionStage, "motion", "is a straight motion between two poses safe", dyn MotionValidator
-);
-define_stage!(
-    /// SE(2) samplers.
-    SamplerStage, "sampler", "draws SE(2) states for the roadmap", dyn Sampler
-);
-define_stage!(
-    /// Point-to-point planners.
-    PlannerStage, "planner", "plans a safe path between two poses on a shared roadmap", dyn PointToPointPlanner
-);
-define_stage!(
-    /// Sequencers (TSP solvers).
-    SequencerStage, "sequencer", "orders the targets (TSP over path costs)", dyn Sequencer
-);
-define_stage!(
-    /// PoI selectors.
-    SelectorStage, "selector", "chooses one pose of interest per target", dyn PoiSelector
-);
+macro_rules! define_stages {
+    ($($(#[$doc:meta])* $key:ident: $marker:ident = $summary:literal, $object:ty, $default:expr;)*) => {
+        $(define_stage!(
+            #[doc = concat!("The `", stringify!($key), "` stage: ", $summary, ".")]
+            $marker, stringify!($key), $summary, $object
+        );)*
+
+        /// Every stage's config key, in pipeline order.
+        pub const STAGE_KEYS: &[&str] = &[$(stringify!($key)),*];
+
+        /// Every stage with its registered plugins, in pipeline order.
+        pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
+            Ok(vec![$(stage_info::<$marker>()?),*])
+        }
+    };
+}
+
+stage_table!(define_stages);
 
 /// A plugin as listed by `smug plugins`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -204,22 +176,6 @@ fn stage_info<S: Stage>() -> std::result::Result<StageInfo, RegistryError> {
     })
 }
 
-/// Every stage with its registered plugins, in pipeline order.
-pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
-    Ok(vec![
-        stage_info::<WorldStage>()?,
-        stage_info::<TraversabilityStage>()?,
-        stage_info::<SpaceStage>()?,
-        stage_info::<ObjectiveStage>()?,
-        stage_info::<ValidityStage>()?,
-        stage_info::<MotionStage>()?,
-        stage_info::<SamplerStage>()?,
-        stage_info::<PlannerStage>()?,
-        stage_info::<SequencerStage>()?,
-        stage_info::<SelectorStage>()?,
-    ])
-}
-
 /// Building stages by name through the registry (beside it: the context only
 /// carries what builders use).
 impl BuildContext {
@@ -228,7 +184,7 @@ impl BuildContext {
         let section = self
             .sampler
             .as_ref()
-            .ok_or_else(|| self.missing("sampler"))?;
+            .ok_or_else(|| self.missing(SamplerStage::NAME))?;
         Ok(self.build::<SamplerStage>(section)?.object)
     }
 

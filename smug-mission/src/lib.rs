@@ -12,6 +12,7 @@
 mod assembly;
 mod dead_ends;
 pub mod evaluation;
+mod fingerprint;
 mod joint;
 mod layout;
 mod lazy;
@@ -25,6 +26,7 @@ mod session;
 #[cfg(test)]
 mod test_support;
 
+pub use fingerprint::fingerprint;
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
 pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,

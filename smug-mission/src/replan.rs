@@ -13,7 +13,7 @@ use smug_core::mission::{Mission, PlanOptions, Target};
 use smug_core::pipeline::{BuildContext, DroppedPoi, Pipeline};
 use smug_core::plan::Plan;
 pub use smug_core::plan::{ReplanInfo, SkippedTarget};
-use smug_core::registry::TraversabilityStage;
+use smug_core::registry::{ObjectiveStage, SpaceStage, Stage, TraversabilityStage, WorldStage};
 use smug_core::stages::{ChangedDisc, Fingerprint};
 use smug_core::world::World;
 
@@ -44,9 +44,8 @@ fn updated_world(
     path: &str,
 ) -> Result<(World, Mission, BuildContext, Fingerprint)> {
     let mut world_only = loaded.clone();
-    let c = &mut world_only.config;
-    (c.traversability, c.validity, c.motion, c.sampler) = (None, None, None, None);
-    (c.planner, c.sequencer, c.selector) = (None, None, None);
+    let world_stages = [WorldStage::NAME, SpaceStage::NAME, ObjectiveStage::NAME];
+    world_only.config.keep_sections(&world_stages);
     let pipeline = Pipeline::assemble(&world_only)?;
     let mut world = pipeline
         .world
@@ -63,9 +62,9 @@ fn updated_world(
     state
         .check(&mission, &world.bounds(), path)
         .map_err(|e| Error::stage("replan", e))?;
-    let fingerprint = Fingerprint::of(loaded, &world);
+    let fingerprint = crate::fingerprint::fingerprint(loaded, &world);
     add_obstacles(&mut world, &state.obstacles);
-    Ok((world, mission, pipeline.context().clone(), fingerprint))
+    Ok((world, mission, pipeline.context(), fingerprint))
 }
 
 /// Assembles the config's pipeline on its world updated with the state's obstacles

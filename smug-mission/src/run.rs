@@ -382,7 +382,7 @@ fn plan_on_oracle(
         .objective
         .as_ref()
         .map_or("path-length", |section| section.kind.as_str());
-    plan.metrics = plan_metrics(pipeline.context(), world, objective, &concatenate(&plan).0);
+    plan.metrics = plan_metrics(&pipeline.context(), world, objective, &concatenate(&plan).0);
     (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, world, options.keep_headings);
     plan.cost = selection.cost;
     plan.skipped = skipped;

@@ -161,7 +161,7 @@ impl MissionSession {
         let mut planner_kept = false;
         if let Some(mut planner) = self.pipeline.planner.take() {
             planner_kept = planner
-                .update_world(self.pipeline.context(), &changed)
+                .update_world(&self.pipeline.context(), &changed)
                 .is_ok();
             if !planner_kept {
                 planner = match &self.pipeline.config.planner {

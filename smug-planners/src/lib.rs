@@ -17,4 +17,5 @@ pub mod visibility;
 
 pub use lattice::{LatticeParams, LatticePlanner};
 pub use lazy_prm_star::{LazyPrmStar, LazyPrmStarParams, SearchMode};
+pub use roadmap::file::{read_roadmap, write_roadmap, RoadmapFileError, RoadmapSnapshot};
 pub use visibility::{Visibility, VisibilityParams};

@@ -469,15 +469,7 @@ fn load_world(
 ) -> PyResult<PyWorld> {
     let mut loaded = load(&config, set, seed)?;
     // Only the world and its traversability are needed.
-    let c = &mut loaded.config;
-    (
-        c.validity,
-        c.motion,
-        c.sampler,
-        c.planner,
-        c.sequencer,
-        c.selector,
-    ) = (None, None, None, None, None, None);
+    loaded.config.keep_sections(&smug_app::WORLD_STAGES);
     let pipeline = py.detach(|| Pipeline::assemble(&loaded)).map_err(to_py)?;
     PyWorld::of(&pipeline)
 }

@@ -100,87 +100,106 @@ impl Default for OutputConfig {
     }
 }
 
-/// A whole pipeline: one section per stage. Stages a command does not need may be absent.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PipelineConfig {
-    /// Seed of every random choice; the same seed gives bit-identical runs.
-    #[serde(default)]
-    pub seed: u64,
-    /// Where the maps and the mission come from.
-    pub world: Option<PluginSection>,
-    /// The robot's base box.
-    #[serde(default)]
-    pub robot: RobotConfig,
-    /// Motion model: k-NN distance and local motions (default `se2`).
-    pub space: Option<PluginSection>,
-    /// What a path costs, with an admissible bound (default `path-length`).
-    pub objective: Option<PluginSection>,
-    /// Removed: split into `[space]` and `[objective]` (kept to say so clearly).
-    #[serde(default, skip_serializing)]
-    pub cost: Option<toml::Value>,
-    /// Traversability estimator (absent: keep the world's own layer, if any).
-    pub traversability: Option<PluginSection>,
-    /// State validity checker.
-    pub validity: Option<PluginSection>,
-    /// Motion validator.
-    pub motion: Option<PluginSection>,
-    /// Sampler used by the planner.
-    pub sampler: Option<PluginSection>,
-    /// Point-to-point planner.
-    pub planner: Option<PluginSection>,
-    /// TSP solver for the visiting order.
-    pub sequencer: Option<PluginSection>,
-    /// PoI selector.
-    pub selector: Option<PluginSection>,
-    /// How the mission is run.
-    #[serde(default)]
-    pub plan: crate::mission::PlanOptions,
-    /// Output files.
-    #[serde(default)]
-    pub output: OutputConfig,
-    /// Resource limits (`[limits] memory_gb`).
-    #[serde(default)]
-    pub limits: crate::limits::LimitsConfig,
-}
+/// Generates [`PipelineConfig`] from the stage table: one optional section per stage,
+/// then the settings of the run.
+macro_rules! pipeline_config {
+    ($($(#[$doc:meta])* $key:ident: $marker:ident = $summary:literal, $object:ty, $default:expr;)*) => {
+        /// A whole pipeline: one section per stage (stages a command does not need may
+        /// be absent), the robot and the run's settings.
+        #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct PipelineConfig {
+            /// Seed of every random choice; the same seed gives bit-identical runs.
+            #[serde(default)]
+            pub seed: u64,
+            $(
+                #[doc = concat!("`[", stringify!($key), "]`: ", $summary, ".")]
+                $(#[$doc])*
+                pub $key: Option<PluginSection>,
+            )*
+            /// The robot's base box.
+            #[serde(default)]
+            pub robot: RobotConfig,
+            /// Removed: split into `[space]` and `[objective]` (kept to say so clearly).
+            #[serde(default, skip_serializing)]
+            pub cost: Option<toml::Value>,
+            /// How the mission is run.
+            #[serde(default)]
+            pub plan: crate::mission::PlanOptions,
+            /// Output files.
+            #[serde(default)]
+            pub output: OutputConfig,
+            /// Resource limits (`[limits] memory_gb`).
+            #[serde(default)]
+            pub limits: crate::limits::LimitsConfig,
+        }
 
-impl PipelineConfig {
-    /// The plugin sections present, in pipeline order, with their keys.
-    pub fn sections(&self) -> Vec<&PluginSection> {
-        [
-            &self.world,
-            &self.traversability,
-            &self.space,
-            &self.objective,
-            &self.validity,
-            &self.motion,
-            &self.sampler,
-            &self.planner,
-            &self.sequencer,
-            &self.selector,
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
-    }
+        impl PipelineConfig {
+            /// The plugin sections present, in pipeline order, with their keys.
+            pub fn sections(&self) -> Vec<&PluginSection> {
+                [$(&self.$key),*].into_iter().flatten().collect()
+            }
 
-    pub(super) fn assign_section_keys(&mut self) {
-        let slots = [
-            ("world", &mut self.world),
-            ("traversability", &mut self.traversability),
-            ("space", &mut self.space),
-            ("objective", &mut self.objective),
-            ("validity", &mut self.validity),
-            ("motion", &mut self.motion),
-            ("sampler", &mut self.sampler),
-            ("planner", &mut self.planner),
-            ("sequencer", &mut self.sequencer),
-            ("selector", &mut self.selector),
-        ];
-        for (key, slot) in slots {
-            if let Some(section) = slot {
-                section.key = key.to_string();
+            /// The section of the stage at config key `key`: the configured one, else
+            /// its default plugin's (`se2`, `path-length`), else `None`.
+            pub fn section(&self, key: &str) -> Option<PluginSection> {
+                match key {
+                    $(stringify!($key) => self.$key.clone().or_else(|| {
+                        let default: Option<&str> = $default;
+                        default.map(|kind| PluginSection::new(key, kind))
+                    }),)*
+                    _ => None,
+                }
+            }
+
+            /// Removes every stage section whose key is not in `keep` (to build part of
+            /// a pipeline, e.g. only its world).
+            pub fn keep_sections(&mut self, keep: &[&str]) {
+                $(if !keep.contains(&stringify!($key)) {
+                    self.$key = None;
+                })*
+            }
+
+            pub(super) fn assign_section_keys(&mut self) {
+                $(if let Some(section) = &mut self.$key {
+                    section.key = stringify!($key).to_string();
+                })*
             }
         }
+    };
+}
+
+stage_table!(pipeline_config);
+
+#[cfg(test)]
+mod tests {
+    use super::{PipelineConfig, PluginSection};
+
+    fn config(text: &str) -> PipelineConfig {
+        let mut config: PipelineConfig = toml::from_str(text).unwrap();
+        config.assign_section_keys();
+        config
+    }
+
+    #[test]
+    fn an_absent_section_is_its_stage_default_or_none() {
+        let c = config("[planner]\ntype = \"lazy-prm-star\"\n");
+        assert_eq!(c.section("space"), Some(PluginSection::new("space", "se2")));
+        let objective = PluginSection::new("objective", "path-length");
+        assert_eq!(c.section("objective"), Some(objective));
+        assert_eq!(c.section("validity"), None);
+        assert_eq!(c.section("planner").unwrap().kind, "lazy-prm-star");
+        assert_eq!(c.section("planner").unwrap().key, "planner");
+        assert_eq!(c.section("no-such-stage"), None);
+    }
+
+    #[test]
+    fn keep_sections_clears_the_other_stages_only() {
+        let mut c = config("seed = 3\n[world]\ntype = \"flat\"\n[planner]\ntype = \"x\"\n");
+        c.keep_sections(&["world", "space"]);
+        assert_eq!(c.world.as_ref().unwrap().kind, "flat");
+        assert!(c.planner.is_none());
+        assert_eq!(c.seed, 3);
+        assert_eq!(c.sections().len(), 1);
     }
 }

@@ -4,7 +4,7 @@ mod clusters;
 mod motion;
 mod path_costs;
 mod planner;
-pub mod roadmap_file;
+mod roadmap;
 mod sampler;
 mod selector;
 mod sequencer;
@@ -19,10 +19,7 @@ pub use planner::{
     refuse_world_update, Budget, NoPathReason, NoRoadmap, PlannerOutcome, PlannerStats,
     PointToPointPlanner, Proof,
 };
-pub use roadmap_file::{
-    read_roadmap, write_roadmap, ChangedDisc, CheckStatus, Fingerprint, IncompatibleRoadmap,
-    PoseBits, RoadmapFileError, RoadmapSnapshot, SavedAnswer, SavedEdge, SavedVertex,
-};
+pub use roadmap::{ChangedDisc, Fingerprint};
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionError, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};

@@ -4,7 +4,7 @@ use crate::error::Result;
 use crate::path::Path;
 use crate::pipeline::BuildContext;
 use crate::pose::Pose2;
-use crate::stages::roadmap_file::{ChangedDisc, RoadmapSnapshot};
+use crate::stages::roadmap::ChangedDisc;
 use crate::timing::TimeBreakdown;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -236,18 +236,20 @@ pub trait PointToPointPlanner: Send + Sync {
         Ok(None)
     }
 
-    /// The planner's roadmap and answered queries, to save after a mission (default:
-    /// `None`, the planner keeps no roadmap).
-    fn save_roadmap(&self) -> Option<RoadmapSnapshot> {
+    /// The planner's roadmap and answered queries, to save after a mission: bytes in
+    /// the planner's own format, opaque to the caller, who stores them with a
+    /// [`Fingerprint`](crate::stages::Fingerprint) of what they were built for
+    /// (default: `None`, the planner keeps no roadmap).
+    fn save_roadmap(&self) -> Option<Vec<u8>> {
         None
     }
 
-    /// Loads a roadmap saved by [`save_roadmap`](Self::save_roadmap) before any query;
-    /// the world changed in `changed` since (vertices there are checked again, edges
-    /// that may pass there are unchecked again, answers through there are dropped).
-    /// The default refuses: the planner keeps no roadmap.
-    fn load_roadmap(&mut self, snapshot: RoadmapSnapshot, changed: &[ChangedDisc]) -> Result<()> {
-        let _ = (snapshot, changed);
+    /// Loads a roadmap saved by [`save_roadmap`](Self::save_roadmap) (its bytes) before
+    /// any query; the world changed in `changed` since (vertices there are checked
+    /// again, edges that may pass there are unchecked again, answers through there
+    /// are dropped). The default refuses: the planner keeps no roadmap.
+    fn load_roadmap(&mut self, saved: &[u8], changed: &[ChangedDisc]) -> Result<()> {
+        let _ = (saved, changed);
         Err(crate::error::Error::stage("planner", NoRoadmap))
     }
 

@@ -3,11 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 use smug_core::path::Path;
-use smug_core::pose::Pose2;
+use smug_core::pose::{Pose2, PoseBits};
 use smug_core::space::StateSpace;
-use smug_core::stages::{
-    Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome, PoseBits,
-};
+use smug_core::stages::{Budget, ChangedDisc, MotionValidator, NoPathReason, PlannerOutcome};
 use std::collections::HashMap;
 use std::sync::Arc;
 

@@ -33,6 +33,7 @@ use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
 pub use self::params::{LazyPrmStarParams, SearchMode};
 use crate::grid_disc::FreeRegions;
+use crate::roadmap::file::RoadmapSnapshot;
 use crate::roadmap::{AStar, Evaluator, GraphPath, Repair, Roadmap, Validity};
 use crate::shortcut::{shortcut, smooth};
 use rayon::prelude::*;
@@ -247,15 +248,13 @@ impl PointToPointPlanner for LazyPrmStar {
         self.params.one_to_many
     }
 
-    fn save_roadmap(&self) -> Option<smug_core::RoadmapSnapshot> {
-        Some(self.snapshot())
+    fn save_roadmap(&self) -> Option<Vec<u8>> {
+        self.snapshot().to_bytes()
     }
 
-    fn load_roadmap(
-        &mut self,
-        snapshot: smug_core::RoadmapSnapshot,
-        changed: &[smug_core::ChangedDisc],
-    ) -> Result<()> {
+    fn load_roadmap(&mut self, saved: &[u8], changed: &[smug_core::ChangedDisc]) -> Result<()> {
+        let snapshot =
+            RoadmapSnapshot::from_bytes(saved).map_err(|e| Error::stage("planner", e))?;
         self.load(snapshot, changed)
     }
 

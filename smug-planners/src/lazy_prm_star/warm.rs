@@ -2,10 +2,11 @@
 //! after a load, those it may give again without planning.
 
 use super::LazyPrmStar;
+use crate::roadmap::file::{IncompatibleRoadmap, RoadmapSnapshot, SavedAnswer};
 use crate::roadmap::Validity;
 use smug_core::{
-    Bounds2, BuildContext, ChangedDisc, Error, IncompatibleRoadmap, Path, PlannerOutcome, Pose2,
-    PoseBits, Result, RoadmapSnapshot, SavedAnswer, StateSpace,
+    Bounds2, BuildContext, ChangedDisc, Error, Path, PlannerOutcome, Pose2, PoseBits, Result,
+    StateSpace,
 };
 use std::collections::{BTreeMap, HashMap, VecDeque};
 use std::time::Instant;

@@ -1,6 +1,7 @@
 //! The shared roadmap: vertices with lazily known validity, edges with cached
 //! validity, compact adjacency, connected components and a reusable A*.
 
+pub mod file;
 mod search;
 mod snapshot;
 

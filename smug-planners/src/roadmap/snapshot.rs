@@ -1,7 +1,9 @@
-//! A roadmap to and from a planner-independent [`RoadmapSnapshot`].
+//! A roadmap to and from a planner-independent
+//! [`RoadmapSnapshot`](super::file::RoadmapSnapshot).
 
+use super::file::{CheckStatus, SavedEdge, SavedVertex};
 use super::{pose_key, Roadmap, UnionFind, Validity};
-use smug_core::{CheckStatus, Pose2, SavedEdge, SavedVertex};
+use smug_core::Pose2;
 
 /// Why a saved roadmap cannot be restored.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -1,14 +1,15 @@
-//! A planner's roadmap saved after a mission and loaded before a replan (`smug plan
-//! --save-roadmap`, `smug replan --roadmap`): a planner-independent snapshot, its file
-//! format (a header line, then the body) and the fingerprint of what it was built for.
+//! LazyPRM*'s roadmap saved after a mission and loaded before a replan (`smug plan
+//! --save-roadmap`, `smug replan --roadmap`): the roadmap as a planner-independent
+//! snapshot (the bytes [`save_roadmap`](smug_core::PointToPointPlanner::save_roadmap)
+//! hands out), and the file that stores such bytes (a header line, then the body)
+//! with the [`Fingerprint`] the caller supplies of what they were built for.
 //!
 //! Floats are stored as their IEEE-754 bits, so a loaded roadmap is bit-identical to
 //! the saved one.
 
-use crate::config::LoadedConfig;
-use crate::pose::Pose2;
-use crate::world::World;
 use serde::{Deserialize, Serialize};
+use smug_core::digest::Digest;
+use smug_core::{Fingerprint, PoseBits};
 use std::path::Path as FsPath;
 
 /// The format name in a roadmap file's header.
@@ -26,26 +27,6 @@ pub enum CheckStatus {
     Valid,
     /// Checked: invalid.
     Invalid,
-}
-
-/// A pose as the bits of its `x`, `y` and `yaw`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub struct PoseBits(pub [u64; 3]);
-
-impl From<Pose2> for PoseBits {
-    fn from(p: Pose2) -> Self {
-        Self([p.x.to_bits(), p.y.to_bits(), p.yaw.to_bits()])
-    }
-}
-
-impl From<PoseBits> for Pose2 {
-    fn from(p: PoseBits) -> Self {
-        Pose2 {
-            x: f64::from_bits(p.0[0]),
-            y: f64::from_bits(p.0[1]),
-            yaw: f64::from_bits(p.0[2]),
-        }
-    }
 }
 
 /// A saved roadmap vertex.
@@ -88,7 +69,8 @@ pub struct SavedAnswer {
     pub goal_distance: Option<u64>,
 }
 
-/// A planner's roadmap, independent of the planner's own data structures.
+/// A planner's roadmap, independent of the planner's own data structures; saved as
+/// JSON ([`to_bytes`](Self::to_bytes)).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct RoadmapSnapshot {
     /// The planner that built it (a loading planner refuses another's).
@@ -103,31 +85,18 @@ pub struct RoadmapSnapshot {
     pub answers: Vec<SavedAnswer>,
 }
 
-/// A disc of the plane where the world changed, already widened by the robot's
-/// extent: vertices and edges that reach into it are checked again.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ChangedDisc {
-    /// Centre `[x, y]`, metres.
-    pub center: [f64; 2],
-    /// Radius, metres.
-    pub radius: f64,
-}
-
-impl ChangedDisc {
-    /// True when a pose at `p` lies in the disc.
-    pub fn contains(&self, p: &Pose2) -> bool {
-        (p.x - self.center[0]).hypot(p.y - self.center[1]) <= self.radius
+impl RoadmapSnapshot {
+    /// The snapshot as the bytes a planner saves (JSON; `None` only if it cannot be
+    /// written, which plain data never is).
+    pub fn to_bytes(&self) -> Option<Vec<u8>> {
+        serde_json::to_vec(self).ok()
     }
 
-    /// True when a motion from `a` to `b` of planar length `length` may pass through
-    /// the disc: every point of such a motion lies in the ellipse
-    /// `|p − a| + |p − b| ≤ length`, which is tested against the disc.
-    pub fn may_touch(&self, a: &Pose2, b: &Pose2, length: f64) -> bool {
-        let da = (a.x - self.center[0]).hypot(a.y - self.center[1]);
-        let db = (b.x - self.center[0]).hypot(b.y - self.center[1]);
-        // NaN anywhere: touched (checked again rather than trusted).
-        let beyond = da + db - 2.0 * self.radius > length * (1.0 + 1e-9) + 1e-9;
-        !beyond
+    /// The snapshot saved as `bytes`.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, IncompatibleRoadmap> {
+        serde_json::from_slice(bytes).map_err(|e| IncompatibleRoadmap {
+            reason: format!("not a roadmap snapshot: {e}"),
+        })
     }
 }
 
@@ -198,53 +167,6 @@ pub enum RoadmapFileError {
     },
 }
 
-/// FNV-1a (64 bits) of `bytes`, continuing from `hash`.
-fn fnv1a(mut hash: u64, bytes: &[u8]) -> u64 {
-    for &b in bytes {
-        hash ^= u64::from(b);
-        hash = hash.wrapping_mul(0x0100_0000_01b3);
-    }
-    hash
-}
-
-const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
-
-fn hex(hash: u64) -> String {
-    format!("{hash:016x}")
-}
-
-/// What a roadmap was built for: hashes of the world (name and elevation grid before
-/// any mission-state obstacles), the robot section and the resolved config.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Fingerprint {
-    /// The world's name and elevation grid.
-    pub world: String,
-    /// The config's `[robot]` section.
-    pub robot: String,
-    /// The resolved config table (after includes and overrides).
-    pub config: String,
-}
-
-impl Fingerprint {
-    /// The fingerprint of `loaded` on `world` (the world as built from the config,
-    /// before a mission state's obstacles are added).
-    pub fn of(loaded: &LoadedConfig, world: &World) -> Self {
-        let mut w = fnv1a(FNV_OFFSET, world.name.as_bytes());
-        let g = &world.elevation;
-        w = fnv1a(w, format!("{:?}", g.geometry).as_bytes());
-        for v in &g.data {
-            w = fnv1a(w, &v.to_bits().to_le_bytes());
-        }
-        let robot = format!("{:?}", loaded.config.robot);
-        let config = loaded.table.to_string();
-        Self {
-            world: hex(w),
-            robot: hex(fnv1a(FNV_OFFSET, robot.as_bytes())),
-            config: hex(fnv1a(FNV_OFFSET, config.as_bytes())),
-        }
-    }
-}
-
 /// A roadmap file's header (its first line).
 #[derive(Debug, Serialize, Deserialize)]
 struct Header {
@@ -255,40 +177,34 @@ struct Header {
     checksum: String,
 }
 
-/// Writes `snapshot` with its `fingerprint` to `path` (atomically).
+/// Writes a planner's saved roadmap (its bytes) with the `fingerprint` of what it was
+/// built for to `path` (atomically).
 pub fn write_roadmap(
     path: &FsPath,
-    snapshot: &RoadmapSnapshot,
+    saved: &[u8],
     fingerprint: &Fingerprint,
 ) -> Result<(), RoadmapFileError> {
     let file = path.display().to_string();
-    let body = serde_json::to_vec(snapshot).map_err(|e| RoadmapFileError::Unusable {
-        file: file.clone(),
-        reason: e.to_string(),
-    })?;
     let header = Header {
         format: ROADMAP_FORMAT.into(),
         version: ROADMAP_VERSION,
         fingerprint: fingerprint.clone(),
-        body_bytes: body.len(),
-        checksum: hex(fnv1a(FNV_OFFSET, &body)),
+        body_bytes: saved.len(),
+        checksum: Digest::hex_of(saved),
     };
     let mut bytes = serde_json::to_vec(&header).map_err(|e| RoadmapFileError::Unusable {
         file: file.clone(),
         reason: e.to_string(),
     })?;
     bytes.push(b'\n');
-    bytes.extend_from_slice(&body);
-    crate::output::write_atomic(path, &bytes)
+    bytes.extend_from_slice(saved);
+    smug_core::output::write_atomic(path, &bytes)
         .map_err(|source| RoadmapFileError::Io { file, source })
 }
 
-/// Reads the roadmap at `path`, refusing it unless it is intact, of this version and
-/// built for `expected`.
-pub fn read_roadmap(
-    path: &FsPath,
-    expected: &Fingerprint,
-) -> Result<RoadmapSnapshot, RoadmapFileError> {
+/// Reads the roadmap at `path` (the bytes a planner saved), refusing it unless it is
+/// intact, of this version and built for `expected`.
+pub fn read_roadmap(path: &FsPath, expected: &Fingerprint) -> Result<Vec<u8>, RoadmapFileError> {
     let file = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|source| RoadmapFileError::Io {
         file: file.clone(),
@@ -322,7 +238,7 @@ pub fn read_roadmap(
             expected: header.body_bytes,
         });
     }
-    if hex(fnv1a(FNV_OFFSET, body)) != header.checksum {
+    if Digest::hex_of(body) != header.checksum {
         return Err(RoadmapFileError::Checksum { file });
     }
     let found = &header.fingerprint;
@@ -340,7 +256,9 @@ pub fn read_roadmap(
             });
         }
     }
-    serde_json::from_slice(body).map_err(|e| not_a_roadmap(format!("body: {e}")))
+    serde_json::from_slice::<serde::de::IgnoredAny>(body)
+        .map_err(|e| not_a_roadmap(format!("body: {e}")))?;
+    Ok(body.to_vec())
 }
 
 /// A planner cannot use a snapshot (another planner's, another motion model's, or
