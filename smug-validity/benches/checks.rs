@@ -30,11 +30,14 @@ const CONFIG: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../configs/lunar.toml
 /// The lunar pipeline up to the motion validator (later stages are not needed here).
 fn lunar_pipeline() -> Pipeline {
     let mut loaded = LoadedConfig::from_file(Path::new(CONFIG), &[]).expect("configs/lunar.toml");
-    let config = &mut loaded.config;
-    config.sampler = None;
-    config.planner = None;
-    config.sequencer = None;
-    config.selector = None;
+    loaded.config.keep_sections(&[
+        "world",
+        "traversability",
+        "space",
+        "objective",
+        "validity",
+        "motion",
+    ]);
     Pipeline::assemble(&loaded).expect("lunar pipeline assembles")
 }
 
