@@ -111,3 +111,37 @@ fn p2p_bench_runs_on_generated_maps_without_data() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn lattice_bench_compares_both_planners_on_a_generated_map() {
+    let dir = std::env::temp_dir().join(format!("smug-bench-lattice-{}", std::process::id()));
+    let report = dir.join("lattice.md");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["bench", "lattice", "--families", "terrain", "--cells", "64"])
+        .args(["--models", "reeds-shepp", "--queries", "3", "--budget", "1"])
+        .arg("--out")
+        .arg(&report)
+        .current_dir(common::workspace())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
+    let text = std::fs::read_to_string(&report).unwrap();
+    assert!(
+        text.contains("| terrain-64x64-d20-s1 | reeds-shepp | 3 | 0 | 0 |"),
+        "{text}"
+    );
+    let raw: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("lattice.json")).unwrap()).unwrap();
+    assert_eq!(raw.len(), 3);
+    for query in &raw {
+        let (ours, theirs) = (query["lattice"][0].as_f64(), query["prm"][0].as_f64());
+        assert!(ours.is_some() && theirs.is_some(), "{query}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_smug"))
+        .args(["bench", "lattice", "--families", "mazes"])
+        .current_dir(common::workspace())
+        .output()
+        .unwrap();
+    common::assert_bad_input(&bad, &["--families", "mazes"]);
+}

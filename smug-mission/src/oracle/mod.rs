@@ -271,11 +271,14 @@ impl PathOracle {
         Ok(())
     }
 
-    /// Plans every pair of `pairs` not planned yet: side by side (one row each, with
-    /// [`plan_rows`](Self::plan_rows)) when the planner searches rows side by side,
-    /// else one after another as [`path`](Self::path) would.
+    /// Plans every pair of `pairs` not planned yet: when the planner searches rows side
+    /// by side, as rows (with [`plan_rows`](Self::plan_rows)): one search per pose the
+    /// pairs share (see [`rows_of`](Self::rows_of)) if it answers many goals at once,
+    /// else one per pair; otherwise one after another as [`path`](Self::path) would.
+    /// (Grouped rows were measured for the lattice only: LazyPRM*'s one-to-many
+    /// searches change its plans, dearer on lunar, cheaper on the imported map.)
     pub fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
-        if self.planner.answers_many() {
+        if self.planner.answers_many() && self.planner.plans_rows_side_by_side() {
             let rows = self.rows_of(pairs);
             return self.plan_rows(&rows);
         }

@@ -219,6 +219,10 @@ impl PointToPointPlanner for ManyAtOnce {
         true
     }
 
+    fn plans_rows_side_by_side(&self) -> bool {
+        true
+    }
+
     fn stats(&self) -> PlannerStats {
         PlannerStats::default()
     }

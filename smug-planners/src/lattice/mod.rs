@@ -24,6 +24,7 @@
 mod buffers;
 mod caches;
 mod edges;
+mod focus;
 mod heuristic;
 mod primitives;
 mod search;

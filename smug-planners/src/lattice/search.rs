@@ -16,7 +16,7 @@ pub(super) const START: u32 = u32::MAX;
 
 /// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Item {
+pub(super) enum Item {
     /// A lattice pose (or the start) reached from `parent` at cost `g` by primitive
     /// `prim` of the parent's heading, whose validity is checked when popped unless
     /// `verified`.
@@ -36,9 +36,9 @@ enum Item {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Entry {
-    key: f64,
-    item: Item,
+pub(super) struct Entry {
+    pub(super) key: f64,
+    pub(super) item: Item,
 }
 
 impl PartialEq for Entry {
@@ -83,10 +83,6 @@ impl Item {
     }
 }
 
-/// A search with goals left re-aims its heuristic at them whenever at most this
-/// many are left (and whenever half of those aimed at are settled).
-const REFOCUS_BELOW: usize = 8;
-
 /// One goal of a search.
 pub(super) struct Goal {
     /// Where it is.
@@ -108,14 +104,14 @@ enum End {
 }
 
 /// A search in progress.
-struct Run {
-    heap: BinaryHeap<Entry>,
-    goals: Vec<Goal>,
+pub(super) struct Run {
+    pub(super) heap: BinaryHeap<Entry>,
+    pub(super) goals: Vec<Goal>,
     /// Goals neither settled nor proved unreachable.
     open_goals: usize,
-    h2d: Option<Arc<Vec<f32>>>,
+    pub(super) h2d: Option<Arc<Vec<f32>>>,
     /// The goals the heuristic aims at: those not settled when it was last focused.
-    aimed: Vec<Pose2>,
+    pub(super) aimed: Vec<Pose2>,
     /// The start's curves onto the lattice (taken when the start is expanded).
     joins: Vec<(u32, f64, bool)>,
 }
@@ -552,59 +548,5 @@ impl Worker<'_> {
                 self.refocus(run);
             }
         }
-    }
-
-    /// Aims the heuristic at the goals not settled yet (those proved unreachable
-    /// included, so that they order the search as if they were not).
-    fn aim(&mut self, run: &mut Run) {
-        run.aimed = run
-            .goals
-            .iter()
-            .filter(|g| g.reached.is_none())
-            .map(|g| g.pose)
-            .collect();
-        run.h2d = self
-            .sh
-            .params
-            .obstacle_heuristic
-            .then(|| self.goal_heuristic(&run.aimed));
-    }
-
-    /// Whether the goals left are few enough, against those the heuristic aims at, for
-    /// a sharper heuristic to pay for re-keying the heap: at most [`REFOCUS_BELOW`],
-    /// or half of those aimed at.
-    fn worth_refocusing(&self, run: &Run) -> bool {
-        let left = run.goals.iter().filter(|g| g.reached.is_none()).count();
-        left < run.aimed.len() && (left <= REFOCUS_BELOW || 2 * left <= run.aimed.len())
-    }
-
-    /// Once a goal is settled, aims the heuristic at the goals left and re-keys the
-    /// queue with it (the search would otherwise keep expanding towards settled
-    /// goals). The new heuristic is consistent too, so every pose still closes at its
-    /// optimal cost; shots to settled goals and poses that reach no goal left go.
-    fn refocus(&mut self, run: &mut Run) {
-        self.aim(run);
-        let entries = std::mem::take(&mut run.heap).into_vec();
-        let weight = self.sh.params.heuristic_weight;
-        let mut kept = Vec::with_capacity(entries.len());
-        for entry in entries {
-            match entry.item {
-                Item::Node { id, g, .. } => {
-                    let h = self.heuristic(id, &run.aimed, run.h2d.as_deref());
-                    if h.is_finite() {
-                        kept.push(Entry {
-                            key: g + weight * h,
-                            item: entry.item,
-                        });
-                    }
-                }
-                Item::Shot { goal, .. } => {
-                    if run.goals[goal as usize].reached.is_none() {
-                        kept.push(entry);
-                    }
-                }
-            }
-        }
-        run.heap = BinaryHeap::from(kept);
     }
 }

@@ -1,0 +1,241 @@
+//! Tests of the discrete motion validator.
+
+use super::*;
+use proptest::prelude::*;
+use smug_core::{Mission, Se2Space};
+use smug_worlds::flat::{flat_world, BoxObstacle, FlatParams};
+
+/// Valid everywhere except inside the disc of radius 1 around (5, 5).
+struct DiscObstacle;
+
+impl StateValidityChecker for DiscObstacle {
+    fn is_valid(&self, s: &Pose2) -> bool {
+        (s.x - 5.0).hypot(s.y - 5.0) > 1.0
+    }
+}
+
+fn validator(resolution: f64, terrain: Option<(Arc<World>, f64)>) -> DiscreteMotionValidator {
+    DiscreteMotionValidator::new(
+        Arc::new(DiscObstacle),
+        Arc::new(Se2Space::default()),
+        terrain,
+        resolution,
+    )
+    .unwrap()
+}
+
+/// The disc obstacle of [`DiscObstacle`] with its clearance (a point robot).
+struct ClearDisc;
+
+impl StateValidityChecker for ClearDisc {
+    fn is_valid(&self, s: &Pose2) -> bool {
+        DiscObstacle.is_valid(s)
+    }
+
+    fn clearance(&self, s: &Pose2) -> Option<f64> {
+        Some((s.x - 5.0).hypot(s.y - 5.0) - 1.0)
+    }
+}
+
+/// A curved, one-way model: `a → b` drives the half circle on the left of the
+/// segment `a b` (its planar length `π/2 · |ab|`).
+#[derive(Debug)]
+struct HalfCircle;
+
+impl StateSpace for HalfCircle {
+    fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+        std::f64::consts::FRAC_PI_2 * a.xy_distance(b)
+    }
+
+    fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
+        let (cx, cy) = (0.5 * (a.x + b.x), 0.5 * (a.y + b.y));
+        let r = 0.5 * a.xy_distance(b);
+        let start = (a.y - cy).atan2(a.x - cx);
+        let angle = start - std::f64::consts::PI * t;
+        Pose2::new(cx + r * angle.cos(), cy + r * angle.sin(), 0.0)
+    }
+
+    fn lower_bound_weights(&self) -> (f64, f64) {
+        (1.0, 0.0)
+    }
+
+    fn is_symmetric(&self) -> bool {
+        false
+    }
+
+    fn motion_extent(&self, a: &Pose2, b: &Pose2) -> smug_core::MotionExtent {
+        smug_core::MotionExtent {
+            length: self.distance(a, b),
+            turning: std::f64::consts::PI,
+        }
+    }
+
+    fn is_holonomic(&self) -> bool {
+        false
+    }
+}
+
+#[test]
+fn motions_between_valid_ends_get_the_same_verdict_with_two_checks_fewer() {
+    let v = validator(0.5, None);
+    let checked = |v: &DiscreteMotionValidator| v.states_checked.load(Relaxed);
+    for (a, b) in [
+        (Pose2::new(1.0, 5.0, 0.0), Pose2::new(9.0, 5.0, 0.0)),
+        (Pose2::new(1.0, 1.0, 0.0), Pose2::new(9.0, 1.0, 0.3)),
+        (Pose2::new(3.0, 3.0, 0.0), Pose2::new(5.0, 7.0, 2.0)),
+    ] {
+        assert!(DiscObstacle.is_valid(&a) && DiscObstacle.is_valid(&b));
+        let before = checked(&v);
+        let full = v.is_valid_motion(&a, &b);
+        let with_ends = checked(&v) - before;
+        let between = v.is_valid_motion_between_valid(&a, &b);
+        let without_ends = checked(&v) - before - with_ends;
+        assert_eq!(full, between, "{a:?} → {b:?}");
+        if full {
+            assert_eq!(without_ends + 2, with_ends, "{a:?} → {b:?}");
+        }
+    }
+}
+
+#[test]
+fn a_curved_motion_is_traced_along_its_curve_not_its_chord() {
+    let v = DiscreteMotionValidator::new(Arc::new(ClearDisc), Arc::new(HalfCircle), None, 0.05)
+        .unwrap();
+    // The chord y = 8 is clear of the disc around (5, 5); the half circle from
+    // (9, 8) to (1, 8) bulges down through it (lowest point (5, 4)).
+    let (a, b) = (Pose2::new(9.0, 8.0, 0.0), Pose2::new(1.0, 8.0, 0.0));
+    assert!(!v.is_valid_motion(&a, &b));
+    assert!(!v.check_motion(&a, &b).is_valid());
+    // The other way, the half circle bulges up, away from the disc.
+    assert!(v.is_valid_motion(&b, &a));
+    assert!(v.check_motion(&b, &a).is_valid());
+}
+
+#[test]
+fn bisection_visits_every_interior_state_once() {
+    for n in 1..40 {
+        let mut seen: Vec<usize> = DiscreteMotionValidator::bisection_order(n).collect();
+        assert_eq!(seen[..1.min(seen.len())], [n / 2][..1.min(seen.len())]);
+        seen.sort();
+        assert_eq!(seen, (1..n).collect::<Vec<_>>());
+    }
+}
+
+#[test]
+fn finds_the_obstacle_and_the_last_valid_state() {
+    let v = validator(0.1, None);
+    let (a, b) = (Pose2::new(0.0, 5.0, 0.0), Pose2::new(10.0, 5.0, 0.0));
+    assert!(!v.is_valid_motion(&a, &b));
+    let MotionCheck::Invalid {
+        last_valid: Some((state, fraction)),
+    } = v.check_motion(&a, &b)
+    else {
+        panic!("expected an invalid motion with a last valid state");
+    };
+    assert!(state.x < 4.0 && state.x > 3.85, "{state:?}");
+    assert!((fraction - state.x / 10.0).abs() < 1e-9);
+    let (c, d) = (Pose2::new(0.0, 0.0, 0.0), Pose2::new(10.0, 0.0, 1.0));
+    assert!(v.is_valid_motion(&c, &d));
+    assert_eq!(v.check_motion(&c, &d), MotionCheck::Valid);
+    assert!(v.counters()["motion_state_checks"] > 0);
+}
+
+proptest! {
+    #[test]
+    fn fast_and_ordered_checks_agree(x1 in 0.0f64..10.0, y1 in 0.0f64..10.0, x2 in 0.0f64..10.0, y2 in 0.0f64..10.0) {
+        let v = validator(0.05, None);
+        let (a, b) = (Pose2::new(x1, y1, 0.0), Pose2::new(x2, y2, 1.0));
+        prop_assert_eq!(v.is_valid_motion(&a, &b), v.check_motion(&a, &b).is_valid());
+    }
+}
+
+#[test]
+fn steep_terrain_is_rejected() {
+    let mission: Mission = smug_core::toml::from_str("start = { x = 1.0, y = 1.0 }").unwrap();
+    let params = FlatParams {
+        obstacles: vec![BoxObstacle {
+            min: [0.0, 8.0],
+            max: [10.0, 10.0],
+            height: 0.3,
+        }],
+        ..FlatParams::default()
+    };
+    let world = Arc::new(flat_world(&params, mission).unwrap().world);
+    let v = validator(0.1, Some((world.clone(), 0.58)));
+    // A 0.3 m step crossed within 0.1 m is far steeper than 0.58.
+    assert!(!v.is_valid_motion(&Pose2::new(1.0, 7.0, 0.0), &Pose2::new(1.0, 9.0, 0.0)));
+    assert!(v.is_valid_motion(&Pose2::new(1.0, 2.0, 0.0), &Pose2::new(1.0, 4.0, 0.0)));
+    let lenient = validator(0.1, Some((world, 10.0)));
+    assert!(lenient.is_valid_motion(&Pose2::new(1.0, 7.0, 0.0), &Pose2::new(1.0, 9.0, 0.0)));
+}
+
+/// Every position of a motion the continuous trace accepts is valid for the disc
+/// (checked every millimetre), and the trace rejects a motion whose disc clips a
+/// corner between the resolution's states.
+mod continuous {
+    use super::*;
+    use crate::clearance_2d::{Clearance2dChecker, Clearance2dParams};
+    use smug_core::{GridGeometry, GridLayer};
+
+    fn disc_world() -> World {
+        let g = GridGeometry::new([0.0, 0.0], 1.0, [10, 10]).unwrap();
+        let blocked = [(3, 3), (4, 3), (7, 8), (5, 6)];
+        let elevation =
+            GridLayer::from_fn(g, |i, j| if blocked.contains(&(i, j)) { 2.0 } else { 0.0 });
+        World::new("grid", elevation)
+    }
+
+    fn disc_validator(resolution: f64) -> DiscreteMotionValidator {
+        let params = Clearance2dParams {
+            radius: 0.25,
+            obstacle_height: 1.0,
+        };
+        let states = Arc::new(Clearance2dChecker::new(&disc_world(), params).unwrap());
+        DiscreteMotionValidator::new(states, Arc::new(Se2Space::default()), None, resolution)
+            .unwrap()
+    }
+
+    proptest! {
+        #[test]
+        fn accepted_motions_are_valid_everywhere(
+            a in (0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0),
+            b in (0.0f64..10.0, 0.0f64..10.0, -3.0f64..3.0),
+        ) {
+            let v = disc_validator(0.05);
+            let (a, b) = (Pose2::new(a.0, a.1, a.2), Pose2::new(b.0, b.1, b.2));
+            let valid = v.is_valid_motion(&a, &b);
+            prop_assert_eq!(valid, v.check_motion(&a, &b).is_valid());
+            prop_assert_eq!(valid, v.is_valid_motion(&b, &a), "the reverse motion");
+            prop_assert_eq!(valid, v.check_motion(&b, &a).is_valid());
+            if valid {
+                let steps = (a.xy_distance(&b) / 0.001).ceil().max(1.0) as usize;
+                for k in 0..=steps {
+                    let t = k as f64 / steps as f64;
+                    let p = Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, 0.0);
+                    prop_assert!(v.states.is_valid(&p), "{:?} on {:?} → {:?}", p, a, b);
+                }
+            }
+            if let MotionCheck::Invalid { last_valid: Some((s, _)) } = v.check_motion(&a, &b) {
+                prop_assert!(v.states.is_valid(&s));
+            }
+        }
+    }
+
+    #[test]
+    fn a_corner_between_coarse_steps_is_caught() {
+        // Passing the blocked square (5, 6)..(6, 7) with the disc overlapping its
+        // corner by 5 mm, between states 1 m apart.
+        let v = disc_validator(1.0);
+        let y = 6.0 - 0.25 + 0.005;
+        let (a, b) = (Pose2::new(4.0, y - 1.0, 0.0), Pose2::new(6.0, y + 1.0, 0.0));
+        let corner_gap = {
+            // Distance from the segment to the corner (5, 6), less the radius.
+            let (dx, dy) = (b.x - a.x, b.y - a.y);
+            let t = ((5.0 - a.x) * dx + (6.0 - a.y) * dy) / (dx * dx + dy * dy);
+            let (px, py) = (a.x + t * dx, a.y + t * dy);
+            (px - 5.0).hypot(py - 6.0) - 0.25
+        };
+        assert!(corner_gap < 0.0, "the test motion must clip the corner");
+        assert!(!v.is_valid_motion(&a, &b));
+    }
+}
