@@ -1,4 +1,5 @@
-//! Motion validity stage: is the straight motion between two poses safe?
+//! Motion validity stage: is the space's local motion between two poses (a straight SE(2)
+//! motion, or a car's curve) safe?
 
 use crate::pose::Pose2;
 
@@ -22,7 +23,8 @@ impl MotionCheck {
     }
 }
 
-/// Decides whether the robot may move straight from one pose to another.
+/// Decides whether the robot may take the space's local motion (straight, or a car's
+/// curve) from one pose to another.
 pub trait MotionValidator: Send + Sync {
     /// True when the motion `a → b` is valid (both endpoints included). Fast: checks
     /// in whatever order finds collisions soonest.

@@ -49,7 +49,8 @@ enum Swept {
     Contact { last_clear: Option<f64> },
 }
 
-/// Checks straight motions state by state (continuously for disc robots).
+/// Checks the space's motions (straight, or a car's curves) state by state
+/// (continuously for disc robots).
 pub struct DiscreteMotionValidator {
     states: Arc<dyn StateValidityChecker>,
     space: Arc<dyn StateSpace>,
@@ -259,21 +260,24 @@ impl DiscreteMotionValidator {
 }
 
 /// The states of an `n`-segment motion at the resolution, each interpolated once
-/// (the state checks and the slope checks ask for the same ones).
+/// (the state checks and the slope checks ask for the same ones); nothing is allocated
+/// until a state is asked for (an exact or traced verdict asks for none).
 struct Along {
+    segments: usize,
     states: Vec<Option<Pose2>>,
 }
 
 impl Along {
     fn new(segments: usize) -> Self {
         Self {
-            states: vec![None; segments + 1],
+            segments,
+            states: Vec::new(),
         }
     }
 
     /// Segments of the motion.
     fn segments(&self) -> usize {
-        self.states.len() - 1
+        self.segments
     }
 
     /// State `k` of the motion `a → b`, interpolated on first use.
@@ -284,7 +288,10 @@ impl Along {
         b: &Pose2,
         k: usize,
     ) -> Pose2 {
-        let n = self.segments();
+        let n = self.segments;
+        if self.states.is_empty() {
+            self.states.resize(n + 1, None);
+        }
         *self.states[k].get_or_insert_with(|| validator.state_at(a, b, k, n))
     }
 }
