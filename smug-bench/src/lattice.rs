@@ -2,7 +2,7 @@
 //! budget, query by query, on generated maps of the open families, for every car model:
 //! how often the lattice's path is costlier, by how much, and the time each takes.
 
-use crate::output::write_report;
+use crate::output::{write_report, ReportArgs};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -11,7 +11,7 @@ use smug_worlds::grid_gen::{generate, GridFamily, GridParams};
 use smug_worlds::map_file::load_map;
 use smug_worlds::movingai::{convert_movingai, write_map};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 /// Arguments of `smug bench lattice`.
@@ -47,15 +47,9 @@ pub struct BenchLatticeArgs {
     /// Seed of the maps and the queries.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Override a config key (both planners).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// Write the Markdown report here (else stdout only).
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
-    #[arg(long)]
-    json: Option<PathBuf>,
+    /// `--set`, `--out`, `--json`.
+    #[command(flatten)]
+    report: ReportArgs,
 }
 
 /// One query's answers.
@@ -87,8 +81,8 @@ pub fn run(args: &BenchLatticeArgs) -> crate::Result<()> {
     write_report(
         &report(args, &queries),
         &queries,
-        args.out.as_deref(),
-        args.json.as_deref(),
+        args.report.out.as_deref(),
+        args.report.json.as_deref(),
     )
 }
 
@@ -126,7 +120,7 @@ fn pipeline(
         format!("planner.type=\"{planner}\""),
     ];
     set.extend(extra.iter().cloned());
-    set.extend(args.set.iter().cloned());
+    set.extend(args.report.set.iter().cloned());
     let loaded = LoadedConfig::from_text(
         smug_app::p2p::DEFAULT_CONFIG,
         "<bench lattice>",

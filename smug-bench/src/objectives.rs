@@ -2,7 +2,7 @@
 //! N seeds each; every plan measured under every objective (length, risk, energy,
 //! time) so the trade-offs show side by side.
 
-use crate::output::write_report;
+use crate::output::{write_report, ReportArgs};
 
 use serde::Serialize;
 use smug_core::registry::{ObjectiveStage, Stage};
@@ -32,15 +32,9 @@ pub struct BenchObjectivesArgs {
     /// seed still changes). Worlds without a `seed` parameter are the same anyway.
     #[arg(long)]
     vary_world: bool,
-    /// Override a config key (every run).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// Write the Markdown report here (else stdout only).
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
-    #[arg(long)]
-    json: Option<PathBuf>,
+    /// `--set`, `--out`, `--json`.
+    #[command(flatten)]
+    report: ReportArgs,
 }
 
 /// One plan's measurements.
@@ -75,7 +69,7 @@ pub fn run(args: BenchObjectivesArgs) -> crate::Result<()> {
         let fixed_world = !args.vary_world && world_is_seeded(config);
         for objective in &objectives {
             for seed in 1..=args.runs {
-                let mut set = args.set.clone();
+                let mut set = args.report.set.clone();
                 if fixed_world {
                     set.push("world.params.seed=1".to_string());
                 }
@@ -84,7 +78,12 @@ pub fn run(args: BenchObjectivesArgs) -> crate::Result<()> {
         }
     }
     let report = report(&args, &objectives, &runs);
-    write_report(&report, &runs, args.out.as_deref(), args.json.as_deref())?;
+    write_report(
+        &report,
+        &runs,
+        args.report.out.as_deref(),
+        args.report.json.as_deref(),
+    )?;
     Ok(())
 }
 

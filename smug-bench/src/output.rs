@@ -4,6 +4,22 @@
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+/// What every report-writing bench takes: overrides, and where its report and raw
+/// numbers go.
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct ReportArgs {
+    /// Override a config key (every run of every planner and mode, after their own
+    /// overrides).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Write the Markdown report here (else stdout only).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+}
+
 /// Where the raw JSON goes: `--json`, else `--out` with the extension `.json`.
 pub fn json_path(out: Option<&Path>, json: Option<&Path>) -> Option<PathBuf> {
     json.map(Path::to_path_buf)

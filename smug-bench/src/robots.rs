@@ -2,7 +2,7 @@
 //! (assembly and planning) and its ratio to ANYmal's on the same world and seed, paths
 //! planned, PoIs dropped (invalid, dead ends) and, for missions without a plan, why.
 
-use crate::output::write_report;
+use crate::output::{write_report, ReportArgs};
 
 use serde::Serialize;
 use smug_core::{LoadedConfig, Pipeline};
@@ -36,15 +36,9 @@ pub struct BenchRobotsArgs {
     /// seed still changes). Worlds without a `seed` parameter are the same anyway.
     #[arg(long)]
     vary_world: bool,
-    /// Override a config key (every run).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// Write the Markdown report here (else stdout only).
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
-    #[arg(long)]
-    json: Option<PathBuf>,
+    /// `--set`, `--out`, `--json`.
+    #[command(flatten)]
+    report: ReportArgs,
 }
 
 /// One run's measurements.
@@ -100,7 +94,7 @@ pub fn run(args: BenchRobotsArgs) -> crate::Result<()> {
         let seeded = crate::objectives::world_is_seeded(world);
         for robot in &robots {
             for seed in 1..=args.runs {
-                let mut set = args.set.clone();
+                let mut set = args.report.set.clone();
                 if seeded {
                     let world_seed = if args.vary_world { seed } else { 1 };
                     set.insert(0, format!("world.params.seed={world_seed}"));
@@ -119,7 +113,12 @@ pub fn run(args: BenchRobotsArgs) -> crate::Result<()> {
         }
     }
     let report = report(&args, &robots, &runs);
-    write_report(&report, &runs, args.out.as_deref(), args.json.as_deref())?;
+    write_report(
+        &report,
+        &runs,
+        args.report.out.as_deref(),
+        args.report.json.as_deref(),
+    )?;
     Ok(())
 }
 

@@ -8,7 +8,7 @@ mod report;
 pub mod runs;
 
 use crate::error::ResultExt as _;
-use crate::output::write_report;
+use crate::output::{write_report, ReportArgs};
 use report::{report, Summary};
 pub use runs::{Mission, Mode, Polygons, Run, MISSIONS, MODES, POLYGON_SET};
 use serde::Serialize;
@@ -39,15 +39,9 @@ pub struct BenchModesArgs {
     /// and `data-open` missions (rasterised to 2000 × 2000 square cells over its border).
     #[arg(long)]
     data: Option<PathBuf>,
-    /// Override a config key (every run, after the mission's and the mode's overrides).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// Write the Markdown report here (else stdout only).
-    #[arg(long)]
-    out: Option<PathBuf>,
-    /// Write the raw numbers as JSON here (default: beside `--out`, as `.json`).
-    #[arg(long)]
-    json: Option<PathBuf>,
+    /// `--set`, `--out`, `--json`.
+    #[command(flatten)]
+    report: ReportArgs,
 }
 
 /// The JSON written beside the report.
@@ -83,7 +77,7 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
                     mission,
                     mode,
                     seed,
-                    &args.set,
+                    &args.report.set,
                     args.data.as_deref(),
                 )?);
             }
@@ -98,12 +92,19 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
     write_report(
         &format!(
             "{}\nCommand: `{}`\n",
-            report(&missions, &modes, args.runs, &args.set, &summary, &runs),
+            report(
+                &missions,
+                &modes,
+                args.runs,
+                &args.report.set,
+                &summary,
+                &runs
+            ),
             command_line()
         ),
         &raw,
-        args.out.as_deref(),
-        args.json.as_deref(),
+        args.report.out.as_deref(),
+        args.report.json.as_deref(),
     )?;
     Ok(())
 }
