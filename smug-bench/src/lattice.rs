@@ -2,7 +2,7 @@
 //! budget, query by query, on generated maps of the open families, for every car model:
 //! how often the lattice's path is costlier, by how much, and the time each takes.
 
-use crate::output::{write_report, ReportArgs};
+use crate::output::ReportArgs;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -78,12 +78,7 @@ pub fn run(args: &BenchLatticeArgs) -> crate::Result<()> {
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);
-    write_report(
-        &report(args, &queries),
-        &queries,
-        args.report.out.as_deref(),
-        args.report.json.as_deref(),
-    )
+    args.report.write(&report(args, &queries), &queries)
 }
 
 /// A generated map of `family` as a world, with its name.

@@ -2,7 +2,7 @@
 //! N seeds each; every plan measured under every objective (length, risk, energy,
 //! time) so the trade-offs show side by side.
 
-use crate::output::{write_report, ReportArgs};
+use crate::output::ReportArgs;
 
 use serde::Serialize;
 use smug_core::registry::{ObjectiveStage, Stage};
@@ -78,12 +78,7 @@ pub fn run(args: BenchObjectivesArgs) -> crate::Result<()> {
         }
     }
     let report = report(&args, &objectives, &runs);
-    write_report(
-        &report,
-        &runs,
-        args.report.out.as_deref(),
-        args.report.json.as_deref(),
-    )?;
+    args.report.write(&report, &runs)?;
     Ok(())
 }
 

@@ -20,6 +20,14 @@ pub struct ReportArgs {
     pub json: Option<PathBuf>,
 }
 
+impl ReportArgs {
+    /// Prints `report` and writes it and the raw numbers `raw` where asked
+    /// ([`write_report`] with `--out` and `--json`).
+    pub fn write(&self, report: &str, raw: &impl Serialize) -> crate::Result<()> {
+        write_report(report, raw, self.out.as_deref(), self.json.as_deref())
+    }
+}
+
 /// Where the raw JSON goes: `--json`, else `--out` with the extension `.json`.
 pub fn json_path(out: Option<&Path>, json: Option<&Path>) -> Option<PathBuf> {
     json.map(Path::to_path_buf)

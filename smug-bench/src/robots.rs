@@ -2,7 +2,7 @@
 //! (assembly and planning) and its ratio to ANYmal's on the same world and seed, paths
 //! planned, PoIs dropped (invalid, dead ends) and, for missions without a plan, why.
 
-use crate::output::{write_report, ReportArgs};
+use crate::output::ReportArgs;
 
 use serde::Serialize;
 use smug_core::{LoadedConfig, Pipeline};
@@ -113,12 +113,7 @@ pub fn run(args: BenchRobotsArgs) -> crate::Result<()> {
         }
     }
     let report = report(&args, &robots, &runs);
-    write_report(
-        &report,
-        &runs,
-        args.report.out.as_deref(),
-        args.report.json.as_deref(),
-    )?;
+    args.report.write(&report, &runs)?;
     Ok(())
 }
 

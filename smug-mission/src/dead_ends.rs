@@ -36,16 +36,13 @@ pub(super) fn drop_dead_ends(
     if oracle.is_symmetric() || !oracle.proves_dead_ends() {
         return Ok(Vec::new());
     }
-    let mut dropped = Vec::new();
-    drop_where(
-        oracle,
+    let mut dead = DeadEnds {
         mission,
         given,
-        layout,
         targets,
-        &mut dropped,
-        cannot_leave,
-    )?;
+        dropped: Vec::new(),
+    };
+    dead.drop_where(oracle, layout, cannot_leave)?;
     let left: Vec<usize> = targets
         .iter()
         .flat_map(|&t| layout.pois[t].iter().copied())
@@ -53,51 +50,51 @@ pub(super) fn drop_dead_ends(
     if !left.is_empty() && oracle.answers_many() {
         oracle.plan_from(layout.start, &left)?;
     }
-    drop_where(
-        oracle,
-        mission,
-        given,
-        layout,
-        targets,
-        &mut dropped,
-        cannot_enter,
-    )?;
-    Ok(dropped)
+    dead.drop_where(oracle, layout, cannot_enter)?;
+    Ok(dead.dropped)
 }
 
 /// Why PoI `p` cannot be part of a route, when a proof says so.
 type DeadEndProof = fn(&mut PathOracle, &Layout, usize) -> Result<Option<String>>;
 
-/// Drops the PoIs of `targets` that `proof` rules out, recording each in `dropped`.
-fn drop_where(
-    oracle: &mut PathOracle,
-    mission: &Mission,
-    given: &Mission,
-    layout: &mut Layout,
-    targets: &[usize],
-    dropped: &mut Vec<DeadEndPoi>,
-    proof: DeadEndProof,
-) -> Result<()> {
-    for &t in targets {
-        let mut kept = Vec::with_capacity(layout.pois[t].len());
-        for &p in &layout.pois[t] {
-            match proof(oracle, layout, p)? {
-                None => kept.push(p),
-                Some(why) => {
-                    let pose = *oracle.pose(p);
-                    let id = &mission.targets[t].id;
-                    dropped.push(DeadEndPoi {
-                        target: id.clone(),
-                        index: original_index(given, id, &pose),
-                        pose,
-                        why,
-                    });
+/// The PoIs of a mission's `targets` dropped so far, and what naming them needs.
+struct DeadEnds<'a> {
+    mission: &'a Mission,
+    given: &'a Mission,
+    targets: &'a [usize],
+    dropped: Vec<DeadEndPoi>,
+}
+
+impl DeadEnds<'_> {
+    /// Drops from `layout` the PoIs of the targets that `proof` rules out, recording
+    /// each.
+    fn drop_where(
+        &mut self,
+        oracle: &mut PathOracle,
+        layout: &mut Layout,
+        proof: DeadEndProof,
+    ) -> Result<()> {
+        for &t in self.targets {
+            let mut kept = Vec::with_capacity(layout.pois[t].len());
+            for &p in &layout.pois[t] {
+                match proof(oracle, layout, p)? {
+                    None => kept.push(p),
+                    Some(why) => {
+                        let pose = *oracle.pose(p);
+                        let id = &self.mission.targets[t].id;
+                        self.dropped.push(DeadEndPoi {
+                            target: id.clone(),
+                            index: original_index(self.given, id, &pose),
+                            pose,
+                            why,
+                        });
+                    }
                 }
             }
+            layout.pois[t] = kept;
         }
-        layout.pois[t] = kept;
+        Ok(())
     }
-    Ok(())
 }
 
 /// The proof, when a small search finds one, that the end cannot be reached from PoI

@@ -8,7 +8,7 @@ mod report;
 pub mod runs;
 
 use crate::error::ResultExt as _;
-use crate::output::{write_report, ReportArgs};
+use crate::output::ReportArgs;
 use report::{report, Summary};
 pub use runs::{Mission, Mode, Polygons, Run, MISSIONS, MODES, POLYGON_SET};
 use serde::Serialize;
@@ -89,7 +89,7 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
         runs: &runs,
         summary: &summary,
     };
-    write_report(
+    args.report.write(
         &format!(
             "{}\nCommand: `{}`\n",
             report(
@@ -103,8 +103,6 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
             command_line()
         ),
         &raw,
-        args.report.out.as_deref(),
-        args.report.json.as_deref(),
     )?;
     Ok(())
 }

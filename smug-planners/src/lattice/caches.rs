@@ -69,15 +69,12 @@ impl Caches {
 
     /// A pose's validity, if known.
     pub(crate) fn state(&self, id: StateId) -> Option<bool> {
-        match self.state[id as usize].load(Relaxed) {
-            0 => None,
-            v => Some(v == 1),
-        }
+        known(&self.state[id as usize])
     }
 
     /// Records a pose's validity.
     pub(crate) fn set_state(&self, id: StateId, valid: bool) {
-        self.state[id as usize].store(if valid { 1 } else { 2 }, Relaxed);
+        record(&self.state[id as usize], valid);
     }
 
     /// How many poses' validity is known.
@@ -151,6 +148,19 @@ impl Caches {
     }
 }
 
+/// A validity kept in one byte (0 unknown, 1 valid, 2 invalid), if known.
+pub(crate) fn known(validity: &AtomicU8) -> Option<bool> {
+    match validity.load(Relaxed) {
+        0 => None,
+        v => Some(v == 1),
+    }
+}
+
+/// Keeps a validity in one byte (see [`known`]).
+pub(crate) fn record(validity: &AtomicU8, valid: bool) {
+    validity.store(if valid { 1 } else { 2 }, Relaxed);
+}
+
 /// `n`, at least 2, as a cache capacity.
 fn at_least_two(n: usize) -> NonZeroUsize {
     NonZeroUsize::new(n.max(2)).expect("at least 2")
@@ -167,7 +177,7 @@ pub(crate) struct ShotTable {
     side: usize,
     /// Per pose of the box: the cost rounded down to an `f32`, as bits.
     pub(crate) costs: Vec<AtomicU32>,
-    /// Per pose of the box: 0 unknown, 1 valid, 2 invalid.
+    /// Per pose of the box: whether the shot is valid, if known (see [`known`]).
     pub(crate) valid: Vec<AtomicU8>,
 }
 

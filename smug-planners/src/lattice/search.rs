@@ -319,11 +319,8 @@ impl Worker<'_> {
             if !self.sh.caches.proved_unreachable(&joined, &pose) {
                 continue;
             }
-            let direct = start.xy_distance(&pose) <= self.sh.shot_radius && {
-                let goal = &run.goals[k];
-                let (shots, pose) = (goal.shots.clone(), goal.pose);
-                self.shot_valid(START, start, &pose, &shots)
-            };
+            let direct = start.xy_distance(&pose) <= self.sh.shot_radius
+                && self.shot_valid(START, start, &pose, &run.goals[k].shots);
             if !direct {
                 run.goals[k].proved_out = true;
                 run.open_goals -= 1;
@@ -517,14 +514,14 @@ impl Worker<'_> {
             return;
         }
         let pose = self.pose_of(start, from);
-        let (target, shots) = (run.goals[goal].pose, run.goals[goal].shots.clone());
+        let target = run.goals[goal].pose;
         let g = if from == START {
             0.0
         } else {
             self.me.buffers.nodes[from as usize].g
         };
         if !costed {
-            let cost = self.shot_cost_below(from, &pose, &target, &shots);
+            let cost = self.shot_cost_below(from, &pose, &target, &run.goals[goal].shots);
             if !cost.is_finite() {
                 return;
             }
@@ -538,7 +535,7 @@ impl Worker<'_> {
                 return;
             }
         }
-        if self.shot_valid(from, &pose, &target, &shots) {
+        if self.shot_valid(from, &pose, &target, &run.goals[goal].shots) {
             let cost = g + self.sh.objective.motion_cost(&pose, &target);
             run.goals[goal].reached = Some((cost, from));
             if !run.goals[goal].proved_out {

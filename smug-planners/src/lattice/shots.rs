@@ -7,7 +7,7 @@
 //! search's queue, the same whichever search computed it first; the goal's cost once a
 //! shot settles it is the objective's own, solved again.
 
-use super::caches::{ShotTable, UNKNOWN_COST};
+use super::caches::{known, record, ShotTable, UNKNOWN_COST};
 use super::search::{Worker, START};
 use smug_core::Pose2;
 use std::sync::atomic::Ordering::Relaxed;
@@ -23,6 +23,14 @@ fn f32_below(cost: f64) -> f32 {
 }
 
 impl Worker<'_> {
+    /// The slot of the shot from `from` in the goal's table `shots`: none from the
+    /// start (off the lattice) or from beyond the table's box.
+    fn shot_slot(&self, from: u32, shots: &ShotTable) -> Option<usize> {
+        (from != START)
+            .then(|| shots.slot(&self.sh.lattice, from))
+            .flatten()
+    }
+
     /// A lower bound of the cost of the shot from `from` (at `pose`) to `goal`, within
     /// an `f32` step of it: kept in the goal's table `shots`.
     pub(super) fn shot_cost_below(
@@ -32,9 +40,7 @@ impl Worker<'_> {
         goal: &Pose2,
         shots: &ShotTable,
     ) -> f64 {
-        let slot = (from != START)
-            .then(|| shots.slot(&self.sh.lattice, from))
-            .flatten();
+        let slot = self.shot_slot(from, shots);
         if let Some(slot) = slot {
             let bits = shots.costs[slot].load(Relaxed);
             if bits != UNKNOWN_COST {
@@ -57,20 +63,14 @@ impl Worker<'_> {
         goal: &Pose2,
         shots: &ShotTable,
     ) -> bool {
-        let slot = (from != START)
-            .then(|| shots.slot(&self.sh.lattice, from))
-            .flatten();
-        if let Some(slot) = slot {
-            match shots.valid[slot].load(Relaxed) {
-                1 => return true,
-                2 => return false,
-                _ => {}
-            }
+        let slot = self.shot_slot(from, shots);
+        if let Some(valid) = slot.and_then(|slot| known(&shots.valid[slot])) {
+            return valid;
         }
         self.me.counts.shot_checks += 1;
         let valid = self.sh.motions.is_valid_motion_between_valid(pose, goal);
         if let Some(slot) = slot {
-            shots.valid[slot].store(if valid { 1 } else { 2 }, Relaxed);
+            record(&shots.valid[slot], valid);
         }
         valid
     }
