@@ -5,6 +5,7 @@
 
 use crate::limits::MemoryLimit;
 use crate::pose::Bounds2;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Why a grid geometry or layer is invalid.
@@ -169,6 +170,22 @@ impl GridLayer {
             for i in 0..geometry.size[0] {
                 data.push(f(i, j));
             }
+        }
+        Self { geometry, data }
+    }
+
+    /// A layer whose cell values are `f(i, j)`, rows filled side by side on rayon's
+    /// threads: the same layer as [`from_fn`](Self::from_fn) with the same `f`, for
+    /// any number of threads (each cell's value is `f`'s alone).
+    pub fn from_fn_par(geometry: GridGeometry, f: impl Fn(usize, usize) -> f32 + Sync) -> Self {
+        let nx = geometry.size[0];
+        let mut data = vec![0.0f32; geometry.len()];
+        if nx > 0 {
+            data.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
+                for (i, cell) in row.iter_mut().enumerate() {
+                    *cell = f(i, j);
+                }
+            });
         }
         Self { geometry, data }
     }
@@ -394,6 +411,23 @@ mod tests {
         assert_eq!(g.cell_of(3.0, 2.1), None);
         assert_eq!(g.cell_of(f64::NAN, 2.1), None);
         assert_eq!(g.bounds().max, [3.0, 5.0]);
+    }
+
+    #[test]
+    fn rows_side_by_side_fill_the_layer_one_by_one_would() {
+        let g = GridGeometry::new([0.0, 0.0], 0.1, [37, 23]).unwrap();
+        let f = |i: usize, j: usize| ((i * 31 + j * 17) as f32).sin() * (j as f32 + 0.5);
+        let one_by_one = GridLayer::from_fn(g, f);
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let side_by_side = pool.install(|| GridLayer::from_fn_par(g, f));
+            assert_eq!(side_by_side, one_by_one, "{threads} threads");
+        }
+        let empty = GridGeometry::new([0.0, 0.0], 0.1, [0, 4]).unwrap();
+        assert_eq!(GridLayer::from_fn_par(empty, f).data.len(), 0);
     }
 
     proptest! {

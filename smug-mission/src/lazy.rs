@@ -8,7 +8,7 @@ use crate::oracle::PathOracle;
 use smug_core::error::Result;
 use smug_core::stages::PathCosts;
 use smug_core::stages::{CostMatrix, Tour, TourKind};
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 /// Relative slack of the cost comparisons (rounding in sums of floating-point legs).
 const SLACK: f64 = 1e-9;
@@ -40,15 +40,24 @@ pub(super) fn lazy_solve(
 ) -> Result<Tour> {
     let mut previous: Option<Tour> = None;
     let mut refined = Refined::new(oracle.is_symmetric());
+    let mut matrix = LazyMatrix::new(oracle, nodes)?;
     loop {
-        let (tour, dead_end) = converge(oracle, nodes, kind, previous.take(), warm, &mut solve)?;
+        let (tour, dead_end) = converge(
+            oracle,
+            nodes,
+            &mut matrix,
+            kind,
+            previous.take(),
+            warm,
+            &mut solve,
+        )?;
         if dead_end || !settle {
             return Ok(tour);
         }
         for (a, b) in tour_legs(&tour, kind) {
             refined.refine(oracle, nodes, a, b)?;
         }
-        let cost = lazy_matrix(oracle, nodes)?.tour_cost(&tour.order, kind);
+        let cost = matrix.refresh(oracle)?.tour_cost(&tour.order, kind);
         let optimistic = CostMatrix::from_fn_within(nodes.len(), oracle.run().memory, |i, j| {
             if i == j {
                 0.0
@@ -84,16 +93,17 @@ pub(super) fn lazy_solve(
 fn converge(
     oracle: &mut PathOracle,
     nodes: &[usize],
+    lazy: &mut LazyMatrix,
     kind: TourKind,
     mut previous: Option<Tour>,
     warm: bool,
     solve: &mut impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
 ) -> Result<(Tour, bool)> {
     loop {
-        let matrix = lazy_matrix(oracle, nodes)?;
-        let mut tour = solve(&matrix, previous.as_ref())?;
+        let matrix = lazy.refresh(oracle)?;
+        let mut tour = solve(matrix, previous.as_ref())?;
         if previous.is_some() && unplanned_legs(oracle, nodes, &tour, kind).is_empty() {
-            let cold = solve(&matrix, None)?;
+            let cold = solve(matrix, None)?;
             let cost = |t: &Tour| matrix.tour_cost(&t.order, kind);
             if cost(&cold) >= cost(&tour) * (1.0 - SLACK) {
                 return Ok((tour, false));
@@ -168,6 +178,51 @@ fn above_bound(oracle: &PathOracle, a: usize, b: usize) -> bool {
     };
     let bound = oracle.lower_bound(a, b);
     cost.is_finite() && cost > bound + SLACK * bound.abs().max(1.0)
+}
+
+/// The matrix of planned costs where known and lower bounds elsewhere, kept up to
+/// date from the oracle's log of stored answers ([`PathOracle::stored_since`]) instead
+/// of built again every round (a million entries for a thousand targets): the same
+/// entries as [`lazy_matrix`] gives.
+struct LazyMatrix {
+    matrix: CostMatrix,
+    /// The matrix positions of each oracle index among the nodes.
+    positions: HashMap<usize, Vec<usize>>,
+    /// The oracle's log length the matrix is up to date with.
+    mark: usize,
+}
+
+impl LazyMatrix {
+    fn new(oracle: &PathOracle, nodes: &[usize]) -> Result<Self> {
+        let mut positions: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (position, &node) in nodes.iter().enumerate() {
+            positions.entry(node).or_default().push(position);
+        }
+        Ok(Self {
+            matrix: lazy_matrix(oracle, nodes)?,
+            positions,
+            mark: oracle.stored_since(0).len(),
+        })
+    }
+
+    /// The matrix with every answer stored since the last refresh.
+    fn refresh(&mut self, oracle: &PathOracle) -> Result<&CostMatrix> {
+        let stored = oracle.stored_since(self.mark);
+        for &(a, b) in stored {
+            let (Some(rows), Some(columns)) = (self.positions.get(&a), self.positions.get(&b))
+            else {
+                continue;
+            };
+            let cost = oracle.cost_or_bound(a, b);
+            for &i in rows {
+                for &j in columns.iter().filter(|&&j| j != i) {
+                    self.matrix.set(i, j, cost)?;
+                }
+            }
+        }
+        self.mark += stored.len();
+        Ok(&self.matrix)
+    }
 }
 
 /// The matrix of planned costs where known and lower bounds elsewhere.

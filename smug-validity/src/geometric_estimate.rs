@@ -17,7 +17,7 @@ impl TraversabilityEstimator for GeometricEstimator {
     fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
         let elevation = &world.elevation;
         let window = Window::new(self.window_radius, elevation.geometry.resolution);
-        Ok(GridLayer::from_fn(elevation.geometry, |i, j| {
+        Ok(GridLayer::from_fn_par(elevation.geometry, |i, j| {
             self.value(&window, elevation, i, j)
         }))
     }

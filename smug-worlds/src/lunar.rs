@@ -102,16 +102,23 @@ fn base_terrain(layer: &mut GridLayer, rng: &mut StageRng) {
             )
         })
         .collect();
-    for j in 0..g.size[1] {
-        for i in 0..g.size[0] {
-            let [x, y] = g.center_of(i, j);
-            let mut h = tilt * (x * tilt_dir.cos() + y * tilt_dir.sin());
-            for &(amplitude, k, direction, phase) in &waves {
-                h += amplitude * (k * (x * direction.cos() + y * direction.sin()) + phase).sin();
-            }
-            layer.set(i, j, h as f32);
+    // The directions' cosines and sines once, not per cell (the same numbers).
+    let tilt_dir = (tilt_dir.cos(), tilt_dir.sin());
+    let waves: Vec<(f64, f64, (f64, f64), f64)> = waves
+        .into_iter()
+        .map(|(amplitude, k, direction, phase)| {
+            (amplitude, k, (direction.cos(), direction.sin()), phase)
+        })
+        .collect();
+    // Each cell's height is its own: rows are filled side by side.
+    *layer = GridLayer::from_fn_par(g, |i, j| {
+        let [x, y] = g.center_of(i, j);
+        let mut h = tilt * (x * tilt_dir.0 + y * tilt_dir.1);
+        for &(amplitude, k, (cos, sin), phase) in &waves {
+            h += amplitude * (k * (x * cos + y * sin) + phase).sin();
         }
-    }
+        h as f32
+    });
 }
 
 /// A bowl of `radius` and `depth` with a steep rim.

@@ -52,6 +52,18 @@ impl CostMatrix {
         Self::from_rows(n, data)
     }
 
+    /// Sets the cost from `i` to `j`; it must not be NaN or negative (`INFINITY` for
+    /// no path).
+    pub fn set(&mut self, i: usize, j: usize, cost: f64) -> Result<()> {
+        if cost.is_nan() || cost < 0.0 {
+            return Err(Error::InvalidInput(format!(
+                "cost matrix entry ({i}, {j}) is {cost}; costs must be ≥ 0 (INFINITY for no path)"
+            )));
+        }
+        self.data[i * self.n + j] = cost;
+        Ok(())
+    }
+
     /// Number of nodes.
     pub fn len(&self) -> usize {
         self.n

@@ -26,6 +26,8 @@ pub struct PathOracle {
     objective: Arc<dyn Objective>,
     planner: Box<dyn PointToPointPlanner>,
     cache: HashMap<(usize, usize), Arc<PlannedPath>>,
+    /// Every pair whose cached answer was set, in order (a pair refined is listed again).
+    stored: Vec<(usize, usize)>,
     symmetric: bool,
     stats: OracleStats,
     known: KnownAnswers,
@@ -42,6 +44,7 @@ impl PathOracle {
             objective,
             planner,
             cache: HashMap::new(),
+            stored: Vec::new(),
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
             progress: None,
@@ -109,9 +112,9 @@ impl PathOracle {
         };
         self.stats.known_hits += 1;
         if self.symmetric && !self.cache.contains_key(&(j, i)) {
-            self.cache.insert((j, i), Arc::new(found.reversed()));
+            self.store(j, i, Arc::new(found.reversed()));
         }
-        self.cache.insert((i, j), found);
+        self.store(i, j, found);
         true
     }
 
@@ -180,6 +183,20 @@ impl PathOracle {
             .map(|p| p.cost)
     }
 
+    /// Caches `planned` as the answer for `i → j` and logs the pair (see
+    /// [`stored_since`](Self::stored_since)).
+    fn store(&mut self, i: usize, j: usize, planned: Arc<PlannedPath>) {
+        self.cache.insert((i, j), planned);
+        self.stored.push((i, j));
+    }
+
+    /// The pairs whose answer was set (planned, served from known answers, or refined)
+    /// since the log held `mark` entries, in order; `stored_since(0).len()` is the
+    /// mark to pass next time. A matrix of planned costs updates from these alone.
+    pub fn stored_since(&self, mark: usize) -> &[(usize, usize)] {
+        &self.stored[mark.min(self.stored.len())..]
+    }
+
     /// The path from `i` to `j`, planned on first request and cached.
     pub fn path(&mut self, i: usize, j: usize) -> Result<Arc<PlannedPath>> {
         if let Some(hit) = self.cache.get(&(i, j)) {
@@ -201,9 +218,9 @@ impl PathOracle {
             self.plan_pair(i, j)?
         });
         if self.symmetric && i != j {
-            self.cache.insert((j, i), Arc::new(planned.reversed()));
+            self.store(j, i, Arc::new(planned.reversed()));
         }
-        self.cache.insert((i, j), planned.clone());
+        self.store(i, j, planned.clone());
         Ok(planned)
     }
 
@@ -262,9 +279,9 @@ impl PathOracle {
                 let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
                 let planned = Arc::new(PlannedPath { outcome, cost });
                 if self.symmetric {
-                    self.cache.insert((j, i), Arc::new(planned.reversed()));
+                    self.store(j, i, Arc::new(planned.reversed()));
                 }
-                self.cache.insert((i, j), planned);
+                self.store(i, j, planned);
             }
         }
         self.report_progress();
@@ -335,9 +352,9 @@ impl PathOracle {
             return Ok(false);
         }
         if self.symmetric {
-            self.cache.insert((j, i), Arc::new(planned.reversed()));
+            self.store(j, i, Arc::new(planned.reversed()));
         }
-        self.cache.insert((i, j), Arc::new(planned));
+        self.store(i, j, Arc::new(planned));
         Ok(true)
     }
 

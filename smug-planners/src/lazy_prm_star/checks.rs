@@ -1,5 +1,6 @@
 //! The validity checks LazyPRM*'s searches and post-processing run, counted and timed.
 
+use crate::roadmap::memo::{CheckMemo, MemoEvaluator};
 use crate::roadmap::{Evaluator, Roadmap, Validity};
 use smug_core::TimeBreakdown;
 use smug_core::{MotionCheck, MotionValidator, Pose2, StateValidityChecker};
@@ -118,5 +119,81 @@ impl Evaluator for Checks<'_> {
                 valid
             }
         }
+    }
+}
+
+/// Checks and their time, added up by searches side by side.
+#[derive(Default)]
+pub(super) struct Tally {
+    vertex_checks: AtomicU64,
+    edge_checks: AtomicU64,
+    vertex_nanoseconds: AtomicU64,
+    edge_nanoseconds: AtomicU64,
+}
+
+impl Tally {
+    /// Adds the counts and times to `counts`; returns the checking time in seconds.
+    pub(super) fn book(&self, counts: &mut Counts) -> f64 {
+        counts.vertex_checks += self.vertex_checks.load(Relaxed);
+        counts.edge_checks += self.edge_checks.load(Relaxed);
+        let vertex_s = self.vertex_nanoseconds.load(Relaxed) as f64 * 1e-9;
+        let edge_s = self.edge_nanoseconds.load(Relaxed) as f64 * 1e-9;
+        counts.breakdown.vertex_checking_s += vertex_s;
+        counts.breakdown.edge_checking_s += edge_s;
+        vertex_s + edge_s
+    }
+}
+
+/// Runs `check`, adding its time to `nanoseconds`.
+fn timed_into(nanoseconds: &AtomicU64, check: impl FnOnce() -> bool) -> bool {
+    let started = Instant::now();
+    let valid = check();
+    let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
+    nanoseconds.fetch_add(elapsed, Relaxed);
+    valid
+}
+
+/// The checks searches on a roadmap held still make through a shared memo: each
+/// element counted once (by the search that remembered it), every check timed.
+pub(super) struct MemoChecks<'a> {
+    pub(super) memo: &'a CheckMemo,
+    pub(super) states: &'a dyn StateValidityChecker,
+    pub(super) motions: &'a dyn MotionValidator,
+    pub(super) tally: &'a Tally,
+}
+
+impl MemoEvaluator for MemoChecks<'_> {
+    fn vertex(&mut self, map: &Roadmap, v: u32) -> bool {
+        let tally = self.tally;
+        self.memo.vertex(
+            map,
+            v,
+            || {
+                timed_into(&tally.vertex_nanoseconds, || {
+                    self.states.is_valid(map.pose(v))
+                })
+            },
+            || {
+                tally.vertex_checks.fetch_add(1, Relaxed);
+            },
+        )
+    }
+
+    fn edge(&mut self, map: &Roadmap, e: u32) -> bool {
+        let tally = self.tally;
+        let edge = *map.edge(e);
+        self.memo.edge(
+            map,
+            e,
+            || {
+                timed_into(&tally.edge_nanoseconds, || {
+                    self.motions
+                        .is_valid_motion(map.pose(edge.a), map.pose(edge.b))
+                })
+            },
+            || {
+                tally.edge_checks.fetch_add(1, Relaxed);
+            },
+        )
     }
 }

@@ -1,82 +1,236 @@
 //! One-to-many queries of LazyPRM* (`one_to_many`): the goals a source needs are
 //! answered by one lazy Dijkstra search on the shared roadmap (each settled vertex's
-//! edge checked as it is settled), instead of one query per goal.
+//! edge checked as it is settled), instead of one query per goal. Many sources (a
+//! cost matrix's rows, a DP layer) are searched side by side on the roadmap held
+//! still, their checks shared through a memo and written into the roadmap after
+//! (see [`crate::roadmap::memo`]): the answers are those of one search after another
+//! on that roadmap, for any number of threads.
 
+use super::checks::{MemoChecks, Tally};
 use super::LazyPrmStar;
-use crate::roadmap::GraphPath;
+use crate::roadmap::memo::CheckMemo;
+use crate::roadmap::{AStar, GraphPath};
+use rayon::prelude::*;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
+use std::sync::Mutex;
 use std::time::Instant;
 
+/// One source's goals while its row is answered.
+struct Row {
+    /// The source's vertex (`None`: the start is invalid).
+    source: Option<u32>,
+    outcomes: Vec<Option<PlannerOutcome>>,
+    /// (goal index, its vertex) of the goals still to search.
+    pending: Vec<(usize, u32)>,
+}
+
 impl LazyPrmStar {
-    /// Answers `start → goals`: every goal the roadmap connects to `start` from one
-    /// shared search (its path checked lazily, as a query's attempt would); a goal
-    /// it does not connect is planned as a query of its own (which grows the
-    /// roadmap), after which the goals still unanswered are searched again.
-    pub(super) fn plan_many_on_roadmap(
+    /// Answers every row `start → goals`: the endpoints join the roadmap row by row,
+    /// then every row's goals are searched side by side (one search per row) on the
+    /// roadmap as it is; a goal the roadmap does not connect is planned as a query of
+    /// its own (which grows the roadmap), after which its row's goals still
+    /// unanswered are searched again, row by row.
+    pub(super) fn plan_rows_on_roadmap(
         &mut self,
-        start: &Pose2,
-        goals: &[Pose2],
-    ) -> Vec<PlannerOutcome> {
+        rows: &[(Pose2, Vec<Pose2>)],
+    ) -> Vec<Vec<PlannerOutcome>> {
         let started = Instant::now();
         let before = self.counts.breakdown;
-        self.counts.queries += goals.len() as u64;
         self.ensure_grown();
         self.ensure_grown_for_many();
-        let Some(s) = self.terminal(start) else {
-            return goals.iter().map(|_| PlannerOutcome::InvalidStart).collect();
-        };
-        let mut outcomes: Vec<Option<PlannerOutcome>> = goals.iter().map(|_| None).collect();
-        // (goal index, its vertex) of the goals to search.
-        let mut pending = Vec::new();
-        for (i, goal) in goals.iter().enumerate() {
-            match self.answer_without_search(start, goal, s) {
-                Ok(outcome) => outcomes[i] = Some(outcome),
-                Err(g) => pending.push((i, g)),
-            }
-        }
-        while !pending.is_empty() {
-            if self.cut_off.contains(&s) {
-                self.counts.cut_off_queries += pending.len() as u64;
-                break; // unanswered: no path
-            }
-            let vertices: Vec<u32> = pending.iter().map(|&(_, g)| g).collect();
-            let found = self.lazy_search_many(s, &vertices);
-            let mut unconnected = Vec::new();
-            let mut connected = Vec::new();
-            for (&(i, g), path) in pending.iter().zip(found) {
+        let mut prepared: Vec<Row> = rows
+            .iter()
+            .map(|(start, goals)| self.prepare_row(start, goals))
+            .collect();
+        let searched: Vec<usize> = (0..prepared.len())
+            .filter(|&r| self.ready_to_search(&mut prepared[r]))
+            .collect();
+        let jobs: Vec<(u32, Vec<u32>)> = searched.iter().map(|&r| job_of(&prepared[r])).collect();
+        let found = self.search_in_doubling_batches(&jobs);
+        let mut unconnected: Vec<Vec<(usize, u32)>> = prepared.iter().map(|_| Vec::new()).collect();
+        let mut connected: Vec<(usize, usize, GraphPath)> = Vec::new();
+        for (&r, paths) in searched.iter().zip(found) {
+            let row = &mut prepared[r];
+            for (&(i, g), path) in row.pending.iter().zip(paths) {
                 match path {
-                    Some(path) => connected.push((i, path)),
-                    None => unconnected.push((i, g)),
+                    Some(path) => connected.push((r, i, path)),
+                    None => unconnected[r].push((i, g)),
                 }
             }
-            let (indices, graph_paths): (Vec<usize>, Vec<GraphPath>) =
-                connected.into_iter().unzip();
-            let paths = self.post_processed_all(&graph_paths);
-            for (i, path) in indices.into_iter().zip(paths) {
-                outcomes[i] = Some(PlannerOutcome::Exact(path));
-            }
-            // The first goal the roadmap does not connect is planned alone (it grows
-            // the roadmap); the others are searched again on the grown roadmap.
-            let mut unconnected = unconnected.into_iter();
-            if let Some((i, g)) = unconnected.next() {
-                outcomes[i] = Some(self.solve_query(start, &goals[i], s, g));
-            }
-            pending = unconnected.collect();
+            row.pending.clear();
         }
-        let outcomes: Vec<PlannerOutcome> = outcomes
+        self.answer_connected(&mut prepared, connected);
+        for ((row, (start, goals)), unconnected) in prepared.iter_mut().zip(rows).zip(unconnected) {
+            self.finish_row(row, start, goals, unconnected);
+        }
+        let outcomes: Vec<Vec<PlannerOutcome>> = prepared
             .into_iter()
-            .map(|outcome| {
-                outcome.unwrap_or(PlannerOutcome::NoPath(NoPathReason::BudgetSpent(
-                    Budget::EarlierQuery,
-                )))
+            .map(|row| {
+                row.outcomes
+                    .into_iter()
+                    .map(unanswered_is_earlier_query)
+                    .collect()
             })
             .collect();
-        for (goal, outcome) in goals.iter().zip(&outcomes) {
-            self.warm.record(start, goal, outcome);
+        for ((start, goals), row) in rows.iter().zip(&outcomes) {
+            for (goal, outcome) in goals.iter().zip(row) {
+                self.warm.record(start, goal, outcome);
+            }
         }
         let accounted = self.counts.breakdown.total_s() - before.total_s();
         self.counts.breakdown.misc_s += (started.elapsed().as_secs_f64() - accounted).max(0.0);
         outcomes
+    }
+
+    /// The row of `start → goals` with its endpoints on the roadmap and every goal
+    /// that needs no search answered.
+    fn prepare_row(&mut self, start: &Pose2, goals: &[Pose2]) -> Row {
+        self.counts.queries += goals.len() as u64;
+        let Some(s) = self.terminal(start) else {
+            return Row {
+                source: None,
+                outcomes: goals
+                    .iter()
+                    .map(|_| Some(PlannerOutcome::InvalidStart))
+                    .collect(),
+                pending: Vec::new(),
+            };
+        };
+        let mut row = Row {
+            source: Some(s),
+            outcomes: goals.iter().map(|_| None).collect(),
+            pending: Vec::new(),
+        };
+        for (i, goal) in goals.iter().enumerate() {
+            match self.answer_without_search(start, goal, s) {
+                Ok(outcome) => row.outcomes[i] = Some(outcome),
+                Err(g) => row.pending.push((i, g)),
+            }
+        }
+        row
+    }
+
+    /// True when `row` has goals to search from a source that is not cut off (a
+    /// cut-off source leaves them unanswered, counted).
+    fn ready_to_search(&mut self, row: &mut Row) -> bool {
+        let Some(s) = row.source else {
+            return false;
+        };
+        if row.pending.is_empty() {
+            return false;
+        }
+        if self.cut_off.contains(&s) {
+            self.counts.cut_off_queries += row.pending.len() as u64;
+            row.pending.clear();
+            return false;
+        }
+        true
+    }
+
+    /// [`search_side_by_side`](Self::search_side_by_side) in batches of 1, 1, 2, 4, 8, …
+    /// jobs: a search prunes its open list with the edges the roadmap knows valid, and
+    /// the batches after the first few know what the earlier ones checked (one batch
+    /// of every row on a fresh roadmap pushed 3× the entries). The batches depend on
+    /// the number of jobs alone, never on the threads.
+    fn search_in_doubling_batches(
+        &mut self,
+        jobs: &[(u32, Vec<u32>)],
+    ) -> Vec<Vec<Option<GraphPath>>> {
+        let mut found = Vec::with_capacity(jobs.len());
+        let mut batch = 1;
+        while found.len() < jobs.len() {
+            let from = found.len();
+            let to = (from + batch).min(jobs.len());
+            found.extend(self.search_side_by_side(&jobs[from..to]));
+            batch = to.max(1);
+        }
+        found
+    }
+
+    /// The cheapest valid path on the roadmap from each job's source to each of its
+    /// goals (`None` where none is left), one lazy Dijkstra search per job, side by
+    /// side on the roadmap held still; what they found is written into the roadmap
+    /// after. Checking time is booked as checking, the rest as A*.
+    fn search_side_by_side(&mut self, jobs: &[(u32, Vec<u32>)]) -> Vec<Vec<Option<GraphPath>>> {
+        if jobs.is_empty() {
+            return Vec::new();
+        }
+        let started = Instant::now();
+        let memo = CheckMemo::new(&self.roadmap);
+        let tally = Tally::default();
+        let spare = Mutex::new(std::mem::take(&mut self.row_searches));
+        let found: Vec<Vec<Option<GraphPath>>> = {
+            let (roadmap, states, motions) =
+                (&self.roadmap, self.states.as_ref(), self.motions.as_ref());
+            jobs.par_iter()
+                .map(|(s, goals)| {
+                    let mut astar = take_search(&spare);
+                    let mut checks = MemoChecks {
+                        memo: &memo,
+                        states,
+                        motions,
+                        tally: &tally,
+                    };
+                    let found = astar.search_many_lazy(roadmap, *s, goals, &mut checks);
+                    put_back(&spare, astar);
+                    found
+                })
+                .collect()
+        };
+        self.row_searches = spare.into_inner().unwrap_or_else(|e| e.into_inner());
+        memo.apply(&mut self.roadmap);
+        let checking = tally.book(&mut self.counts);
+        self.counts.searches += jobs.len() as u64;
+        self.counts.breakdown.astar_s += (started.elapsed().as_secs_f64() - checking).max(0.0);
+        if found.iter().flatten().any(Option::is_none) {
+            self.roadmap.refresh_components();
+        }
+        found
+    }
+
+    /// Post-processes the `(row, goal index, path)` found (side by side) and answers them.
+    fn answer_connected(&mut self, rows: &mut [Row], connected: Vec<(usize, usize, GraphPath)>) {
+        let (places, graph_paths): (Vec<(usize, usize)>, Vec<GraphPath>) = connected
+            .into_iter()
+            .map(|(r, i, path)| ((r, i), path))
+            .unzip();
+        let paths = self.post_processed_all(&graph_paths);
+        for ((r, i), path) in places.into_iter().zip(paths) {
+            rows[r].outcomes[i] = Some(PlannerOutcome::Exact(path));
+        }
+    }
+
+    /// Answers the goals of `row` its search left `unconnected`: the first is planned
+    /// alone (it grows the roadmap), the others searched again on the grown roadmap,
+    /// until none is left.
+    fn finish_row(
+        &mut self,
+        row: &mut Row,
+        start: &Pose2,
+        goals: &[Pose2],
+        mut unconnected: Vec<(usize, u32)>,
+    ) {
+        let Some(s) = row.source else {
+            return;
+        };
+        while let Some(&(i, g)) = unconnected.first() {
+            row.outcomes[i] = Some(self.solve_query(start, &goals[i], s, g));
+            row.pending = unconnected.split_off(1);
+            if row.pending.is_empty() || !self.ready_to_search(row) {
+                return;
+            }
+            let found = self.search_side_by_side(&[job_of(row)]);
+            let mut connected = Vec::new();
+            unconnected = Vec::new();
+            for (&(i, g), path) in row.pending.iter().zip(found.into_iter().flatten()) {
+                match path {
+                    Some(path) => connected.push((0, i, path)),
+                    None => unconnected.push((i, g)),
+                }
+            }
+            row.pending.clear();
+            self.answer_connected(std::slice::from_mut(row), connected);
+        }
     }
 
     /// Grows the roadmap once by `one_to_many_density` uniform samples per square
@@ -122,19 +276,35 @@ impl LazyPrmStar {
             Some(g) => Err(g),
         }
     }
+}
 
-    /// The cheapest valid path on the roadmap from `s` to each of `goals` (`None`
-    /// where none is left), by one lazy Dijkstra search (see
-    /// [`crate::roadmap::AStar::search_many_lazy`]); its checking time is booked as checking.
-    fn lazy_search_many(&mut self, s: u32, goals: &[u32]) -> Vec<Option<GraphPath>> {
-        let found = self.timed_lazy_search(|astar, roadmap, _, checks| {
-            astar.search_many_lazy(roadmap, s, goals, checks)
-        });
-        if found.iter().any(Option::is_none) {
-            self.roadmap.refresh_components();
-        }
-        found
+/// The search a row asks for: its source and pending goals.
+fn job_of(row: &Row) -> (u32, Vec<u32>) {
+    let s = row.source.unwrap_or(u32::MAX);
+    (s, row.pending.iter().map(|&(_, g)| g).collect())
+}
+
+/// A search's buffers from the spares (or new ones).
+fn take_search(spare: &Mutex<Vec<AStar>>) -> AStar {
+    spare
+        .lock()
+        .map(|mut spare| spare.pop())
+        .unwrap_or_default()
+        .unwrap_or_default()
+}
+
+/// Returns a search's buffers to the spares.
+fn put_back(spare: &Mutex<Vec<AStar>>, astar: AStar) {
+    if let Ok(mut spare) = spare.lock() {
+        spare.push(astar);
     }
+}
+
+/// A goal left unanswered: its source was cut off after an earlier query spent its budget.
+fn unanswered_is_earlier_query(outcome: Option<PlannerOutcome>) -> PlannerOutcome {
+    outcome.unwrap_or(PlannerOutcome::NoPath(NoPathReason::BudgetSpent(
+        Budget::EarlierQuery,
+    )))
 }
 
 #[cfg(test)]

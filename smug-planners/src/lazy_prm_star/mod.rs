@@ -54,6 +54,8 @@ pub struct LazyPrmStar {
     params: LazyPrmStarParams,
     roadmap: Roadmap,
     astar: AStar,
+    /// Buffers of the one-to-many searches run side by side (one per thread in use).
+    row_searches: Vec<AStar>,
     sampler: Box<dyn Sampler>,
     states: Arc<dyn StateValidityChecker>,
     motions: Arc<dyn MotionValidator>,
@@ -101,6 +103,12 @@ fn check_roadmap_size(params: &LazyPrmStarParams, memory: MemoryLimit) -> Result
 }
 
 impl LazyPrmStar {
+    /// Vertices expanded by every search so far (queries' and rows').
+    fn expansions(&self) -> u64 {
+        let rows: u64 = self.row_searches.iter().map(|a| a.expansions).sum();
+        self.astar.expansions + rows
+    }
+
     /// A planner over the given stages in `bounds`, outside any run (no deadline, the
     /// default memory limit).
     pub fn new(
@@ -176,6 +184,7 @@ impl LazyPrmStar {
                 .with_directed_edges(!space.is_symmetric())
                 .with_range(params.range.unwrap_or(f64::INFINITY)),
             astar: AStar::default(),
+            row_searches: Vec::new(),
             sampler,
             states,
             motions,
@@ -241,7 +250,20 @@ impl PointToPointPlanner for LazyPrmStar {
         if !self.params.one_to_many {
             return goals.iter().map(|goal| self.plan(start, goal)).collect();
         }
-        Ok(self.plan_many_on_roadmap(start, goals))
+        let rows = [(*start, goals.to_vec())];
+        Ok(self.plan_rows_on_roadmap(&rows).pop().unwrap_or_default())
+    }
+
+    /// With `one_to_many`, every row's search side by side (see
+    /// [`plan_rows_on_roadmap`](Self::plan_rows_on_roadmap)); else query by query.
+    fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
+        if !self.params.one_to_many {
+            return rows
+                .iter()
+                .map(|(start, goals)| self.plan_many(start, goals))
+                .collect();
+        }
+        Ok(self.plan_rows_on_roadmap(rows))
     }
 
     fn answers_many(&self) -> bool {
@@ -276,7 +298,7 @@ impl PointToPointPlanner for LazyPrmStar {
             ("astar_repairs".to_string(), c.repairs),
             ("cut_off_queries".to_string(), c.cut_off_queries),
             ("proved_no_path".to_string(), c.proved_no_path),
-            ("astar_expansions".to_string(), self.astar.expansions),
+            ("astar_expansions".to_string(), self.expansions()),
         ]);
         counters.extend(self.load_counters());
         PlannerStats {

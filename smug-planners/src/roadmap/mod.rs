@@ -2,6 +2,7 @@
 //! validity, compact adjacency, connected components and a reusable A*.
 
 pub mod file;
+pub mod memo;
 mod search;
 mod snapshot;
 

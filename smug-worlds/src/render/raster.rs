@@ -3,7 +3,7 @@
 
 use super::options::RasterLayer;
 use super::svg::{num, View, NO_DATA};
-use crate::export::{finite_range, image_rows};
+use crate::export::finite_range;
 use base64::Engine;
 use smug_core::{GridLayer, World};
 use std::fmt::Write as _;
@@ -139,16 +139,22 @@ pub(super) fn raster_png(raster: &RasterChoice, size: [usize; 2]) -> Option<Vec<
     if nx == 0 || ny == 0 || width == 0 || height == 0 || layer.data.len() != nx * ny {
         return None;
     }
-    let colours = image_rows(layer.geometry, |k| raster.colour(layer.data[k]));
-    let image = image::RgbImage::from_fn(
-        u32::try_from(width).ok()?,
-        u32::try_from(height).ok()?,
-        |x, y| {
-            let column = x as usize * nx / width;
-            let row = y as usize * ny / height;
-            image::Rgb(colours[row * nx + column])
-        },
-    );
+    // The cell of each pixel, north up (image rows run top down).
+    let cell = |x: u32, y: u32| {
+        let column = x as usize * nx / width;
+        let row = y as usize * ny / height;
+        (ny - 1 - row) * nx + column
+    };
+    let (w, h) = (u32::try_from(width).ok()?, u32::try_from(height).ok()?);
+    let image = if width * height < nx * ny {
+        // Thinned out: colour only the cells a pixel shows.
+        image::RgbImage::from_fn(w, h, |x, y| {
+            image::Rgb(raster.colour(layer.data[cell(x, y)]))
+        })
+    } else {
+        let colours: Vec<[u8; 3]> = layer.data.iter().map(|&v| raster.colour(v)).collect();
+        image::RgbImage::from_fn(w, h, |x, y| image::Rgb(colours[cell(x, y)]))
+    };
     let mut png = std::io::Cursor::new(Vec::new());
     image.write_to(&mut png, image::ImageFormat::Png).ok()?;
     Some(png.into_inner())

@@ -1,22 +1,27 @@
 //! One-to-many shortest valid paths on the roadmap: one lazy Dijkstra search from a
-//! source that stops once every goal it was asked for is settled.
+//! source that stops once every goal it was asked for is settled. It reads the
+//! roadmap held still and checks through a memo ([`crate::roadmap::memo`]), so that
+//! searches from many sources can run side by side.
 
 use super::records::{Marks, Reached, VertexRecord, NO_PARENT};
-use super::{AStar, Evaluator, GraphPath, Roadmap, Validity};
+use super::{AStar, GraphPath, Roadmap, Validity};
 use crate::nn::from_total_order_key;
+use crate::roadmap::memo::MemoEvaluator;
 
 impl AStar {
     /// The cheapest valid path from `start` to each of `goals` (`None` where no valid
     /// path is left), found by one lazy Dijkstra search: the edge into a vertex (and
     /// the vertex) is checked when the vertex is about to be settled, as in Lazy
     /// Weighted A* ([`AStar::search_lazy`]) without a heuristic; the search ends once
-    /// every goal is settled.
+    /// every goal is settled. Decisions read the roadmap as it is (its validity marks),
+    /// checks go through `evaluator`: the answer depends on the roadmap alone, not on
+    /// what other searches found before.
     pub fn search_many_lazy(
         &mut self,
-        map: &mut Roadmap,
+        map: &Roadmap,
         start: u32,
         goals: &[u32],
-        evaluator: &mut dyn Evaluator,
+        evaluator: &mut dyn MemoEvaluator,
     ) -> Vec<Option<GraphPath>> {
         let marks = self.prepare_without_heuristic(map);
         let mut wanted: Vec<u32> = goals.to_vec();
@@ -34,9 +39,7 @@ impl AStar {
                 continue;
             }
             let (_, e) = parent;
-            let reachable = (e == u32::MAX
-                || map.edge(e).validity != Validity::Invalid && evaluator.edge(map, e))
-                && evaluator.vertex(map, v);
+            let reachable = (e == u32::MAX || evaluator.edge(map, e)) && evaluator.vertex(map, v);
             if !reachable {
                 continue;
             }
@@ -86,6 +89,7 @@ impl AStar {
 
 #[cfg(test)]
 mod tests {
+    use super::super::super::memo::CheckMemo;
     use super::super::super::Validity;
     use super::super::dijkstra;
     use super::*;
@@ -97,24 +101,18 @@ mod tests {
     struct Marked {
         invalid: BTreeSet<u32>,
         checked: Vec<u32>,
+        memo: CheckMemo,
     }
 
-    impl Evaluator for Marked {
-        fn vertex(&mut self, _: &mut Roadmap, _: u32) -> bool {
+    impl MemoEvaluator for Marked {
+        fn vertex(&mut self, _: &Roadmap, _: u32) -> bool {
             true
         }
-        fn edge(&mut self, map: &mut Roadmap, e: u32) -> bool {
-            if map.edge(e).validity == Validity::Valid {
-                return true;
-            }
-            self.checked.push(e);
-            let valid = !self.invalid.contains(&e);
-            if valid {
-                map.mark_edge_valid(e);
-            } else {
-                map.remove_edge(e);
-            }
-            valid
+        fn edge(&mut self, map: &Roadmap, e: u32) -> bool {
+            let invalid = &self.invalid;
+            let checked = &mut self.checked;
+            self.memo
+                .edge(map, e, || !invalid.contains(&e), || checked.push(e))
         }
     }
 
@@ -142,8 +140,9 @@ mod tests {
             }
             let dist = dijkstra(&valid_map, 0);
             let goals: Vec<u32> = picks.iter().map(|p| (p % map.vertex_count()) as u32).collect();
-            let mut marked = Marked { invalid: invalid.clone(), checked: Vec::new() };
-            let found = AStar::default().search_many_lazy(&mut map, 0, &goals, &mut marked);
+            let mut marked = Marked { invalid: invalid.clone(), checked: Vec::new(), memo: CheckMemo::new(&map) };
+            let found = AStar::default().search_many_lazy(&map, 0, &goals, &mut marked);
+            marked.memo.apply(&mut map);
             prop_assert_eq!(found.len(), goals.len());
             // No edge is checked twice (validity is cached on the roadmap).
             let distinct: BTreeSet<u32> = marked.checked.iter().copied().collect();
