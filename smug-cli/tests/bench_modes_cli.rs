@@ -104,3 +104,48 @@ fn modes_bench_with_an_unknown_mission_is_exit_2_naming_it() {
     let run = smug(&["bench", "modes", "--missions", "mars", "--runs", "1"]);
     assert_bad_input(&run, &["mars", "--missions", "lunar-200x10"]);
 }
+
+#[test]
+fn modes_bench_with_threads_runs_each_count_and_finds_the_same_plans() {
+    let dir = std::env::temp_dir().join("smug-bench-modes-threads");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("r.md");
+    let run = smug(&[
+        "bench",
+        "modes",
+        "--missions",
+        "imported-map",
+        "--runs",
+        "1",
+        "--modes",
+        "lazy,joint",
+        "--threads",
+        "1,2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let report = std::fs::read_to_string(&out).unwrap();
+    for row in [
+        "## Threads",
+        "| imported map 32×32 | sequential, lazy matrix | 2 | 1 |",
+        "| imported map 32×32 | joint, auto | 2 | 1 |",
+    ] {
+        assert!(report.contains(row), "`{row}` missing from:\n{report}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("r.json")).unwrap()).unwrap();
+    assert_eq!(json["runs"].as_array().unwrap().len(), 4, "{json}");
+    let rows = json["threads"].as_array().unwrap();
+    assert_eq!(rows.len(), 4, "{json}");
+    for row in rows {
+        assert_eq!(row["same_plan"], 1, "{row}");
+        positive(row, "mean_total_s");
+    }
+}
+
+#[test]
+fn modes_bench_with_zero_threads_is_exit_2_naming_the_flag() {
+    let run = smug(&["bench", "modes", "--threads", "0", "--runs", "1"]);
+    assert_bad_input(&run, &["--threads"]);
+}

@@ -6,6 +6,7 @@
 pub mod polygons;
 mod report;
 pub mod runs;
+mod threads;
 
 use crate::error::ResultExt as _;
 use crate::output::ReportArgs;
@@ -39,6 +40,11 @@ pub struct BenchModesArgs {
     /// and `data-open` missions (rasterised to 2000 × 2000 square cells over its border).
     #[arg(long)]
     data: Option<PathBuf>,
+    /// Thread counts (e.g. `1,2`): every run again on a pool of each, the report's
+    /// Threads section compares their times and plans (the tables above use the
+    /// first count's runs); unset: rayon's default pool, once.
+    #[arg(long, value_delimiter = ',')]
+    threads: Vec<usize>,
     /// `--set`, `--out`, `--json`.
     #[command(flatten)]
     report: ReportArgs,
@@ -49,6 +55,7 @@ pub struct BenchModesArgs {
 struct Raw<'a> {
     seeds: u64,
     runs: &'a [Run],
+    threads: &'a [threads::ThreadRow],
     #[serde(flatten)]
     summary: &'a Summary,
 }
@@ -68,43 +75,104 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
     if args.runs == 0 {
         crate::error::bail!("--runs: must be at least 1");
     }
+    if args.threads.contains(&0) {
+        crate::error::bail!("--threads: every count must be at least 1");
+    }
+    let pools = thread_pools(&args.threads)?;
     let mut runs = Vec::new();
     for mission in &missions {
         for mode in &modes {
             for seed in 1..=args.runs {
-                eprintln!("{} / {} / seed {seed}", mission.name, mode.name);
-                runs.push(plan_once(
-                    mission,
-                    mode,
-                    seed,
-                    &args.report.set,
-                    args.data.as_deref(),
-                )?);
+                for (threads, pool) in &pools {
+                    eprintln!("{} / {} / seed {seed}", mission.name, mode.name);
+                    let plan =
+                        || plan_once(mission, mode, seed, &args.report.set, args.data.as_deref());
+                    let mut run = match pool {
+                        Some(pool) => pool.install(plan)?,
+                        None => plan()?,
+                    };
+                    run.threads = *threads;
+                    runs.push(run);
+                }
             }
         }
     }
-    let summary = Summary::of(&missions, &modes, &runs);
+    // The tables use the first count's runs (every run when no count is given).
+    let first: Vec<Run> = runs
+        .iter()
+        .filter(|r| r.threads == pools[0].0)
+        .cloned()
+        .collect();
+    let summary = Summary::of(&missions, &modes, &first);
+    let thread_rows = match args.threads.first() {
+        Some(_) => threads::rows(&missions, &modes, &args.threads, &runs),
+        None => Vec::new(),
+    };
     let raw = Raw {
         seeds: args.runs,
         runs: &runs,
         summary: &summary,
+        threads: &thread_rows,
     };
     args.report.write(
         &format!(
-            "{}\nCommand: `{}`\n",
+            "{}{}\nCommand: `{}`\n",
             report(
                 &missions,
                 &modes,
                 args.runs,
                 &args.report.set,
                 &summary,
-                &runs
+                &first
             ),
+            threads_section(&thread_rows, &missions, &modes),
             command_line()
         ),
         &raw,
     )?;
     Ok(())
+}
+
+/// The Threads section (empty without `--threads`).
+fn threads_section(rows: &[threads::ThreadRow], missions: &[&Mission], modes: &[&Mode]) -> String {
+    if rows.is_empty() {
+        return String::new();
+    }
+    threads::section(rows, |mission, mode| {
+        let label = |name: &str, known: Vec<(&'static str, &'static str)>| {
+            known
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(name.to_string(), |(_, l)| l.to_string())
+        };
+        (
+            label(
+                mission,
+                missions.iter().map(|m| (m.name, m.label)).collect(),
+            ),
+            label(mode, modes.iter().map(|m| (m.name, m.label)).collect()),
+        )
+    })
+}
+
+/// One pool per thread count, with the count (`(None, None)`: rayon's default pool).
+#[allow(clippy::type_complexity)]
+fn thread_pools(
+    counts: &[usize],
+) -> crate::Result<Vec<(Option<usize>, Option<rayon::ThreadPool>)>> {
+    if counts.is_empty() {
+        return Ok(vec![(None, None)]);
+    }
+    counts
+        .iter()
+        .map(|&threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| crate::error::invalid!("--threads {threads}: {e}"))?;
+            Ok((Some(threads), Some(pool)))
+        })
+        .collect()
 }
 
 /// The command that ran, as typed after the program's name (`smug …`).
@@ -179,6 +247,8 @@ fn plan_once(
         planning_s: None,
         order: Vec::new(),
         error: None,
+        total_s: None,
+        threads: None,
     };
     match planned {
         Ok(plan) => {
@@ -186,6 +256,7 @@ fn plan_once(
             run.cost = Some(plan.cost);
             run.paths_planned = Some(plan.stats.paths_planned);
             run.planning_s = Some(planning_s(&plan));
+            run.total_s = plan.stats.stage_times_s.get("total").copied();
         }
         Err(err) => run.error = Some(err.to_string()),
     }

@@ -325,6 +325,8 @@ mod tests {
             planning_s: cost.map(|_| 0.5),
             order: vec!["a".into(), "b".into()],
             error: cost.is_none().then(|| "no safe path".into()),
+            total_s: cost.map(|_| 0.6),
+            threads: None,
         }
     }
 

@@ -193,7 +193,7 @@ pub const MODES: [Mode; 4] = [
 ];
 
 /// One plan's measurements; `error` set (and the numbers `None`) when planning failed.
-#[derive(Debug, Serialize)]
+#[derive(Clone, Debug, Serialize)]
 pub struct Run {
     /// The mission's name.
     pub mission: String,
@@ -207,6 +207,12 @@ pub struct Run {
     pub paths_planned: Option<u64>,
     /// The plan's `total` time minus the pipeline's build times, seconds.
     pub planning_s: Option<f64>,
+    /// The plan's `total` time (building the pipeline included), seconds.
+    #[serde(default)]
+    pub total_s: Option<f64>,
+    /// The threads of the pool the run ran on (`None`: rayon's default).
+    #[serde(default)]
+    pub threads: Option<usize>,
     /// The plan's target order (`sequence`).
     #[serde(default)]
     pub order: Vec<String>,
