@@ -11,8 +11,10 @@ pub mod auto;
 pub mod brute_force;
 pub mod exact;
 pub mod lns;
+pub mod mtsp;
 
 pub use auto::{TeamAuto, TeamAutoParams};
 pub use brute_force::{brute_force_team, BRUTE_FORCE_TEAM_MAX_TARGETS};
 pub use exact::{TeamExact, TeamExactParams};
 pub use lns::{TeamLns, TeamLnsParams};
+pub use mtsp::{mtsp_costs, mtsp_problem, MtspDistance, MtspError};

@@ -2,7 +2,7 @@
 //! routes with their costs, the scalar the annealing compares, and cheapest insertion.
 
 use rand::Rng;
-use smug_core::{CostMatrix, TeamObjective, TeamProblem, TeamSolution, Visit};
+use smug_core::{TeamObjective, TeamProblem, TeamSolution, Visit};
 
 /// What the search precomputes once per problem.
 pub(super) struct Setting<'a> {
