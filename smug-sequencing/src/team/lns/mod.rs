@@ -15,6 +15,7 @@
 //!
 //! With `time_limit_s = 0` a seed and `max_iterations` give bit-identical solutions.
 
+mod cross;
 mod improve;
 mod ruin;
 mod search;
@@ -49,7 +50,8 @@ pub struct TeamLnsParams {
     pub temp_start: f64,
     /// End temperature, in mean legs of the first solution.
     pub temp_end: f64,
-    /// Makespan objective: weight of the total in the annealed value.
+    /// Makespan objective: weight of the mean route cost (the total over the robots) in
+    /// the annealed value.
     pub sum_weight: f64,
     /// Candidates within this fraction of the best get their routes improved.
     pub improve_within: f64,
@@ -68,7 +70,7 @@ impl Default for TeamLnsParams {
             blink_rate: 0.01,
             temp_start: 1.0,
             temp_end: 0.03,
-            sum_weight: 0.01,
+            sum_weight: 0.02,
             improve_within: 0.02,
             polish_fraction: 0.05,
         }

@@ -2,6 +2,7 @@
 //! candidate below `current − T·ln U`), the temperature cooling geometrically with the
 //! budget's progress.
 
+use super::cross::cross_routes;
 use super::improve::improve_route;
 use super::ruin::{recreate, ruin, RuinSize};
 use super::state::{Setting, State};
@@ -99,6 +100,9 @@ pub(super) fn search(
         );
         let mut scalar = candidate.scalar(setting);
         if scalar < best_scalar * (1.0 + params.improve_within) + temperature {
+            if m > 1 {
+                cross_routes(setting, &mut candidate, &mut dirty);
+            }
             for r in (0..m).filter(|&r| dirty[r]) {
                 improve_route(setting, &mut candidate, r);
             }

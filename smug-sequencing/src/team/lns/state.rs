@@ -12,7 +12,8 @@ pub(super) struct Setting<'a> {
     pub symmetric: bool,
     /// Every target has exactly one node (no PoI choice).
     pub single_nodes: bool,
-    /// Weight of the total in the makespan objective's scalar (keeps other routes short).
+    /// Weight of the total in the makespan objective's scalar (keeps other routes short):
+    /// the parameter over the number of robots, so that it weighs a mean route.
     pub sum_weight: f64,
     /// Cost of one target too few or too many on a route (route-size bounds).
     pub penalty: f64,
@@ -45,7 +46,7 @@ impl<'a> Setting<'a> {
             problem,
             symmetric,
             single_nodes,
-            sum_weight,
+            sum_weight: sum_weight / m as f64,
             penalty: penalty_per_target(problem),
             neighbours,
             allowed,
