@@ -25,9 +25,17 @@ pub struct BenchMtspArgs {
     /// Only these instances (comma-separated names); default: all of the sets.
     #[arg(long, value_delimiter = ',')]
     pub instances: Vec<String>,
+    /// Only rows of this objective (`minmax` or `minsum`); default: both.
+    #[arg(long, value_parser = ["minmax", "minsum"])]
+    pub objective: Option<String>,
     /// Only rows with at most this many customers.
     #[arg(long)]
     pub max_customers: Option<usize>,
+    /// Fewest customers per salesman on rows without size bounds (0: idle salesmen
+    /// allowed). LKH-3's tours, the best-known values of most rows, use every salesman
+    /// (its MTSP_MIN_SIZE defaults to 1), and He & Hao's sets require it.
+    #[arg(long, default_value_t = 0)]
+    pub min_size: usize,
     /// Time budgets in seconds, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "1,10")]
     pub budgets: Vec<f64>,
@@ -91,7 +99,13 @@ pub fn run_bench(args: BenchMtspArgs) -> crate::Result<()> {
     let mut runs = Vec::new();
     let mut skipped = Vec::new();
     let total = rows.len() * args.budgets.len() * args.seeds.len();
-    for row in rows {
+    for mut row in rows {
+        if row.route_size.is_none() && args.min_size > 0 {
+            row.route_size = Some(smug_core::RouteSize {
+                min: args.min_size,
+                max: usize::MAX,
+            });
+        }
         let Some(path) = instance_path(&args.data, &row.instance) else {
             let reason = "no instance file in instances/".to_string();
             skipped.push(Skipped { row, reason });
@@ -183,6 +197,7 @@ fn select(rows: Vec<MtspRow>, args: &BenchMtspArgs) -> crate::Result<Vec<MtspRow
         .into_iter()
         .filter(|r| args.sets.contains(&r.set))
         .filter(|r| args.instances.is_empty() || args.instances.contains(&r.instance))
+        .filter(|r| args.objective.as_ref().is_none_or(|o| &r.objective == o))
         .collect();
     crate::error::ensure!(
         !chosen.is_empty(),

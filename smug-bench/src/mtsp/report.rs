@@ -68,6 +68,14 @@ pub fn markdown(args: &BenchMtspArgs, runs: &[MtspRun], skipped: &[Skipped]) -> 
          state, no tour); `LKH runAll` is the value in Helsgaun's runAll script where the \
          row has one.\n"
     );
+    if args.min_size > 0 {
+        let _ = writeln!(
+            out,
+            "Rows without size bounds ran with at least {} customer(s) per salesman \
+             (`--min-size`; column `sizes`).\n",
+            args.min_size
+        );
+    }
     if !args.report.set.is_empty() {
         let _ = writeln!(out, "team-lns overrides: `{}`\n", args.report.set.join(" "));
     }
@@ -101,7 +109,10 @@ fn write_set(out: &mut String, set: &str, budgets: &[f64], runs: &[MtspRun]) {
         let sizes = row
             .row
             .route_size
-            .map_or("–".to_string(), |s| format!("{}..{}", s.min, s.max));
+            .map_or("–".to_string(), |s| {
+                let max = s.max.min(row.n);
+                format!("{}..{max}", s.min)
+            });
         let src = if row.row.status.starts_with("optimal") {
             "opt"
         } else if row.row.verified == "yes" || !row.row.status.is_empty() {
