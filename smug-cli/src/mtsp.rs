@@ -72,7 +72,10 @@ pub fn run(args: MtspArgs) -> anyhow::Result<Outcome> {
         "--time {}: must be a number of seconds ≥ 0",
         args.time
     );
-    anyhow::ensure!(args.salesmen > 0, "--salesmen 0: needs at least one salesman");
+    anyhow::ensure!(
+        args.salesmen > 0,
+        "--salesmen 0: needs at least one salesman"
+    );
     let instance = read_tsplib(&args.file)?;
     let customers = instance.costs.len().saturating_sub(1);
     anyhow::ensure!(

@@ -56,8 +56,14 @@ fn minmax_splits_the_rays_and_a_seed_fixes_the_routes() {
     let out = smug(&args);
     assert!(out.status.success(), "{}", stderr(&out));
     let report = json(&stdout(&out));
-    assert!((report["makespan"].as_f64().unwrap() - 12.0).abs() < 1e-9, "{report}");
-    assert!((report["total"].as_f64().unwrap() - 24.0).abs() < 1e-9, "{report}");
+    assert!(
+        (report["makespan"].as_f64().unwrap() - 12.0).abs() < 1e-9,
+        "{report}"
+    );
+    assert!(
+        (report["total"].as_f64().unwrap() - 24.0).abs() < 1e-9,
+        "{report}"
+    );
     assert_eq!(report["route_sizes"], serde_json::json!([6, 6]));
     let mut nodes: Vec<u64> = report["routes"]
         .as_array()
@@ -69,11 +75,24 @@ fn minmax_splits_the_rays_and_a_seed_fixes_the_routes() {
     assert_eq!(nodes, (2..=13).collect::<Vec<u64>>());
     assert_eq!(report["routes"], json(&stdout(&smug(&args)))["routes"]);
     // Text output: the costs and one line per salesman.
-    let text = smug(&["mtsp", file, "--salesmen", "3", "--objective", "minsum", "--time", "0.2"]);
+    let text = smug(&[
+        "mtsp",
+        file,
+        "--salesmen",
+        "3",
+        "--objective",
+        "minsum",
+        "--time",
+        "0.2",
+    ]);
     assert!(text.status.success(), "{}", stderr(&text));
     let text = stdout(&text);
     assert!(text.contains("total 24.0000"), "{text}");
-    assert_eq!(text.lines().filter(|l| l.contains("salesman")).count(), 3, "{text}");
+    assert_eq!(
+        text.lines().filter(|l| l.contains("salesman")).count(),
+        3,
+        "{text}"
+    );
 }
 
 #[test]
@@ -82,11 +101,27 @@ fn bad_mtsp_input_is_named() {
     let file = two_rays(&dir);
     let file = file.to_str().unwrap();
     let missing = dir.join("missing.tsp");
-    let out = smug(&["mtsp", missing.to_str().unwrap(), "--salesmen", "2", "--objective", "minmax"]);
+    let out = smug(&[
+        "mtsp",
+        missing.to_str().unwrap(),
+        "--salesmen",
+        "2",
+        "--objective",
+        "minmax",
+    ]);
     assert_bad_input(&out, &["missing.tsp"]);
     let out = smug(&["mtsp", file, "--salesmen", "0", "--objective", "minmax"]);
     assert_bad_input(&out, &["--salesmen"]);
-    let out = smug(&["mtsp", file, "--salesmen", "2", "--objective", "minmax", "--min-size", "7"]);
+    let out = smug(&[
+        "mtsp",
+        file,
+        "--salesmen",
+        "2",
+        "--objective",
+        "minmax",
+        "--min-size",
+        "7",
+    ]);
     assert_bad_input(&out, &["route sizes 7..=12"]);
     let out = smug(&["mtsp", file, "--salesmen", "2", "--objective", "fastest"]);
     assert_eq!(out.status.code(), Some(2));
@@ -126,11 +161,27 @@ fn bench_mtsp_reports_gaps_and_the_rows_it_leaves_out() {
     let report = std::fs::read_to_string(&out_md).unwrap();
     assert!(report.contains("## Tiny"), "{report}");
     assert!(!report.contains("## Other"), "{report}");
-    assert!(report.contains("| tworays | 2 | minsum | 12 | 5..7 | 24 |"), "{report}");
-    assert!(report.contains("| 0.1 s | 2 | +0.000% | +0.000% | +0.000% | 2 | 2 |"), "{report}");
-    assert!(report.contains("| Tiny | nowhere | 2 | minmax | no instance file"), "{report}");
+    assert!(
+        report.contains("| tworays | 2 | minsum | 12 | 5..7 | 24 |"),
+        "{report}"
+    );
+    assert!(
+        report.contains("| 0.1 s | 2 | +0.000% | +0.000% | +0.000% | 2 | 2 |"),
+        "{report}"
+    );
+    assert!(
+        report.contains("| Tiny | nowhere | 2 | minmax | no instance file"),
+        "{report}"
+    );
     let raw = json(&std::fs::read_to_string(dir.join("report.json")).unwrap());
     assert_eq!(raw["runs"].as_array().unwrap().len(), 4);
-    let out = smug(&["bench", "mtsp", "--data", dir.to_str().unwrap(), "--sets", "Nope"]);
+    let out = smug(&[
+        "bench",
+        "mtsp",
+        "--data",
+        dir.to_str().unwrap(),
+        "--sets",
+        "Nope",
+    ]);
     assert_bad_input(&out, &["unknown set `Nope`", "Other, Tiny"]);
 }

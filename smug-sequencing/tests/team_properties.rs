@@ -240,8 +240,7 @@ fn makespan_leaves_no_robot_idle_and_beats_the_sum_objective_on_it() {
 #[test]
 fn unservable_targets_and_empty_teams_are_named() {
     let costs = Arc::new(
-        CostMatrix::from_fn(3, |i, j| if j == 2 && i != 2 { f64::INFINITY } else { 1.0 })
-            .unwrap(),
+        CostMatrix::from_fn(3, |i, j| if j == 2 && i != 2 { f64::INFINITY } else { 1.0 }).unwrap(),
     );
     let robot = TeamRobot {
         costs,
@@ -258,9 +257,17 @@ fn unservable_targets_and_empty_teams_are_named() {
             robots: None,
         },
     ];
-    let err = TeamProblem::new(vec![robot.clone()], targets.clone(), TeamObjective::Sum, None)
-        .unwrap_err();
-    assert!(matches!(err, TeamError::Unservable { target: 1, .. }), "{err}");
+    let err = TeamProblem::new(
+        vec![robot.clone()],
+        targets.clone(),
+        TeamObjective::Sum,
+        None,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(err, TeamError::Unservable { target: 1, .. }),
+        "{err}"
+    );
     let err = TeamProblem::new(vec![], targets.clone(), TeamObjective::Sum, None).unwrap_err();
     assert_eq!(err, TeamError::NoRobots);
     let restricted = vec![TeamTarget {

@@ -20,7 +20,11 @@ pub struct BenchMtspArgs {
     #[arg(long, value_name = "DIR")]
     pub data: PathBuf,
     /// Sets to run (column `set`; `mTSPLib-MinMax16` = the rows of mtsplib_minmax.csv).
-    #[arg(long, value_delimiter = ',', default_value = "mTSPLib-MinMax,mTSPLib-MinSum")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "mTSPLib-MinMax,mTSPLib-MinSum"
+    )]
     pub sets: Vec<String>,
     /// Only these instances (comma-separated names); default: all of the sets.
     #[arg(long, value_delimiter = ',')]

@@ -95,7 +95,8 @@ pub fn markdown(args: &BenchMtspArgs, runs: &[MtspRun], skipped: &[Skipped]) -> 
 
 fn write_set(out: &mut String, set: &str, budgets: &[f64], runs: &[MtspRun]) {
     let _ = writeln!(out, "## {set}\n");
-    let mut header = "| instance | m | obj | n | sizes | best-known | src | LKH runAll |".to_string();
+    let mut header =
+        "| instance | m | obj | n | sizes | best-known | src | LKH runAll |".to_string();
     let mut rule = "|---|---|---|---|---|---|---|---|".to_string();
     for b in budgets {
         let _ = write!(
@@ -106,13 +107,10 @@ fn write_set(out: &mut String, set: &str, budgets: &[f64], runs: &[MtspRun]) {
     }
     let _ = writeln!(out, "{header}\n{rule}");
     for row in rows(runs) {
-        let sizes = row
-            .row
-            .route_size
-            .map_or("–".to_string(), |s| {
-                let max = s.max.min(row.n);
-                format!("{}..{max}", s.min)
-            });
+        let sizes = row.row.route_size.map_or("–".to_string(), |s| {
+            let max = s.max.min(row.n);
+            format!("{}..{max}", s.min)
+        });
         let src = if row.row.status.starts_with("optimal") {
             "opt"
         } else if row.row.verified == "yes" || !row.row.status.is_empty() {
@@ -193,7 +191,10 @@ fn write_skipped(out: &mut String, skipped: &[Skipped]) {
     if skipped.is_empty() {
         return;
     }
-    let _ = writeln!(out, "## Rows left out\n\n| set | instance | m | objective | why |\n|---|---|---|---|---|");
+    let _ = writeln!(
+        out,
+        "## Rows left out\n\n| set | instance | m | objective | why |\n|---|---|---|---|---|"
+    );
     for s in skipped {
         let _ = writeln!(
             out,

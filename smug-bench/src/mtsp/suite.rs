@@ -151,9 +151,7 @@ pub fn instance_path(dir: &Path, name: &str) -> Option<PathBuf> {
     let mut matches: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
-            let ext_ok = p
-                .extension()
-                .is_some_and(|e| e == "tsp" || e == "atsp");
+            let ext_ok = p.extension().is_some_and(|e| e == "tsp" || e == "atsp");
             let stem_ok = p
                 .file_stem()
                 .is_some_and(|s| s.to_string_lossy().eq_ignore_ascii_case(name));

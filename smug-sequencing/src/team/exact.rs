@@ -26,6 +26,9 @@ impl Default for TeamExactParams {
     }
 }
 
+/// Most entries (12 bytes each) of one robot's table: 2^targets × PoIs.
+pub const MAX_TABLE_ENTRIES: u128 = 1 << 24;
+
 /// Hard limit on [`TeamExactParams::max_targets`].
 pub const TEAM_EXACT_LIMIT: usize = 20;
 
@@ -236,6 +239,17 @@ impl TeamSequencer for TeamExact {
             ));
         }
         let slots = Slots::new(problem);
+        let entries = (1u128 << k) * slots.slots.len() as u128;
+        if entries > MAX_TABLE_ENTRIES {
+            return Err(smug_core::Error::invalid_param(
+                "team_sequencer",
+                format!(
+                    "team-exact: {k} targets with {} PoIs need {entries} table entries per \
+                     robot, more than {MAX_TABLE_ENTRIES}; use team-lns or team-auto",
+                    slots.slots.len()
+                ),
+            ));
+        }
         let tables: Vec<RobotTable> = (0..problem.robots().len())
             .map(|r| RobotTable::build(problem, &slots, r))
             .collect();

@@ -10,7 +10,9 @@ use std::sync::Arc;
 /// Which distances an mTSP instance uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MtspDistance {
-    /// Unrounded Euclidean distances from the coordinates (mTSPLib, He & Hao, SKCP).
+    /// Unrounded Euclidean distances from the coordinates (mTSPLib, He & Hao, SKCP); for
+    /// `ATT` files TSPLIB's pseudo-Euclidean distance unrounded, `√((dx² + dy²) / 10)`,
+    /// as the He & Hao set's att532 values use.
     Euclid,
     /// The file's own TSPLIB distances (integer, rounded as TSPLIB defines them).
     Tsplib,
@@ -39,13 +41,13 @@ pub fn mtsp_costs(
                 .coords
                 .as_ref()
                 .ok_or_else(|| MtspError::NoCoordinates(instance.name.clone()))?;
+            let scale = if instance.weights == "ATT" { 10.0 } else { 1.0 };
             let euclid = |i: usize, j: usize| {
                 let (a, b) = (coords[i], coords[j]);
-                ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt()
+                (((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)) / scale).sqrt()
             };
-            CostMatrix::from_fn(coords.len(), euclid).map_err(|e| {
-                MtspError::NoCoordinates(format!("{}: {e}", instance.name))
-            })
+            CostMatrix::from_fn(coords.len(), euclid)
+                .map_err(|e| MtspError::NoCoordinates(format!("{}: {e}", instance.name)))
         }
     }
 }

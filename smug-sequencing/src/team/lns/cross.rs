@@ -64,7 +64,10 @@ pub(super) fn two_opt_star(setting: &Setting, state: &mut State, a: usize, b: us
     // Tails of b driven by a, tails of a driven by b.
     let (tb_a, ok_b_for_a) = tails(setting, a, rb);
     let (ta_b, ok_a_for_b) = tails(setting, b, ra);
-    let (ca, cb) = (&setting.problem.robots()[a].costs, &setting.problem.robots()[b].costs);
+    let (ca, cb) = (
+        &setting.problem.robots()[a].costs,
+        &setting.problem.robots()[b].costs,
+    );
     let others = other_routes(state, a, b);
     let before = pair_value(setting, state.costs[a], state.costs[b], others);
     let mut best: Option<(f64, usize, usize)> = None;
@@ -120,9 +123,7 @@ fn pair_value(setting: &Setting, x: f64, y: f64, others: (f64, f64)) -> f64 {
     let total = others.1 + x + y;
     match setting.problem.objective() {
         smug_core::TeamObjective::Sum => total,
-        smug_core::TeamObjective::Makespan => {
-            others.0.max(x).max(y) + setting.sum_weight * total
-        }
+        smug_core::TeamObjective::Makespan => others.0.max(x).max(y) + setting.sum_weight * total,
     }
 }
 

@@ -124,7 +124,11 @@ fn worst(setting: &Setting, state: &State, size: RuinSize, rng: &mut impl Rng) -
         let robot = &setting.problem.robots()[r];
         let c = &robot.costs;
         for (i, v) in route.iter().enumerate() {
-            let prev = if i == 0 { robot.start } else { route[i - 1].node };
+            let prev = if i == 0 {
+                robot.start
+            } else {
+                route[i - 1].node
+            };
             let next = route.get(i + 1).map_or(robot.end, |w| w.node);
             let saving = -leg_delta(c.get(prev, next), c.get(prev, v.node) + c.get(v.node, next));
             savings.push((saving, v.target));

@@ -4,9 +4,9 @@
 
 use super::cross::cross_routes;
 use super::improve::improve_route;
+use super::params::TeamLnsParams;
 use super::ruin::{recreate, ruin, RuinSize};
 use super::state::{Setting, State};
-use super::TeamLnsParams;
 use rand::Rng;
 use smug_core::Deadline;
 use std::time::Instant;

@@ -60,9 +60,9 @@ impl<'a> Setting<'a> {
 
     /// How far a route of `len` targets is outside the bounds.
     pub fn size_violation(&self, len: usize) -> usize {
-        self.problem.route_size().map_or(0, |b| {
-            b.min.saturating_sub(len) + len.saturating_sub(b.max)
-        })
+        self.problem
+            .route_size()
+            .map_or(0, |b| b.min.saturating_sub(len) + len.saturating_sub(b.max))
     }
 }
 
@@ -247,7 +247,11 @@ impl State {
             if blink > 0.0 && best.is_some() && rng.random::<f64>() < blink {
                 continue;
             }
-            let prev = if at == 0 { robot.start } else { route[at - 1].node };
+            let prev = if at == 0 {
+                robot.start
+            } else {
+                route[at - 1].node
+            };
             let next = route.get(at).map_or(robot.end, |v| v.node);
             let old = c.get(prev, next);
             for &node in &setting.problem.targets()[target].nodes {
