@@ -4,15 +4,12 @@
 
 mod common;
 
-use common::{assert_bad_input, smug, stderr, stdout};
+use common::{assert_bad_input, scratch_dir, smug, stderr, stdout};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 fn temp_dir(label: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("smug-mtsp-cli-{label}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir("mtsp-cli", label)
 }
 
 /// Depot (node 1) at the origin, customers at x = ±1..±6 on the x axis.

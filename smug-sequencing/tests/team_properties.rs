@@ -9,7 +9,9 @@ use smug_core::{
     CostMatrix, RouteSize, Sequencer, TeamError, TeamObjective, TeamProblem, TeamRobot,
     TeamSequencer, TeamSolution, TeamTarget, TourKind,
 };
-use smug_sequencing::team::{brute_force_team, TeamExact, TeamExactParams, TeamLns, TeamLnsParams};
+use smug_sequencing::team::{
+    brute_force_team, mtsp_problem, TeamExact, TeamExactParams, TeamLns, TeamLnsParams,
+};
 use smug_sequencing::{LocalSearch, LocalSearchParams};
 use std::sync::Arc;
 
@@ -188,21 +190,7 @@ fn euclidean(rng: &mut ChaCha8Rng, n: usize) -> CostMatrix {
 }
 
 fn mtsp(costs: CostMatrix, m: usize, objective: TeamObjective) -> TeamProblem {
-    let costs = Arc::new(costs);
-    let robots = (0..m)
-        .map(|_| TeamRobot {
-            costs: costs.clone(),
-            start: 0,
-            end: 0,
-        })
-        .collect();
-    let targets = (1..costs.len())
-        .map(|node| TeamTarget {
-            nodes: vec![node],
-            robots: None,
-        })
-        .collect();
-    TeamProblem::new(robots, targets, objective, None).unwrap()
+    mtsp_problem(costs, m, objective, None).unwrap()
 }
 
 #[test]
