@@ -11,6 +11,7 @@ pub mod error;
 pub mod gtsp;
 pub mod lattice;
 pub mod modes;
+pub mod mtsp;
 pub mod objectives;
 pub mod output;
 pub mod p2p;

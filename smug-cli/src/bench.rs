@@ -3,7 +3,9 @@
 
 use crate::Outcome;
 use clap::Subcommand;
-use smug_bench::{gtsp, lattice, modes, objectives, p2p, paper, replan, robots, tsp, validity};
+use smug_bench::{
+    gtsp, lattice, modes, mtsp, objectives, p2p, paper, replan, robots, tsp, validity,
+};
 
 /// Arguments of `smug bench`.
 #[derive(clap::Args, Debug)]
@@ -22,6 +24,9 @@ enum BenchCommand {
     /// GTSP solver on the GTSP-LIB suite (--data DIR or $SMUG_DATA/gtsp): gap to the
     /// best-known values and time.
     Gtsp(gtsp::BenchGtspArgs),
+    /// team-lns on single-depot mTSP suites (--data DIR: instances/, best_known.csv):
+    /// gaps to the best-known (mostly LKH-3) values per budget and seed.
+    Mtsp(mtsp::BenchMtspArgs),
     /// LazyPRM* on MovingAI maps: scenarios solved, length against the optimum, time.
     P2p(p2p::BenchP2pArgs),
     /// State validity checkers: checks per second and distance-field queries.
@@ -48,6 +53,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Paper(args) => paper::run(args),
         BenchCommand::Tsp(args) => tsp::run_bench(args),
         BenchCommand::Gtsp(args) => gtsp::run(args),
+        BenchCommand::Mtsp(args) => mtsp::run_bench(args),
         BenchCommand::Validity(args) => validity::run(args),
         BenchCommand::P2p(args) => p2p::run(args),
         BenchCommand::Objectives(args) => objectives::run(args),

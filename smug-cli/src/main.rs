@@ -11,6 +11,7 @@ use std::process::ExitCode;
 mod bench;
 mod check;
 mod gtsp;
+mod mtsp;
 mod p2p;
 mod plan;
 mod plugins;
@@ -53,6 +54,9 @@ enum Command {
     Tsp(tsp::TspArgs),
     /// Solve a GTSP-LIB instance (generalized TSP: one node per cluster).
     Gtsp(gtsp::GtspArgs),
+    /// Solve a single-depot multiple TSP on a TSPLIB file (depot = node 1), min-max or
+    /// min-sum.
+    Mtsp(mtsp::MtspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
     /// Look at, convert, generate and export worlds.
@@ -68,6 +72,7 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::P2p(args) => p2p::run(args),
         Command::Tsp(args) => tsp::run(args),
         Command::Gtsp(args) => gtsp::run(args),
+        Command::Mtsp(args) => mtsp::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Worlds(args) => worlds::run(args),
     }

@@ -32,6 +32,8 @@ fn plugins_lists_every_stage_and_the_builtin_plugins() {
         "[world]",
         "[planner]",
         "[selector]",
+        "[team_sequencer]",
+        "team-auto",
         "se2",
         "flat",
         "informed",
@@ -48,7 +50,7 @@ fn plugins_lists_every_stage_and_the_builtin_plugins() {
     }
     let json: serde_json::Value =
         serde_json::from_slice(&smug(&["plugins", "--json"]).stdout).unwrap();
-    assert_eq!(json.as_array().unwrap().len(), 10);
+    assert_eq!(json.as_array().unwrap().len(), 11);
 }
 
 #[test]

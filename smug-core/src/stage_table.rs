@@ -54,6 +54,9 @@ macro_rules! stage_table {
             /// Picks the PoIs.
             selector: SelectorStage = "chooses one pose of interest per target",
                 dyn $crate::stages::PoiSelector, None;
+            /// Splits the targets among a team's robots (team missions only).
+            team_sequencer: TeamSequencerStage = "assigns and orders the targets of a team of robots",
+                dyn $crate::stages::TeamSequencer, None;
         }
     };
 }

@@ -8,6 +8,8 @@
 //! - `gtsp-exact`: exact DP over clusters for the generalized TSP (few clusters);
 //! - `gtsp-lns`: GLNS-style large-neighbourhood search for the generalized TSP.
 //!
+//! Plugins of the `team_sequencer` stage ([`team`]): `team-exact`, `team-lns`, `team-auto`.
+//!
 //! The GTSP solvers answer [`Sequencer::solve_clusters`] (one node per cluster) and
 //! plain TSPs as singleton clusters; [`read_gtsplib`] reads GTSP-LIB files.
 //!
@@ -26,6 +28,7 @@ pub mod gtsp_lns;
 pub mod gtsplib;
 pub mod held_karp;
 pub mod local_search;
+pub mod team;
 pub mod tsplib;
 
 pub use auto::{Auto, AutoParams};

@@ -36,6 +36,9 @@ pub struct TsplibInstance {
     pub weights: String,
     /// Costs between nodes, diagonal 0.
     pub costs: CostMatrix,
+    /// The `NODE_COORD_SECTION` coordinates, when the file has them (for distances other
+    /// than TSPLIB's rounded ones, e.g. the unrounded Euclidean of the mTSP literature).
+    pub coords: Option<Vec<(f64, f64)>>,
 }
 
 /// Why a TSPLIB file cannot be used. Line numbers are 1-based.
@@ -460,8 +463,10 @@ fn build_instance(
             )
         }
         kind => {
-            let coords = coords.ok_or_else(|| cursor.invalid("NODE_COORD_SECTION is missing"))?;
-            let data = coordinate_matrix(kind, &coords);
+            let coords = coords
+                .as_ref()
+                .ok_or_else(|| cursor.invalid("NODE_COORD_SECTION is missing"))?;
+            let data = coordinate_matrix(kind, coords);
             if let Some(k) = data.iter().position(|d| !d.is_finite()) {
                 return Err(cursor.invalid(format!(
                     "the {kind:?} distance between nodes {} and {} is {}: coordinates this \
@@ -482,6 +487,7 @@ fn build_instance(
         comment: header.comment.join(" "),
         weights: weights.to_ascii_uppercase(),
         costs,
+        coords,
     })
 }
 

@@ -73,6 +73,8 @@ pub struct Pipeline {
     pub sequencer: Option<Box<dyn Sequencer>>,
     /// The PoI selector, if configured.
     pub selector: Option<Box<dyn PoiSelector>>,
+    /// The team sequencer, if configured.
+    pub team_sequencer: Option<Box<dyn crate::stages::TeamSequencer>>,
     /// Each stage's plugin and resolved parameters, in build order.
     pub resolved: Vec<ResolvedStage>,
     /// Build time per stage, seconds.
@@ -108,6 +110,7 @@ impl Pipeline {
             planner: None,
             sequencer: None,
             selector: None,
+            team_sequencer: None,
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
             progress: None,

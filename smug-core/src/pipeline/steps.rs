@@ -9,7 +9,7 @@ use crate::context::{BuildContext, WorldChange};
 use crate::error::Result;
 use crate::registry::{
     MotionStage, ObjectiveStage, PlannerStage, SamplerStage, SelectorStage, SequencerStage,
-    SpaceStage, Stage, ValidityStage,
+    SpaceStage, Stage, TeamSequencerStage, ValidityStage,
 };
 use std::sync::Arc;
 
@@ -34,7 +34,7 @@ pub(super) const BEFORE_WORLD: [Step; 1] = [Step {
 }];
 
 /// The stages after `world` and `traversability` (built with the world), in order.
-pub(super) const AFTER_WORLD: [Step; 7] = [
+pub(super) const AFTER_WORLD: [Step; 8] = [
     Step {
         key: ObjectiveStage::NAME,
         reads_world: true,
@@ -90,6 +90,14 @@ pub(super) const AFTER_WORLD: [Step; 7] = [
         reads_world: false,
         run: |p, ctx, section, phase| {
             p.selector = Some(p.build_stage_in::<SelectorStage>(ctx, section, phase)?);
+            Ok(())
+        },
+    },
+    Step {
+        key: TeamSequencerStage::NAME,
+        reads_world: false,
+        run: |p, ctx, section, phase| {
+            p.team_sequencer = Some(p.build_stage_in::<TeamSequencerStage>(ctx, section, phase)?);
             Ok(())
         },
     },

@@ -8,6 +8,7 @@ mod roadmap;
 mod sampler;
 mod selector;
 mod sequencer;
+mod team;
 mod tour;
 mod traversability;
 mod validity;
@@ -23,5 +24,9 @@ pub use roadmap::{ChangedDisc, Fingerprint};
 pub use sampler::{InformedSet, Sampler};
 pub use selector::{PoiSelector, Selection, SelectionError, SelectionProblem};
 pub use sequencer::{CostMatrix, Sequencer, Tour, TourKind};
+pub use team::{
+    better_of, lex_less, RouteSize, TeamError, TeamObjective, TeamProblem, TeamRobot,
+    TeamSequencer, TeamSolution, TeamTarget, Visit,
+};
 pub use traversability::{CellRect, TraversabilityEstimator};
 pub use validity::{Counters, DiscOnGrid, EndpointFault, StateValidityChecker};

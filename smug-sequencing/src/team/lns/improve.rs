@@ -1,0 +1,161 @@
+//! Route-internal improvement: Or-opt (segments of 1–3 targets moved, reversed too on
+//! symmetric costs), 2-opt (symmetric costs only: a reversal's cost on asymmetric ones
+//! is a recomputation, which this search skips) and the PoI choice re-optimised for the
+//! route's order (a layered shortest path, as the joint GTSP mode does).
+
+use super::state::{leg_delta, Setting, State};
+use smug_core::{CostMatrix, Visit};
+
+/// Improvements smaller than this are ignored (floating-point noise).
+const EPSILON: f64 = 1e-9;
+
+/// Improves route `r` of `state` in place until no move helps.
+pub(super) fn improve_route(setting: &Setting, state: &mut State, r: usize) {
+    let robot = &setting.problem.robots()[r];
+    let c: &CostMatrix = &robot.costs;
+    let route = &mut state.routes[r];
+    if route.len() >= 2 {
+        loop {
+            let mut moved = false;
+            if setting.symmetric {
+                moved |= two_opt(c, robot.start, robot.end, route);
+            }
+            moved |= or_opt(c, robot.start, robot.end, route, setting.symmetric);
+            if !moved {
+                break;
+            }
+        }
+    }
+    if !setting.single_nodes && !route.is_empty() {
+        choose_nodes(setting, r, route);
+    }
+    state.refresh(setting, r);
+}
+
+fn node_at(route: &[Visit], start: usize, end: usize, i: usize) -> usize {
+    if i == 0 {
+        start
+    } else if i > route.len() {
+        end
+    } else {
+        route[i - 1].node
+    }
+}
+
+/// One pass of first-improvement 2-opt; true if it moved.
+fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> bool {
+    let len = route.len();
+    let mut moved = false;
+    // Positions 0..=len+1 in the sequence start, route…, end; edge i joins i and i+1.
+    for i in 0..len {
+        for j in i + 2..=len {
+            let a = node_at(route, start, end, i);
+            let b = node_at(route, start, end, i + 1);
+            let x = node_at(route, start, end, j);
+            let y = node_at(route, start, end, j + 1);
+            let delta = leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y));
+            if delta < -EPSILON {
+                route[i..j].reverse();
+                moved = true;
+            }
+        }
+    }
+    moved
+}
+
+/// One pass of first-improvement Or-opt; true if it moved.
+fn or_opt(c: &CostMatrix, start: usize, end: usize, route: &mut Vec<Visit>, reverse: bool) -> bool {
+    let mut moved = false;
+    for seg in 1..=3usize {
+        let mut i = 1;
+        while i + seg <= route.len() + 1 && route.len() > seg {
+            if let Some((to, reversed)) = best_move(c, start, end, route, i, seg, reverse) {
+                let mut piece: Vec<Visit> = route.drain(i - 1..i - 1 + seg).collect();
+                if reversed {
+                    piece.reverse();
+                }
+                let at = if to > i - 1 { to - seg } else { to };
+                route.splice(at..at, piece);
+                moved = true;
+            }
+            i += 1;
+        }
+    }
+    moved
+}
+
+/// The best place to move the segment at sequence positions `i..i+seg` (position 0 is the
+/// start): the route index it goes before (numbered before its removal) and whether
+/// reversed, if that helps.
+fn best_move(
+    c: &CostMatrix,
+    start: usize,
+    end: usize,
+    route: &[Visit],
+    i: usize,
+    seg: usize,
+    reverse: bool,
+) -> Option<(usize, bool)> {
+    let at = |k: usize| node_at(route, start, end, k);
+    let (p, s0, s1, n) = (at(i - 1), at(i), at(i + seg - 1), at(i + seg));
+    // What taking the segment out saves.
+    let gain = leg_delta(c.get(p, s0) + c.get(s1, n), c.get(p, n));
+    let mut best: Option<(f64, usize, bool)> = None;
+    // Insert between sequence positions k and k+1, outside the segment.
+    for k in 0..=route.len() {
+        if k + 1 >= i && k < i + seg {
+            continue;
+        }
+        let (u, v) = (at(k), at(k + 1));
+        let old = c.get(u, v);
+        let forward = leg_delta(c.get(u, s0) + c.get(s1, v), old) - gain;
+        if forward < -EPSILON && best.is_none_or(|b| forward < b.0) {
+            best = Some((forward, k, false));
+        }
+        if reverse && seg > 1 {
+            let backward = leg_delta(c.get(u, s1) + c.get(s0, v), old) - gain;
+            if backward < -EPSILON && best.is_none_or(|b| backward < b.0) {
+                best = Some((backward, k, true));
+            }
+        }
+    }
+    // `k` is the route index before which the segment goes, counted before its removal;
+    // the segment occupies route indices i-1..i-1+seg.
+    best.map(|(_, to, reversed)| (to, reversed))
+}
+
+/// Re-picks every visit's node for the route's order: a shortest path through the layers.
+fn choose_nodes(setting: &Setting, r: usize, route: &mut [Visit]) {
+    let robot = &setting.problem.robots()[r];
+    let c = &robot.costs;
+    let targets = setting.problem.targets();
+    let mut layers: Vec<Vec<(f64, usize)>> = Vec::with_capacity(route.len());
+    let mut prev: Vec<(usize, f64)> = vec![(robot.start, 0.0)];
+    for visit in route.iter() {
+        let options = &targets[visit.target].nodes;
+        let mut layer = Vec::with_capacity(options.len());
+        let mut here = Vec::with_capacity(options.len());
+        for &node in options {
+            let (cost, from) = prev
+                .iter()
+                .enumerate()
+                .map(|(k, &(p, cost))| (cost + c.get(p, node), k))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .expect("a layer has a node");
+            layer.push((cost, from));
+            here.push((node, cost));
+        }
+        layers.push(layer);
+        prev = here;
+    }
+    let (mut pick, _) = prev
+        .iter()
+        .enumerate()
+        .map(|(k, &(node, cost))| (k, cost + c.get(node, robot.end)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("a route has a visit");
+    for i in (0..route.len()).rev() {
+        route[i].node = targets[route[i].target].nodes[pick];
+        pick = layers[i][pick].1;
+    }
+}

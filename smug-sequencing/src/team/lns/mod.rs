@@ -1,0 +1,243 @@
+//! `team-lns`: ruin and recreate with simulated annealing for team problems of any size.
+//!
+//! 1. First solution: every target at its cheapest (robot, position, PoI) in a random
+//!    order — for the makespan, the cheapest is what raises the largest route least plus
+//!    a small weight on the total, so idle robots take targets whenever that lowers the
+//!    makespan — or the warm start.
+//! 2. Each iteration removes targets (SISR strings around a seed's neighbours, random,
+//!    costliest, or a route's stretch; for the makespan half of them start on the
+//!    longest route), reinserts each at its cheapest place (skipping positions with a
+//!    small "blink" probability), and on promising candidates improves the changed
+//!    routes (Or-opt, 2-opt on symmetric costs, PoI re-choice). Annealing decides.
+//! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
+//!    fixed) and kept where shorter. One robot with one PoI per target and no size
+//!    bounds is a TSP: the local search gets the whole budget.
+//!
+//! With `time_limit_s = 0` a seed and `max_iterations` give bit-identical solutions.
+
+mod cross;
+mod improve;
+mod params;
+mod ruin;
+mod search;
+mod state;
+
+use crate::local_search::{LocalSearch, LocalSearchParams};
+use rand::Rng;
+use search::{better, construct, search, Budget};
+use smug_core::rng::{stage_rng, StageRng};
+use smug_core::{
+    CostMatrix, Deadline, Sequencer, TeamProblem, TeamSequencer, TeamSolution, TourKind, Visit,
+};
+use state::{Setting, State};
+
+pub use params::TeamLnsParams;
+
+/// Large-neighbourhood team sequencer. Each solve starts from a copy of the seeded
+/// generator, so solves do not influence each other.
+#[derive(Clone, Debug)]
+pub struct TeamLns {
+    params: TeamLnsParams,
+    rng: StageRng,
+    deadline: Deadline,
+}
+
+impl TeamLns {
+    /// A solver drawing its randomness from `rng` (e.g. `ctx.rng("team_sequencer")`).
+    pub fn new(params: TeamLnsParams, rng: StageRng) -> smug_core::Result<Self> {
+        params.validate().map_err(|m| {
+            smug_core::Error::invalid_param("team_sequencer", format!("team-lns: {m}"))
+        })?;
+        Ok(Self {
+            params,
+            rng,
+            deadline: Deadline::new(),
+        })
+    }
+
+    /// A solver seeded with `seed`.
+    pub fn with_seed(params: TeamLnsParams, seed: u64) -> smug_core::Result<Self> {
+        Self::new(params, stage_rng(seed, "team_sequencer"))
+    }
+
+    /// Stops at `deadline` (a run's; by default one that is never armed).
+    pub fn with_deadline(mut self, deadline: Deadline) -> Self {
+        self.deadline = deadline;
+        self
+    }
+
+    /// Solves from `initial` (or from scratch); returns the solution and the iterations.
+    pub fn solve_with_iterations(
+        &self,
+        problem: &TeamProblem,
+        initial: Option<&TeamSolution>,
+    ) -> smug_core::Result<(TeamSolution, u64)> {
+        if let Some(initial) = initial {
+            problem.validate(initial)?;
+        }
+        let mut rng = self.rng.clone();
+        let setting = Setting::new(problem, self.params.sum_weight);
+        if is_single_tsp(&setting) {
+            let state = self.solve_single_tsp(&setting, initial, &mut rng)?;
+            return Ok((state.solution(&setting), 0));
+        }
+        let start = match initial {
+            Some(solution) => State::of(&setting, solution),
+            None => construct(&setting, &mut rng),
+        };
+        let polish = self.params.polish_fraction;
+        let budget = Budget {
+            time_limit_s: self.params.time_limit_s * (1.0 - polish),
+            max_iterations: self.params.max_iterations,
+            deadline: &self.deadline,
+        };
+        let (best, iterations) = search(&setting, start, &self.params, &budget, &mut rng);
+        let routes = best.routes.iter().filter(|r| r.len() > 2).count().max(1);
+        let per_route = self.params.time_limit_s * polish / routes as f64;
+        let polished = self.polish(&setting, &best, per_route, &mut rng)?;
+        let best = if better(&setting, &polished, &best) {
+            polished
+        } else {
+            best
+        };
+        Ok((best.solution(&setting), iterations))
+    }
+
+    /// Each route reordered by the TSP local search (PoIs fixed), kept where cheaper.
+    fn polish(
+        &self,
+        setting: &Setting,
+        state: &State,
+        time_s: f64,
+        rng: &mut StageRng,
+    ) -> smug_core::Result<State> {
+        let mut polished = state.clone();
+        for r in 0..state.routes.len() {
+            if state.routes[r].len() <= 2 || self.deadline.passed() {
+                continue;
+            }
+            let params = LocalSearchParams {
+                time_limit_s: time_s,
+                max_iterations: if time_s > 0.0 { 0 } else { 200 },
+                ..LocalSearchParams::default()
+            };
+            let solver =
+                LocalSearch::with_seed(params, rng.random())?.with_deadline(self.deadline.clone());
+            let route = reorder(setting, r, &state.routes[r], &solver)?;
+            let mut trial = polished.clone();
+            trial.routes[r] = route;
+            trial.refresh(setting, r);
+            if trial.costs[r] < polished.costs[r] {
+                polished = trial;
+            }
+        }
+        Ok(polished)
+    }
+
+    /// One robot, one PoI per target, no size bounds: the TSP local search with the
+    /// whole budget (never worse than the warm start).
+    fn solve_single_tsp(
+        &self,
+        setting: &Setting,
+        initial: Option<&TeamSolution>,
+        rng: &mut StageRng,
+    ) -> smug_core::Result<State> {
+        let route: Vec<Visit> = match initial {
+            Some(solution) => solution.routes[0].clone(),
+            None => (0..setting.problem.targets().len())
+                .map(|target| Visit {
+                    target,
+                    node: setting.problem.targets()[target].nodes[0],
+                })
+                .collect(),
+        };
+        let params = LocalSearchParams {
+            time_limit_s: self.params.time_limit_s,
+            max_iterations: if self.params.time_limit_s > 0.0 {
+                0
+            } else {
+                self.params.max_iterations.clamp(1, 1000)
+            },
+            ..LocalSearchParams::default()
+        };
+        let solver =
+            LocalSearch::with_seed(params, rng.random())?.with_deadline(self.deadline.clone());
+        let mut found = State::empty(setting);
+        found.routes[0] = reorder(setting, 0, &route, &solver)?;
+        found.refresh(setting, 0);
+        match initial {
+            Some(solution) => {
+                let start = State::of(setting, solution);
+                Ok(if better(setting, &found, &start) {
+                    found
+                } else {
+                    start
+                })
+            }
+            None => Ok(found),
+        }
+    }
+}
+
+/// Whether the problem is a plain TSP for one robot.
+fn is_single_tsp(setting: &Setting) -> bool {
+    setting.problem.robots().len() == 1
+        && setting.single_nodes
+        && setting.problem.route_size().is_none()
+        && setting.problem.targets().len() > 2
+}
+
+/// Route `route` of robot `r` reordered by `solver` over its nodes (start first; its
+/// end last when it differs from the start).
+fn reorder(
+    setting: &Setting,
+    r: usize,
+    route: &[Visit],
+    solver: &LocalSearch,
+) -> smug_core::Result<Vec<Visit>> {
+    let robot = &setting.problem.robots()[r];
+    let closed = robot.start == robot.end;
+    let mut nodes = vec![robot.start];
+    nodes.extend(route.iter().map(|v| v.node));
+    if !closed {
+        nodes.push(robot.end);
+    }
+    let c = &robot.costs;
+    let sub = CostMatrix::from_fn(nodes.len(), |i, j| c.get(nodes[i], nodes[j]))?;
+    let kind = if closed {
+        TourKind::Closed
+    } else {
+        TourKind::OpenTo(nodes.len() - 1)
+    };
+    let tour = solver.solve(&sub, kind)?;
+    Ok(tour
+        .order
+        .iter()
+        .filter(|&&i| i >= 1 && i <= route.len())
+        .map(|&i| route[i - 1])
+        .collect())
+}
+
+impl TeamSequencer for TeamLns {
+    fn solve(&self, problem: &TeamProblem) -> smug_core::Result<TeamSolution> {
+        Ok(self.solve_with_iterations(problem, None)?.0)
+    }
+
+    fn solve_from(
+        &self,
+        problem: &TeamProblem,
+        initial: &TeamSolution,
+    ) -> smug_core::Result<TeamSolution> {
+        Ok(self.solve_with_iterations(problem, Some(initial))?.0)
+    }
+}
+
+smug_core::register_plugin!(
+    smug_core::registry::TeamSequencerStage,
+    name = "team-lns",
+    summary = "ruin-and-recreate with simulated annealing for team problems (any size): SISR strings, PoI choice, Or-opt/2-opt, TSP polish",
+    params = TeamLnsParams,
+    build = |params, ctx| Ok(Box::new(
+        TeamLns::new(params, ctx.rng("team_sequencer"))?.with_deadline(ctx.deadline())
+    )),
+);

@@ -1,0 +1,84 @@
+//! The parameters of `team-lns` and their checks.
+
+use crate::local_search::check_search_budget;
+use crate::ParamError;
+use serde::{Deserialize, Serialize};
+
+/// Parameters of [`TeamLns`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TeamLnsParams {
+    /// Wall-time budget in seconds (0 = none: then `max_iterations` alone, reproducible).
+    pub time_limit_s: f64,
+    /// Budget of ruin-and-recreate iterations (0 = none).
+    pub max_iterations: u64,
+    /// Mean number of targets a ruin removes.
+    pub mean_removed: f64,
+    /// Longest string a ruin removes from one route.
+    pub max_string: usize,
+    /// Probability of skipping an insertion position (SISR's blinks).
+    pub blink_rate: f64,
+    /// Start temperature, in mean legs of the first solution.
+    pub temp_start: f64,
+    /// End temperature, in mean legs of the first solution.
+    pub temp_end: f64,
+    /// Makespan objective: weight of the mean route cost (the total over the robots) in
+    /// the annealed value.
+    pub sum_weight: f64,
+    /// Candidates within this fraction of the best get their routes improved.
+    pub improve_within: f64,
+    /// Fraction of the time budget left for reordering the best routes with the TSP
+    /// local search (iteration budgets: 200 rounds per route).
+    pub polish_fraction: f64,
+}
+
+impl Default for TeamLnsParams {
+    fn default() -> Self {
+        Self {
+            time_limit_s: 0.0,
+            max_iterations: 20_000,
+            mean_removed: 20.0,
+            max_string: 10,
+            blink_rate: 0.01,
+            temp_start: 1.0,
+            temp_end: 0.03,
+            sum_weight: 0.02,
+            improve_within: 0.02,
+            polish_fraction: 0.05,
+        }
+    }
+}
+
+impl TeamLnsParams {
+    /// Checks the values; the message names the offending parameter.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check_search_budget(self.time_limit_s, self.max_iterations)?;
+        for (name, value, most) in [
+            ("blink_rate", self.blink_rate, 1.0),
+            ("sum_weight", self.sum_weight, 1.0),
+            ("improve_within", self.improve_within, 10.0),
+            ("polish_fraction", self.polish_fraction, 0.9),
+            ("temp_start", self.temp_start, 1e6),
+            ("temp_end", self.temp_end, self.temp_start.max(0.0)),
+        ] {
+            if !(value >= 0.0 && value <= most) {
+                return Err(ParamError::OutOfRange { name, value, most });
+            }
+        }
+        if !(self.mean_removed >= 1.0 && self.mean_removed.is_finite()) || self.max_string == 0 {
+            return Err(ParamError::OutOfRange {
+                name: "mean_removed / max_string",
+                value: self.mean_removed.min(self.max_string as f64),
+                most: f64::INFINITY,
+            });
+        }
+        if self.temp_end <= 0.0 {
+            return Err(ParamError::OutOfRange {
+                name: "temp_end (must be > 0)",
+                value: self.temp_end,
+                most: self.temp_start,
+            });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,134 @@
+//! The ruin-and-recreate loop with simulated-annealing acceptance (SISR-style: accept a
+//! candidate below `current − T·ln U`), the temperature cooling geometrically with the
+//! budget's progress.
+
+use super::cross::cross_routes;
+use super::improve::improve_route;
+use super::params::TeamLnsParams;
+use super::ruin::{recreate, ruin, RuinSize};
+use super::state::{Setting, State};
+use rand::Rng;
+use smug_core::Deadline;
+use std::time::Instant;
+
+/// The budget of one search: time, iterations, the run's deadline.
+pub(super) struct Budget<'a> {
+    pub time_limit_s: f64,
+    pub max_iterations: u64,
+    pub deadline: &'a Deadline,
+}
+
+impl Budget<'_> {
+    /// Fraction of the budget used (≥ 1: done).
+    fn progress(&self, started: Instant, iterations: u64) -> f64 {
+        let mut used: f64 = 0.0;
+        if self.time_limit_s > 0.0 {
+            used = used.max(started.elapsed().as_secs_f64() / self.time_limit_s);
+        }
+        if self.max_iterations > 0 {
+            used = used.max(iterations as f64 / self.max_iterations as f64);
+        }
+        if self.deadline.passed() {
+            used = 1.0;
+        }
+        used
+    }
+}
+
+/// Whether `a` is better than `b`: fewer size violations, then the objective.
+pub(super) fn better(setting: &Setting, a: &State, b: &State) -> bool {
+    let (ka, kb) = (a.key(setting), b.key(setting));
+    ka.0 < kb.0 || (ka.0 == kb.0 && smug_core::lex_less((ka.1, ka.2), (kb.1, kb.2)))
+}
+
+/// The first state: every target at its cheapest place, in a random order, routes
+/// improved.
+pub(super) fn construct(setting: &Setting, rng: &mut impl Rng) -> State {
+    let mut state = State::empty(setting);
+    let m = state.routes.len();
+    let mut dirty = vec![false; m];
+    let all: Vec<usize> = (0..setting.problem.targets().len()).collect();
+    recreate(setting, &mut state, all, 0.0, rng, &mut dirty);
+    for r in 0..m {
+        improve_route(setting, &mut state, r);
+    }
+    state
+}
+
+/// Searches from `start`; returns the best state seen and the iterations done.
+pub(super) fn search(
+    setting: &Setting,
+    start: State,
+    params: &TeamLnsParams,
+    budget: &Budget,
+    rng: &mut impl Rng,
+) -> (State, u64) {
+    let started = Instant::now();
+    let k = setting.problem.targets().len();
+    if k == 0 {
+        return (start, 0);
+    }
+    let size = RuinSize {
+        mean_removed: params.mean_removed.min(k as f64 / 2.0).max(1.0),
+        max_string: params.max_string,
+    };
+    let unit = mean_leg(setting, &start);
+    let (hot, cold) = (params.temp_start * unit, params.temp_end * unit);
+    let mut current = start;
+    let mut current_scalar = current.scalar(setting);
+    let mut best = current.clone();
+    let mut best_scalar = current_scalar;
+    let mut iterations = 0u64;
+    let m = current.routes.len();
+    loop {
+        let progress = budget.progress(started, iterations);
+        if progress >= 1.0 {
+            break;
+        }
+        iterations += 1;
+        let temperature = hot * (cold / hot).powf(progress);
+        let mut candidate = current.clone();
+        let mut dirty = vec![false; m];
+        let removed = ruin(setting, &mut candidate, size, rng, &mut dirty);
+        recreate(
+            setting,
+            &mut candidate,
+            removed,
+            params.blink_rate,
+            rng,
+            &mut dirty,
+        );
+        let mut scalar = candidate.scalar(setting);
+        if scalar < best_scalar * (1.0 + params.improve_within) + temperature {
+            if m > 1 {
+                cross_routes(setting, &mut candidate, &mut dirty);
+            }
+            for r in (0..m).filter(|&r| dirty[r]) {
+                improve_route(setting, &mut candidate, r);
+            }
+            scalar = candidate.scalar(setting);
+        }
+        if better(setting, &candidate, &best) {
+            best = candidate.clone();
+            best_scalar = best_scalar.min(scalar);
+        }
+        let threshold = current_scalar - temperature * rng.random::<f64>().max(1e-300).ln();
+        if scalar < threshold {
+            current = candidate;
+            current_scalar = scalar;
+        }
+    }
+    (best, iterations)
+}
+
+/// The mean finite leg of a state (the temperature's unit): its total over its legs.
+fn mean_leg(setting: &Setting, state: &State) -> f64 {
+    let legs = setting.problem.targets().len() + state.routes.len();
+    let total: f64 = state.costs.iter().filter(|c| c.is_finite()).sum();
+    let unit = total / legs.max(1) as f64;
+    if unit > 0.0 && unit.is_finite() {
+        unit
+    } else {
+        1.0
+    }
+}
