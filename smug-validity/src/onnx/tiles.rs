@@ -49,7 +49,7 @@ pub enum TileError<E> {
     /// The model failed.
     #[error(transparent)]
     Model(E),
-    /// The output is larger than the window, or trims more than the overlap.
+    /// The output is larger than the window, trims unevenly or more than the overlap.
     #[error(
         "the model turns a {window}×{window} window into {side}×{side}: \
          it may trim at most `overlap` = {overlap} cells per side"
@@ -81,7 +81,9 @@ pub fn run_tiled<E>(
             let window = cut_window(planes, channels, size, [ti, tj], tiling);
             let output = run(&window).map_err(TileError::Model)?;
             let trim = side.saturating_sub(output.side) / 2;
+            let uneven = (side.max(output.side) - output.side) % 2 != 0;
             if output.side > side
+                || uneven
                 || trim > tiling.overlap
                 || output.values.len() < output.side * output.side
             {
