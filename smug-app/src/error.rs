@@ -66,6 +66,9 @@ pub enum AppError {
         /// The cause.
         source: std::io::Error,
     },
+    /// plan.mcap could not be written.
+    #[error(transparent)]
+    Mcap(#[from] crate::plan_mcap::McapError),
     /// A plan or result could not be written as JSON.
     #[error(transparent)]
     Json(#[from] serde_json::Error),

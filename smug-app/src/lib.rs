@@ -2,7 +2,8 @@
 //! every built-in plugin crate once (so their `inventory` registrations are in any
 //! binary that uses this crate) and offers what both front ends do:
 //!
-//! - [`plan()`]: a config to a plan (and [`outputs`]: plan.json, plan.csv, plan.svg);
+//! - [`plan()`]: a config to a plan (and [`outputs`]: plan.json, plan.csv, plan.svg,
+//!   and [`plan_mcap`]: plan.mcap for the ROS 2 viewers);
 //! - [`replan()`]: the rest of a mission from a mission state file;
 //! - [`p2p`]: point-to-point queries on one shared roadmap, one typed result;
 //! - [`save_roadmap`] / [`load_roadmap`]: the planner's roadmap file;
@@ -29,8 +30,10 @@ pub mod outcome;
 pub mod outputs;
 pub mod p2p;
 pub mod plan;
+pub mod plan_mcap;
 pub mod replan;
 pub mod roadmap;
+pub mod ros;
 
 pub use error::{AppError, Result};
 pub use outcome::{one_line, NoSolution, Outcome};

@@ -1,18 +1,20 @@
-//! The files a plan is written to: plan.json, plan.csv and plan.svg (as the config's
-//! `[output]` asks), each whole or not at all.
+//! The files a plan is written to: plan.json, plan.csv, plan.svg and plan.mcap (as the
+//! config's `[output]` asks), each whole or not at all.
 
+use crate::plan_mcap::{write_plan_mcap, PlanScene, RunInfo, WriteMode};
 use crate::{AppError, Result};
 use smug_core::{LoadedConfig, Mission, Pipeline, Plan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
 use std::path::{Path, PathBuf};
 
 /// The files [`write_outputs`] may write into its directory.
-pub const OUTPUT_FILES: [&str; 3] = ["plan.json", "plan.csv", "plan.svg"];
+pub const OUTPUT_FILES: [&str; 4] = ["plan.json", "plan.csv", "plan.svg", "plan.mcap"];
 
 /// Writes `plan` (made by `pipeline`, in its world) into `dir` as the config's
 /// `[output]` asks; each file whole or not at all, so a killed run leaves the previous
-/// plan intact.
-pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path) -> Result<()> {
+/// plan intact. `mcap` says whether plan.mcap starts anew (a plan) or gets the plan
+/// appended (a replan).
+pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMode) -> Result<()> {
     let output = &pipeline.config.output;
     std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
         path: dir.to_path_buf(),
@@ -33,19 +35,47 @@ pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path) -> Result<()>
     if output.csv {
         write("plan.csv", plan_csv(plan))?;
     }
+    let world = pipeline.world.as_deref().ok_or(AppError::NoWorld)?;
+    let mission = pipeline
+        .given_mission
+        .as_ref()
+        .or(pipeline.mission.as_ref())
+        .ok_or(AppError::NoWorld)?;
+    if output.mcap {
+        let invalid: Vec<(String, usize)> = pipeline
+            .dropped_pois
+            .iter()
+            .map(|d| (d.target.clone(), d.index))
+            .collect();
+        let scene = PlanScene {
+            plan,
+            world,
+            mission,
+            invalid_pois: &invalid,
+        };
+        let run = run_info(pipeline, mcap);
+        write_plan_mcap(&dir.join("plan.mcap"), &scene, &run, mcap)?;
+    }
     if output.svg {
-        let world = pipeline.world.as_deref().ok_or(AppError::NoWorld)?;
-        let mission = pipeline
-            .given_mission
-            .as_ref()
-            .or(pipeline.mission.as_ref())
-            .ok_or(AppError::NoWorld)?;
         write(
             "plan.svg",
             render_svg(world, Some(mission), &render_options(plan, world, mission)),
         )?;
     }
     Ok(())
+}
+
+/// The run's kind, config and seed for plan.mcap's metadata.
+pub fn run_info(pipeline: &Pipeline, mode: WriteMode) -> RunInfo {
+    RunInfo {
+        kind: match mode {
+            WriteMode::Replace => "plan",
+            WriteMode::Append => "replan",
+        },
+        config_toml: toml::to_string(&pipeline.config)
+            .unwrap_or_else(|err| format!("# the config could not be written as TOML: {err}")),
+        seed: pipeline.config.seed,
+    }
 }
 
 /// Refuses an output directory where a plan file would overwrite one of the run's

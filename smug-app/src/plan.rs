@@ -3,7 +3,7 @@
 use crate::{AppError, Outcome, Result};
 use smug_core::registry::{ObjectiveStage, SpaceStage, Stage, TraversabilityStage, WorldStage};
 use smug_core::{LoadedConfig, Mission, Pipeline, Plan, TraversabilityEstimator, World};
-use smug_mission::plan_mission;
+use smug_mission::{plan_mission, traversability_files};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -62,11 +62,17 @@ pub fn plan_on(mut pipeline: Pipeline) -> Result<Outcome<Planned>> {
     }))
 }
 
-/// Assembles the pipeline of `loaded` and plans its mission (see [`assemble`]).
+/// Assembles the pipeline of `loaded` and plans its mission (see [`assemble`]); the
+/// plan records the files its traversability came from (a config's estimator only).
 pub fn plan(
     loaded: &LoadedConfig,
     world: Option<(World, Option<Mission>)>,
     estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
 ) -> Result<Outcome<Planned>> {
-    plan_on(assemble(loaded, world, estimator)?)
+    let from_config = estimator.is_none();
+    let mut outcome = plan_on(assemble(loaded, world, estimator)?)?;
+    if let (Outcome::Solved(planned), true) = (&mut outcome, from_config) {
+        planned.plan.traversability_files = traversability_files(loaded);
+    }
+    Ok(outcome)
 }

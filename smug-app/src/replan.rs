@@ -57,6 +57,7 @@ pub fn replan_from(
         Outcome::Solved(plan) => plan,
         Outcome::NoSolution { why } => return Ok(Outcome::NoSolution { why }),
     };
+    plan.traversability_files = smug_mission::traversability_files(loaded);
     if let Some(info) = plan.replan.as_mut() {
         info.state_file = Some(state_name);
     }

@@ -1,7 +1,8 @@
-//! `smug plan`: the whole mission, from a config to plan.json, plan.csv and plan.svg.
+//! `smug plan`: the whole mission, from a config to plan.json, plan.csv, plan.svg and plan.mcap.
 
 use crate::Outcome;
 use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::plan_mcap::WriteMode;
 use smug_app::{NoSolution, Planned};
 use smug_core::{Pipeline, Plan};
 use std::path::{Path, PathBuf};
@@ -22,7 +23,7 @@ pub struct PlanArgs {
     /// marked `deadline_reached`, else smug exits 1 saying so.
     #[arg(long, value_name = "SECONDS")]
     deadline: Option<String>,
-    /// Output directory for plan.json, plan.csv and plan.svg (default: the config's
+    /// Output directory for plan.json, plan.csv, plan.svg and plan.mcap (default: the config's
     /// `output.dir`, else `out`).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -74,7 +75,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
              found by then (marked `deadline_reached` in plan.json)"
         );
     }
-    write_outputs(&plan, &pipeline, &out)?;
+    write_outputs(&plan, &pipeline, &out, WriteMode::Replace)?;
     if let Some(file) = &args.save_roadmap {
         smug_app::save_roadmap(&pipeline, &loaded, &world, file)?;
     }
@@ -185,5 +186,8 @@ pub(crate) fn print_summary(plan: &Plan, pipeline: &Pipeline, out: &Path) {
         eprintln!("pose pairs without a path: {}", counts.join(", "));
     }
     println!("order: {}", plan.sequence.join(" → "));
-    println!("wrote {}/plan.json, plan.csv, plan.svg", out.display());
+    println!(
+        "wrote {}/plan.json, plan.csv, plan.svg, plan.mcap",
+        out.display()
+    );
 }

@@ -4,6 +4,7 @@
 use crate::plan::{print_summary, Progress};
 use crate::Outcome;
 use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::plan_mcap::WriteMode;
 use smug_app::replan::{replan_from, stages, ReplanRequest};
 use smug_app::{NoSolution, Planned};
 use smug_core::mission::MissionState;
@@ -23,7 +24,7 @@ pub struct ReplanArgs {
     /// Override the config's seed.
     #[arg(long)]
     seed: Option<u64>,
-    /// Output directory for plan.json, plan.csv and plan.svg (default: the config's
+    /// Output directory for plan.json, plan.csv, plan.svg and plan.mcap (default: the config's
     /// `output.dir`, else `out`).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -66,7 +67,7 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
             return Ok(Outcome::NoSolution);
         }
     };
-    write_outputs(&plan, &pipeline, &out)?;
+    write_outputs(&plan, &pipeline, &out, WriteMode::Append)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&plan)?);
     } else {

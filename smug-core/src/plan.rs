@@ -97,6 +97,10 @@ pub struct Plan {
     pub deadline_reached: bool,
     /// Counters and timings.
     pub stats: PlanStats,
+    /// The files the `[traversability]` section named (an ONNX model, a layer file), by
+    /// name as written, with the FNV-1a digest of their contents.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub traversability_files: BTreeMap<String, String>,
     /// Set on a replan: the mission state it started from and what it left out.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub replan: Option<ReplanInfo>,

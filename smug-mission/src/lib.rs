@@ -26,7 +26,7 @@ mod session;
 #[cfg(test)]
 mod test_support;
 
-pub use fingerprint::fingerprint;
+pub use fingerprint::{fingerprint, traversability_files};
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
 pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,

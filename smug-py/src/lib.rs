@@ -12,6 +12,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
+mod mcap;
 mod replan;
 use smug_app::p2p::{P2pRequest, P2pWorld};
 use smug_core::{
@@ -215,6 +216,8 @@ impl TraversabilityEstimator for PyEstimator {
 struct PyWorld {
     world: Arc<World>,
     mission: Arc<Mission>,
+    /// `(target, PoI index)` of the PoIs the robot's validity checker rejected.
+    invalid_pois: Arc<Vec<(String, usize)>>,
 }
 
 impl PyWorld {
@@ -225,6 +228,13 @@ impl PyWorld {
         Ok(Self {
             world: pipeline.world.clone().ok_or_else(no_world)?,
             mission: Arc::new(pipeline.given_mission.clone().ok_or_else(no_world)?),
+            invalid_pois: Arc::new(
+                pipeline
+                    .dropped_pois
+                    .iter()
+                    .map(|d| (d.target.clone(), d.index))
+                    .collect(),
+            ),
         })
     }
 }
@@ -303,6 +313,7 @@ impl PyWorld {
         Ok(Self {
             world: Arc::new(world),
             mission: Arc::new(mission),
+            invalid_pois: Arc::default(),
         })
     }
 
@@ -561,6 +572,7 @@ fn _smug(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_world, m)?)?;
     m.add_function(wrap_pyfunction!(plugins_json, m)?)?;
     m.add_function(wrap_pyfunction!(p2p, m)?)?;
+    m.add_function(wrap_pyfunction!(mcap::write_plan_mcap, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

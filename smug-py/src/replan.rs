@@ -14,8 +14,9 @@ use smug_core::{Pipeline, Plan, TraversabilityEstimator};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
-/// What the Python side gets for a plan: `(plan.json text, waypoints (n, 4), world)`.
-type PlanParts<'py> = (String, Bound<'py, PyArray2<f64>>, PyWorld);
+/// What the Python side gets for a plan: `(plan.json text, waypoints (n, 4), world,
+/// (config TOML, seed))`.
+type PlanParts<'py> = (String, Bound<'py, PyArray2<f64>>, PyWorld, (String, u64));
 
 /// The plan as Python parts.
 fn parts<'py>(py: Python<'py>, plan: &Plan, pipeline: &Pipeline) -> PyResult<PlanParts<'py>> {
@@ -26,11 +27,17 @@ fn parts<'py>(py: Python<'py>, plan: &Plan, pipeline: &Pipeline) -> PyResult<Pla
         [w.x, w.y, w.z, w.yaw][c]
     })
     .into_pyarray(py);
-    Ok((text, waypoints, PyWorld::of(pipeline)?))
+    let run = smug_app::outputs::run_info(pipeline, smug_app::plan_mcap::WriteMode::Replace);
+    Ok((
+        text,
+        waypoints,
+        PyWorld::of(pipeline)?,
+        (run.config_toml, run.seed),
+    ))
 }
 
 /// Plans a mission (saving the planner's roadmap to `save_roadmap` when given);
-/// returns `(plan.json text, waypoints (n, 4), world)`.
+/// returns `(plan.json text, waypoints (n, 4), world, (config TOML, seed))`.
 #[pyfunction]
 #[pyo3(signature = (config, set=Vec::new(), seed=None, world=None, traversability=None, save_roadmap=None))]
 pub fn plan<'py>(
@@ -72,7 +79,7 @@ pub fn plan<'py>(
 }
 
 /// Replans a mission from a state file (on the roadmap file `roadmap` when given);
-/// returns `(plan.json text, waypoints (n, 4), world)`.
+/// returns `(plan.json text, waypoints (n, 4), world, (config TOML, seed))`.
 #[pyfunction]
 #[pyo3(signature = (config, state, set=Vec::new(), seed=None, roadmap=None))]
 pub fn replan<'py>(

@@ -8,11 +8,13 @@ The CLI comparison runs the `smug` binary the workspace built: `$SMUG_BIN`, else
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import threading
 import time
 from pathlib import Path
+from typing import Dict
 
 import numpy as np
 import pytest
@@ -500,3 +502,129 @@ def test_two_pipelines_keep_their_own_limits_and_deadlines(tmp_path):
         plan = patient.plan()
         assert len(plan.sequence) == 40
         assert not plan.to_dict().get("deadline_reached", False)
+
+
+# --- plan.mcap ------------------------------------------------------------------------
+
+
+def _traversability_cells(t: np.ndarray) -> bytes:
+    """plan.mcap's traversability grid: round(100 (1 - t)) as int8, -1 where NaN."""
+    cells = np.where(np.isnan(t), -1, np.round(100.0 * (1.0 - np.clip(t, 0.0, 1.0))))
+    return cells.astype(np.int8).tobytes()
+
+
+def _occupancy_cells(elevation: np.ndarray) -> bytes:
+    """The exported PGM's rule: occupied 0.5 m above the lowest cell, -1 where NaN."""
+    lowest = np.nanmin(elevation)
+    cells = np.where(np.isnan(elevation), -1, np.where(elevation - lowest > 0.5, 100, 0))
+    return cells.astype(np.int8).tobytes()
+
+
+def test_plan_mcap_reads_back_in_an_independent_reader(tmp_path):
+    from mcap_ros2.reader import read_ros2_messages
+
+    plan = smug.plan(LUNAR, seed=1)  # seed 1: one PoI invalid for ANYmal
+    path = tmp_path / "plan.mcap"
+    plan.to_mcap(path)
+    cli = run_cli("plan", str(LUNAR), "--seed", "1", "--out", str(tmp_path / "cli"))
+    assert cli.returncode == 0, cli.stderr
+    assert path.read_bytes() == (tmp_path / "cli" / "plan.mcap").read_bytes()
+
+    by_topic: Dict[str, list] = {}
+    for m in read_ros2_messages(str(path)):
+        assert m.schema.encoding == "ros2msg" and m.channel.message_encoding == "cdr"
+        by_topic.setdefault(m.channel.topic, []).append(m)
+    (path_msg,) = by_topic["/smug/plan"]
+    assert path_msg.schema.name == "nav_msgs/msg/Path"
+    poses = path_msg.ros_msg.poses
+    assert path_msg.ros_msg.header.frame_id == "map"
+    got = np.array([[p.pose.position.x, p.pose.position.y, p.pose.position.z] for p in poses])
+    np.testing.assert_array_equal(got, plan.waypoints[:, :3])
+    yaw = np.array([2.0 * math.atan2(p.pose.orientation.z, p.pose.orientation.w) for p in poses])
+    dyaw = (yaw - plan.waypoints[:, 3] + math.pi) % (2 * math.pi) - math.pi
+    assert np.abs(dyaw).max() < 1e-12
+    (pois,) = by_topic["/smug/pois"]
+    assert [(p.position.x, p.position.y) for p in pois.ros_msg.poses] == [
+        (c["pose"]["x"], c["pose"]["y"]) for c in plan.pois
+    ]
+
+    world = plan.world
+    (trav,) = by_topic["/smug/traversability"]
+    ny, nx = world.elevation.shape
+    assert (trav.ros_msg.info.width, trav.ros_msg.info.height) == (nx, ny)
+    assert bytes(np.asarray(trav.ros_msg.data, dtype=np.int8)) == _traversability_cells(
+        world.traversability
+    )
+    (occ,) = by_topic["/smug/occupancy"]
+    assert bytes(np.asarray(occ.ros_msg.data, dtype=np.int8)) == _occupancy_cells(
+        world.elevation.astype(np.float64)
+    )
+    (markers,) = by_topic["/smug/markers"]
+    colours = {}
+    for marker in markers.ros_msg.markers:
+        if marker.ns == "pois":
+            colours[marker.text] = (marker.color.r, marker.color.g, marker.color.b)
+    chosen = {f"{c['target']}#{c['index']}" for c in plan.pois}
+    assert len(colours) == 13 * 10
+    assert len({colours[k] for k in chosen}) == 1
+    assert len(set(colours.values())) == 3  # chosen, unused, invalid (lunar has one)
+    assert len(by_topic["/tf"]) == len(plan.waypoints)
+
+    plan.to_mcap(path, append=True)
+    paths = [m for m in read_ros2_messages(str(path)) if m.channel.topic == "/smug/plan"]
+    assert len(paths) == 2 and paths[1].log_time_ns > paths[0].log_time_ns
+
+
+# --- onnx traversability --------------------------------------------------------------
+
+LUNAR_ONNX = REPO / "configs" / "lunar-onnx.toml"
+CNN = REPO / "configs" / "models" / "traversability-cnn.onnx"
+
+
+def test_onnx_layer_equals_onnxruntime_on_generated_terrain():
+    import onnxruntime as ort
+
+    session = ort.InferenceSession(str(CNN), providers=["CPUExecutionProvider"])
+    for seed in (1, 2):
+        world = smug.load_world(LUNAR_ONNX, seed=seed)  # procedural terrain of the seed
+        z = world.elevation.astype(np.float32)
+        assert not np.isnan(z).any()
+        # lunar-onnx.toml: edge padding, overlap 4 >= the CNN's receptive radius (3).
+        padded = np.pad(z, 4, mode="edge")[None, None]
+        (out,) = session.run(None, {"elevation": padded})
+        expected = np.clip(out[0, 0, 4:-4, 4:-4], 0.0, 1.0)
+        np.testing.assert_allclose(world.traversability, expected, rtol=0, atol=1e-5)
+        assert expected.min() < 0.1 < 0.9 < expected.max()  # the stones show
+
+
+def test_lunar_plans_with_the_onnx_model_from_python_and_the_cli(tmp_path):
+    plan = smug.plan(LUNAR_ONNX, seed=1)
+    cli = run_cli("plan", str(LUNAR_ONNX), "--seed", "1", "--out", str(tmp_path))
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads((tmp_path / "plan.json").read_text())
+    assert plan.cost == expected["cost"] and len(plan.sequence) == 13
+    files = plan.to_dict()["traversability_files"]
+    assert list(files) == ["models/traversability-cnn.onnx"]
+    assert files == expected["traversability_files"]
+
+
+@pytest.mark.parametrize(
+    "model, reason",
+    [
+        ("no-such-model.onnx", "no such file"),
+        (REPO / "smug-validity" / "tests" / "models" / "rank3.onnx", "wrong input rank"),
+        (REPO / "smug-validity" / "tests" / "models" / "nan.onnx", "NaN output"),
+    ],
+)
+def test_a_bad_onnx_model_is_an_error_naming_the_file_and_why(model, reason, tmp_path):
+    overrides = {"traversability.type": "onnx", "traversability.params": {"model": str(model)}}
+    with pytest.raises(smug.SmugError) as raised:
+        smug.plan(LUNAR, set=overrides)
+    message = str(raised.value)
+    assert Path(model).name in message and reason in message, message
+    cli = run_cli(
+        "plan", str(LUNAR), "--set", "traversability.type=\"onnx\"",
+        "--set", f"traversability.params={{ model = {json.dumps(str(model))} }}",
+        "--out", str(tmp_path),
+    )
+    assert cli.returncode == 2 and Path(model).name in cli.stderr and reason in cli.stderr

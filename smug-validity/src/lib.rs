@@ -1,7 +1,8 @@
 //! SMUG validity: traversability estimators, state validity checkers and motion validators.
 //!
 //! Plugins:
-//! - traversability: `geometric` (slope, roughness, step of a local plane fit), `from-file`;
+//! - traversability: `geometric` (slope, roughness, step of a local plane fit), `from-file`,
+//!   `onnx` (a learned model from an ONNX file; cargo feature `onnx`, on by default);
 //! - state validity: `volumetric` (box vs ESDF by sphere subdivision), `exact` (box vs
 //!   voxel cubes with parry3d), `hierarchical` (traversability first, then volumetric),
 //!   `clearance-2d` (a disc on a flat map);
@@ -18,6 +19,8 @@ pub mod exact;
 pub mod from_file;
 pub mod geometric;
 pub mod hierarchical;
+#[cfg(feature = "onnx")]
+pub mod onnx;
 pub mod robot_box;
 pub mod volumes;
 mod volumes_update;

@@ -188,18 +188,44 @@ fn check_request(
     Ok(())
 }
 
+/// A cell's occupancy by the export's rule (see the [module documentation](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CellOccupancy {
+    /// Free.
+    Free,
+    /// Higher than the lowest elevation by more than the obstacle threshold.
+    Occupied,
+    /// No elevation.
+    Unknown,
+}
+
+/// Each cell's occupancy, row-major from the origin as the layer's data: unknown where
+/// the elevation is NaN, occupied where it exceeds the lowest elevation by more than
+/// `obstacle_threshold` metres, free elsewhere.
+pub fn cell_occupancy(elevation: &GridLayer, obstacle_threshold: f64) -> Vec<CellOccupancy> {
+    let lowest = finite_range(&elevation.data).map_or(0.0, |(min, _)| min);
+    elevation
+        .data
+        .iter()
+        .map(|&z| {
+            if z.is_nan() {
+                CellOccupancy::Unknown
+            } else if f64::from(z) - lowest > obstacle_threshold {
+                CellOccupancy::Occupied
+            } else {
+                CellOccupancy::Free
+            }
+        })
+        .collect()
+}
+
 /// The occupancy pixels of `elevation`, top image row first.
 fn occupancy_pixels(elevation: &GridLayer, obstacle_threshold: f64) -> Vec<u8> {
-    let lowest = finite_range(&elevation.data).map_or(0.0, |(min, _)| min);
-    image_rows(elevation.geometry, |k| {
-        let z = elevation.data[k];
-        if z.is_nan() {
-            UNKNOWN_VALUE
-        } else if f64::from(z) - lowest > obstacle_threshold {
-            OCCUPIED_VALUE
-        } else {
-            FREE_VALUE
-        }
+    let cells = cell_occupancy(elevation, obstacle_threshold);
+    image_rows(elevation.geometry, |k| match cells[k] {
+        CellOccupancy::Unknown => UNKNOWN_VALUE,
+        CellOccupancy::Occupied => OCCUPIED_VALUE,
+        CellOccupancy::Free => FREE_VALUE,
     })
 }
 

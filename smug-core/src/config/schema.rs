@@ -87,6 +87,8 @@ pub struct OutputConfig {
     pub csv: bool,
     /// Write `plan.svg`.
     pub svg: bool,
+    /// Write `plan.mcap` (ROS 2 messages for Foxglove, RViz2 and `ros2 bag`).
+    pub mcap: bool,
 }
 
 impl Default for OutputConfig {
@@ -96,6 +98,7 @@ impl Default for OutputConfig {
             json: true,
             csv: true,
             svg: true,
+            mcap: true,
         }
     }
 }

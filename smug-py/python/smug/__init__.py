@@ -193,10 +193,18 @@ def _json_default(value: Any) -> Any:
 class Plan:
     """A safe multi-goal plan: what ``smug plan`` writes to ``plan.json``."""
 
-    __slots__ = ("_json", "_data", "waypoints", "world")
+    __slots__ = ("_json", "_data", "_run", "waypoints", "world")
 
-    def __init__(self, text: str, waypoints: np.ndarray, world: World) -> None:
+    def __init__(
+        self,
+        text: str,
+        waypoints: np.ndarray,
+        world: World,
+        run: Tuple[str, int] = ("", 0),
+    ) -> None:
         self._json = text
+        #: ``(config TOML, seed)`` of the run that made the plan (plan.mcap's metadata).
+        self._run = run
         self._data: Dict[str, Any] = json.loads(text)
         #: ``(n, 4)`` float64 waypoints ``x, y, z, yaw`` from start to end.
         self.waypoints: np.ndarray = waypoints
@@ -246,6 +254,16 @@ class Plan:
         """The plan as JSON, byte for byte what ``smug plan`` writes to ``plan.json``."""
         return self._json
 
+    def to_mcap(self, path: PathLike, append: bool = False) -> None:
+        """Writes the plan as ``plan.mcap`` (ROS 2 messages for Foxglove, RViz2 and
+        ``ros2 bag play``; see the README), byte for byte what ``smug plan`` writes;
+        ``append=True`` adds it after the plans already in the file, as ``smug replan``.
+        """
+        config_toml, seed = self._run
+        _smug.write_plan_mcap(
+            os.fspath(path), self._json, self.world._native, config_toml, seed, append
+        )
+
     def __repr__(self) -> str:
         return (
             f"Plan(cost={self.cost:.3f}, {len(self.sequence)} targets, "
@@ -278,7 +296,7 @@ def plan(
     each message is the one the CLI prints.
     """
     native_world = world._native if world is not None else None
-    text, waypoints, planned_world = _smug.plan(
+    text, waypoints, planned_world, run = _smug.plan(
         os.fspath(config),
         _overrides(set),
         seed,
@@ -286,7 +304,7 @@ def plan(
         traversability,
         None if save_roadmap is None else os.fspath(save_roadmap),
     )
-    return Plan(text, waypoints, World(planned_world))
+    return Plan(text, waypoints, World(planned_world), run)
 
 
 
@@ -308,14 +326,14 @@ def replan(
     damaged one: the message names the file and why) or :class:`NoSolution` (no
     reachable target left).
     """
-    text, waypoints, planned_world = _smug.replan(
+    text, waypoints, planned_world, run = _smug.replan(
         os.fspath(config),
         os.fspath(state),
         _overrides(set),
         seed,
         None if roadmap is None else os.fspath(roadmap),
     )
-    return Plan(text, waypoints, World(planned_world))
+    return Plan(text, waypoints, World(planned_world), run)
 
 
 State = Union[PathLike, Mapping[str, Any]]
@@ -356,8 +374,8 @@ class Session:
 
     def plan(self) -> Plan:
         """Plans the whole mission, as :func:`plan` does (the same plan)."""
-        text, waypoints, world = self._native.plan()
-        return Plan(text, waypoints, World(world))
+        text, waypoints, world, run = self._native.plan()
+        return Plan(text, waypoints, World(world), run)
 
     def replan(self, state: State) -> Plan:
         """Replans the rest of the mission from ``state``: a state file, or a dict with its
@@ -375,8 +393,8 @@ class Session:
         else:
             with open(os.fspath(state), encoding="utf-8") as f:
                 text, name = f.read(), os.fspath(state)
-        text, waypoints, world = self._native.replan(text, name)
-        return Plan(text, waypoints, World(world))
+        text, waypoints, world, run = self._native.replan(text, name)
+        return Plan(text, waypoints, World(world), run)
 
     @property
     def obstacles(self) -> List[Tuple[float, float, float, float]]:
