@@ -69,9 +69,17 @@ pub fn plan(
     world: Option<(World, Option<Mission>)>,
     estimator: Option<(&str, Box<dyn TraversabilityEstimator>)>,
 ) -> Result<Outcome<Planned>> {
-    let from_config = estimator.is_none();
-    let mut outcome = plan_on(assemble(loaded, world, estimator)?)?;
-    if let (Outcome::Solved(planned), true) = (&mut outcome, from_config) {
+    if estimator.is_some() {
+        return plan_on(assemble(loaded, world, estimator)?);
+    }
+    plan_config_pipeline(loaded, assemble(loaded, world, None)?)
+}
+
+/// [`plan_on`] for a pipeline assembled from `loaded` with the config's own
+/// estimator: the plan records the files its traversability came from.
+pub fn plan_config_pipeline(loaded: &LoadedConfig, pipeline: Pipeline) -> Result<Outcome<Planned>> {
+    let mut outcome = plan_on(pipeline)?;
+    if let Outcome::Solved(planned) = &mut outcome {
         planned.plan.traversability_files = traversability_files(loaded);
     }
     Ok(outcome)

@@ -273,7 +273,8 @@ fn missing_legs_are_avoided_when_a_finite_tour_exists() {
     // pattern); the lattice order 0, 1, …, 99 is kept finite so a finite tour exists.
     let (_, full) = random_points(100, 19);
     let kept = |i: usize, j: usize| i.abs_diff(j) == 1 || i.abs_diff(j) == 99;
-    let holes = |i: usize, j: usize| !kept(i, j) && (i.min(j) * 7 + i.max(j) * 13) % 3 == 0;
+    let holes =
+        |i: usize, j: usize| !kept(i, j) && (i.min(j) * 7 + i.max(j) * 13).is_multiple_of(3);
     let costs = CostMatrix::from_fn(100, |i, j| {
         if i != j && holes(i, j) {
             f64::INFINITY

@@ -53,7 +53,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     let mut pipeline = smug_app::plan::assemble(&loaded, None, None)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");
     pipeline.progress = progress.paths_planned();
-    let planned = smug_app::plan::plan_on(pipeline);
+    let planned = smug_app::plan::plan_config_pipeline(&loaded, pipeline);
     progress.finish();
     let Planned {
         plan,

@@ -74,7 +74,7 @@ fn rooms_are_joined_by_one_cell_doors_and_all_reachable() {
     for seed in 1..6 {
         let m = map(GridFamily::Rooms, 64, 48, seed);
         assert_eq!(reachable_from_first(&m), m.passable_count(), "seed {seed}");
-        let wall = |c: usize| (c + 1) % (room + 1) == 0;
+        let wall = |c: usize| (c + 1).is_multiple_of(room + 1);
         let mut doors = 0;
         for y in 0..m.height {
             for x in 0..m.width {

@@ -160,8 +160,7 @@ fn write_scene<W: std::io::Write + std::io::Seek>(
     t0: u64,
 ) -> Result<(), mcap::McapError> {
     let mut channels: HashMap<&str, u16> = HashMap::new();
-    let mut sequence: u32 = 0;
-    for message in scene_messages(scene, t0) {
+    for (sequence, message) in (1u32..).zip(scene_messages(scene, t0)) {
         let channel_id = match channels.get(message.topic) {
             Some(&id) => id,
             None => {
@@ -175,7 +174,6 @@ fn write_scene<W: std::io::Write + std::io::Seek>(
                 id
             }
         };
-        sequence += 1;
         let header = MessageHeader {
             channel_id,
             sequence,

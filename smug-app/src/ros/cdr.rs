@@ -45,7 +45,7 @@ impl Default for CdrWriter {
 impl CdrWriter {
     /// Pads with zeros until the next value of `size` bytes is aligned.
     fn align(&mut self, size: usize) {
-        while (self.bytes.len() - HEADER.len()) % size != 0 {
+        while !(self.bytes.len() - HEADER.len()).is_multiple_of(size) {
             self.bytes.push(0);
         }
     }
@@ -183,13 +183,13 @@ impl<'a> CdrReader<'a> {
     }
 
     /// A sequence's element count.
-    pub fn len(&mut self) -> Result<usize, CdrError> {
+    pub fn count(&mut self) -> Result<usize, CdrError> {
         Ok(self.u32()? as usize)
     }
 
     /// A `string`.
     pub fn string(&mut self) -> Result<String, CdrError> {
-        let n = self.len()?;
+        let n = self.count()?;
         let at = self.at;
         let bytes = self.take(1, n)?;
         match bytes.split_last() {
@@ -202,7 +202,7 @@ impl<'a> CdrReader<'a> {
 
     /// A `uint8[]` or `int8[]`'s bytes.
     pub fn byte_sequence(&mut self) -> Result<Vec<u8>, CdrError> {
-        let n = self.len()?;
+        let n = self.count()?;
         Ok(self.take(1, n)?.to_vec())
     }
 }

@@ -41,7 +41,7 @@ impl<T: Cdr> Cdr for Vec<T> {
         self.iter().for_each(|item| item.write(w));
     }
     fn read(r: &mut CdrReader<'_>) -> Result<Self, CdrError> {
-        let n = r.len()?;
+        let n = r.count()?;
         // Never trust a count to reserve memory: each item reads at least one byte.
         let mut items = Vec::with_capacity(n.min(1 << 16));
         for _ in 0..n {

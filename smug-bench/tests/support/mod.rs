@@ -97,7 +97,10 @@ fn matrix_from_coords(
 /// The serpentine cycle of a `cols × rows` lattice (node `r · cols + c`): along row 0
 /// from column 0, back and forth over columns 1.. of each row, home down column 0.
 fn serpentine(cols: usize, rows: usize) -> Vec<usize> {
-    assert!(cols >= 2 && rows >= 2 && rows % 2 == 0, "{cols} × {rows}");
+    assert!(
+        cols >= 2 && rows >= 2 && rows.is_multiple_of(2),
+        "{cols} × {rows}"
+    );
     let mut tour = vec![0];
     for r in 0..rows {
         let columns: Vec<usize> = if r % 2 == 0 {

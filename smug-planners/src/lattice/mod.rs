@@ -308,7 +308,7 @@ fn default_resolution(radius: f64) -> f64 {
 
 /// Checks the parameters, naming the key at fault.
 fn check_params(p: &LatticeParams) -> Result<()> {
-    if p.headings < 16 || p.headings % 8 != 0 || p.headings > 1024 {
+    if p.headings < 16 || !p.headings.is_multiple_of(8) || p.headings > 1024 {
         return Err(invalid(
             "planner.params.headings",
             format!(

@@ -263,7 +263,7 @@ impl Worker<'_> {
         };
         let mut expansions = 0u64;
         while let Some(entry) = run.heap.pop() {
-            if expansions % 256 == 0 {
+            if expansions.is_multiple_of(256) {
                 if expansions >= max {
                     return (run.goals, End::Budget(Budget::Expansions));
                 }
