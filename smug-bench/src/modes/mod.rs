@@ -104,9 +104,10 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
         .cloned()
         .collect();
     let summary = Summary::of(&missions, &modes, &first);
-    let thread_rows = match args.threads.first() {
-        Some(_) => threads::rows(&missions, &modes, &args.threads, &runs),
-        None => Vec::new(),
+    let thread_rows = if args.threads.is_empty() {
+        Vec::new()
+    } else {
+        threads::rows(&missions, &modes, &args.threads, &runs)
     };
     let raw = Raw {
         seeds: args.runs,
@@ -139,19 +140,15 @@ fn threads_section(rows: &[threads::ThreadRow], missions: &[&Mission], modes: &[
         return String::new();
     }
     threads::section(rows, |mission, mode| {
-        let label = |name: &str, known: Vec<(&'static str, &'static str)>| {
-            known
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map_or(name.to_string(), |(_, l)| l.to_string())
-        };
-        (
-            label(
-                mission,
-                missions.iter().map(|m| (m.name, m.label)).collect(),
-            ),
-            label(mode, modes.iter().map(|m| (m.name, m.label)).collect()),
-        )
+        let mission = missions
+            .iter()
+            .find(|m| m.name == mission)
+            .map_or(mission, |m| m.label);
+        let mode = modes
+            .iter()
+            .find(|m| m.name == mode)
+            .map_or(mode, |m| m.label);
+        (mission.to_string(), mode.to_string())
     })
 }
 

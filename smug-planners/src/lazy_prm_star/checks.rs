@@ -56,12 +56,8 @@ impl<'a> CountedMotions<'a> {
     }
 
     fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
-        let started = Instant::now();
-        let result = check();
-        let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
         self.checks.fetch_add(1, Relaxed);
-        self.nanoseconds.fetch_add(elapsed, Relaxed);
-        result
+        timed_into(&self.nanoseconds, check)
     }
 }
 
@@ -145,12 +141,12 @@ impl Tally {
 }
 
 /// Runs `check`, adding its time to `nanoseconds`.
-fn timed_into(nanoseconds: &AtomicU64, check: impl FnOnce() -> bool) -> bool {
+fn timed_into<T>(nanoseconds: &AtomicU64, check: impl FnOnce() -> T) -> T {
     let started = Instant::now();
-    let valid = check();
+    let result = check();
     let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
     nanoseconds.fetch_add(elapsed, Relaxed);
-    valid
+    result
 }
 
 /// The checks searches on a roadmap held still make through a shared memo: each

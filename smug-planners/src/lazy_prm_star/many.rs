@@ -50,14 +50,7 @@ impl LazyPrmStar {
         let mut unconnected: Vec<Vec<(usize, u32)>> = prepared.iter().map(|_| Vec::new()).collect();
         let mut connected: Vec<(usize, usize, GraphPath)> = Vec::new();
         for (&r, paths) in searched.iter().zip(found) {
-            let row = &mut prepared[r];
-            for (&(i, g), path) in row.pending.iter().zip(paths) {
-                match path {
-                    Some(path) => connected.push((r, i, path)),
-                    None => unconnected[r].push((i, g)),
-                }
-            }
-            row.pending.clear();
+            unconnected[r] = take_found(&mut prepared[r], r, paths, &mut connected);
         }
         self.answer_connected(&mut prepared, connected);
         for ((row, (start, goals)), unconnected) in prepared.iter_mut().zip(rows).zip(unconnected) {
@@ -221,14 +214,8 @@ impl LazyPrmStar {
             }
             let found = self.search_side_by_side(&[job_of(row)]);
             let mut connected = Vec::new();
-            unconnected = Vec::new();
-            for (&(i, g), path) in row.pending.iter().zip(found.into_iter().flatten()) {
-                match path {
-                    Some(path) => connected.push((0, i, path)),
-                    None => unconnected.push((i, g)),
-                }
-            }
-            row.pending.clear();
+            let paths = found.into_iter().flatten().collect();
+            unconnected = take_found(row, 0, paths, &mut connected);
             self.answer_connected(std::slice::from_mut(row), connected);
         }
     }
@@ -276,6 +263,25 @@ impl LazyPrmStar {
             Some(g) => Err(g),
         }
     }
+}
+
+/// Takes the search's `paths` for `row`'s pending goals (the row is `r` in its
+/// batch): each path found joins `connected` as `(r, goal index, path)`; the goals
+/// without one are returned. The row has no pending goal after.
+fn take_found(
+    row: &mut Row,
+    r: usize,
+    paths: Vec<Option<GraphPath>>,
+    connected: &mut Vec<(usize, usize, GraphPath)>,
+) -> Vec<(usize, u32)> {
+    let mut unconnected = Vec::new();
+    for ((i, g), path) in row.pending.drain(..).zip(paths) {
+        match path {
+            Some(path) => connected.push((r, i, path)),
+            None => unconnected.push((i, g)),
+        }
+    }
+    unconnected
 }
 
 /// The search a row asks for: its source and pending goals.
