@@ -349,7 +349,13 @@ fn rows_searched_side_by_side_equal_rows_searched_alone_bit_for_bit() {
                 .build()
                 .unwrap();
             let mut p = pipeline(&[space]);
-            pool.install(|| p.planner.as_mut().unwrap().plan_rows(&rows).unwrap())
+            let legs: usize = rows.iter().map(|(_, goals)| goals.len()).sum();
+            let progress = p.run().progress.clone();
+            progress.ask(legs as u64);
+            let answered = pool.install(|| p.planner.as_mut().unwrap().plan_rows(&rows).unwrap());
+            // Each row counts its legs in the run's progress as it ends.
+            assert_eq!(progress.legs(), (legs as u64, legs as u64));
+            answered
         };
         let one = on_threads(1);
         let two = on_threads(2);

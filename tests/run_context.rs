@@ -111,3 +111,32 @@ fn each_pipeline_keeps_its_own_deadline() {
     let plan = plan_mission(&mut patient, PlanOptions::default()).unwrap();
     assert!(!plan.deadline_reached);
 }
+
+/// A run's progress counts every leg the oracle asked of the planner, answers them all
+/// by the end of the run, and names the stage running (the last: post-processing);
+/// another pipeline's progress stays at nothing.
+fn assert_progress_counts_every_leg(set: &[&str]) {
+    let mut planned = pipeline(6, set);
+    let untouched = pipeline(6, set);
+    let plan = plan_mission(&mut planned, PlanOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    let legs = plan.stats.paths_planned;
+    assert!(legs > 0);
+    assert_eq!(planned.run().progress.legs(), (legs, legs));
+    assert_eq!(planned.run().progress.stage(), "post-processing");
+    assert_eq!(untouched.run().progress.legs(), (0, 0));
+    assert_eq!(untouched.run().progress.stage(), "");
+}
+
+#[test]
+fn progress_counts_every_leg_planned_one_by_one() {
+    assert_progress_counts_every_leg(&[]);
+}
+
+#[test]
+fn progress_counts_every_leg_of_rows_answered_together() {
+    assert_progress_counts_every_leg(&[
+        r#"planner.type="lazy-prm-star""#,
+        r#"sampler.type="uniform""#,
+        "planner.params.one_to_many=true",
+    ]);
+}

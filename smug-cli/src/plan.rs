@@ -50,9 +50,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, &[])?;
     let progress = Progress::start("building the world and the checkers");
-    let mut pipeline = smug_app::plan::assemble(&loaded, None, None)?;
-    progress.stage("planning: sequencing the targets, selecting the poses of interest");
-    pipeline.progress = progress.paths_planned();
+    let pipeline = smug_app::plan::assemble(&loaded, None, None)?;
+    progress.stage("planning");
+    progress.follow(&pipeline.run().progress);
     let planned = smug_app::plan::plan_config_pipeline(&loaded, pipeline);
     progress.finish();
     let Planned {
@@ -111,12 +111,26 @@ impl Progress {
         }
     }
 
-    /// A callback that shows the paths planned so far beside the stage (in a terminal).
-    pub(crate) fn paths_planned(&self) -> Option<smug_core::ProgressFn> {
-        let bar = self.0.clone()?;
-        Some(std::sync::Arc::new(move |paths: u64| {
-            bar.set_prefix(format!("{paths} paths planned"));
-        }))
+    /// Shows beside the message the run's mission stage and its legs planned of those
+    /// asked so far ("planning: selection, 40/63 legs planned"), read at every tick.
+    pub(crate) fn follow(&self, run: &smug_core::RunProgress) {
+        let Some(bar) = &self.0 else {
+            return;
+        };
+        let run = run.clone();
+        let legs = move |_: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+            let stage = run.stage();
+            if !stage.is_empty() {
+                let _ = write!(w, ": {stage}");
+            }
+            let (answered, asked) = run.legs();
+            if asked > 0 {
+                let _ = write!(w, ", {answered}/{asked} legs planned");
+            }
+        };
+        if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg}{legs}") {
+            bar.set_style(style.with_key("legs", legs));
+        }
     }
 
     pub(crate) fn finish(&self) {

@@ -122,6 +122,11 @@ impl BuildContext {
         self.run.deadline.clone()
     }
 
+    /// The run's progress (planners answering many legs at once count their rows).
+    pub fn progress(&self) -> crate::run_context::RunProgress {
+        self.run.progress.clone()
+    }
+
     /// The run's memory limit.
     pub fn memory(&self) -> MemoryLimit {
         self.run.memory

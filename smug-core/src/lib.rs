@@ -51,7 +51,7 @@ pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline, WorldChange};
 pub use plan::{Plan, PlanStats, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, PoseBits, Waypoint};
-pub use run_context::{ProgressFn, RunContext};
+pub use run_context::{RunContext, RunProgress};
 pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};
 pub use stages::*;
 pub use termination::Termination;

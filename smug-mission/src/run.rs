@@ -137,6 +137,7 @@ fn order_then_select(
     times: &mut std::collections::BTreeMap<String, f64>,
 ) -> Result<(Vec<usize>, Result<Selection>)> {
     let t = Instant::now();
+    pipeline.run().progress.enter("sequencing");
     let order = sequence(
         pipeline,
         oracle,
@@ -149,6 +150,7 @@ fn order_then_select(
     )?;
     *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
     let t = Instant::now();
+    pipeline.run().progress.enter("selection");
     let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
         stage: "plan".into(),
         needed: "selector",
@@ -240,7 +242,6 @@ fn plan_unbounded(
     let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
         .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
         .with_known(known.unwrap_or_default())
-        .with_progress(pipeline.progress.clone())
         .with_run(pipeline.run().clone());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
     if let Some(answers) = answers {
@@ -268,6 +269,7 @@ fn plan_on_oracle(
     let mut skipped = Vec::new();
     let mut times = std::collections::BTreeMap::new();
     let t = Instant::now();
+    pipeline.run().progress.enter("dead ends");
     let dead_ends = drop_dead_ends(oracle, mission, given, &mut layout, &targets)?;
     if !dead_ends.is_empty() {
         times.insert("dead-ends".to_string(), t.elapsed().as_secs_f64());
@@ -300,6 +302,7 @@ fn plan_on_oracle(
             )?,
             PlanMode::Joint => {
                 let t = Instant::now();
+                pipeline.run().progress.enter("joint order and PoIs");
                 let sequencer = pipeline.sequencer.as_ref().ok_or(Error::MissingStage {
                     stage: "plan".into(),
                     needed: "sequencer",
@@ -368,6 +371,7 @@ fn plan_on_oracle(
     };
     let selection = if options.refine_legs {
         let t = Instant::now();
+        pipeline.run().progress.enter("refining legs");
         let refined = refine_route(oracle, &problem, selection)?;
         times.insert("refine".to_string(), t.elapsed().as_secs_f64());
         refined
@@ -375,6 +379,7 @@ fn plan_on_oracle(
         selection
     };
     let t = Instant::now();
+    pipeline.run().progress.enter("post-processing");
     let route = problem.route(&selection.chosen);
     let mut plan = assemble_plan(oracle, mission, given, &order, &selection.chosen, &route)?;
     let objective = pipeline

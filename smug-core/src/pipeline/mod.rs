@@ -79,9 +79,6 @@ pub struct Pipeline {
     pub resolved: Vec<ResolvedStage>,
     /// Build time per stage, seconds.
     pub build_times_s: BTreeMap<String, f64>,
-    /// Told the number of paths planned so far after each plan of
-    /// `smug_mission::plan_mission` (a progress display; `None`: nothing told).
-    pub progress: Option<crate::run_context::ProgressFn>,
     /// The deadline and memory limit every stage was handed.
     run: RunContext,
     /// Where each config key was written (for the stages' error messages).
@@ -113,7 +110,6 @@ impl Pipeline {
             team_sequencer: None,
             resolved: Vec::new(),
             build_times_s: BTreeMap::new(),
-            progress: None,
             sources: loaded.sources.clone(),
             sampler: None,
         }

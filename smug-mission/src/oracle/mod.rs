@@ -8,7 +8,7 @@ use smug_core::error::{Error, Result};
 use smug_core::objective::Objective;
 use smug_core::path::Path;
 use smug_core::pose::Pose2;
-use smug_core::run_context::{ProgressFn, RunContext};
+use smug_core::run_context::RunContext;
 use smug_core::stages::{NoPathReason, PathCosts, PlannerOutcome, PointToPointPlanner};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -21,7 +21,6 @@ pub use answers::{KnownAnswers, OracleStats, PlannedPath};
 
 /// Lower bounds and lazily planned paths between registered poses.
 pub struct PathOracle {
-    progress: Option<ProgressFn>,
     poses: Vec<Pose2>,
     objective: Arc<dyn Objective>,
     planner: Box<dyn PointToPointPlanner>,
@@ -47,14 +46,14 @@ impl PathOracle {
             stored: Vec::new(),
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
-            progress: None,
             run: RunContext::default(),
         }
     }
 
     /// Runs within `run`: plans nothing more once its deadline's hard stop has passed,
-    /// builds cost matrices within its memory limit (default: a deadline that is never
-    /// armed, the default limit).
+    /// builds cost matrices within its memory limit, counts the legs it asks and gets
+    /// answered in its progress (default: a deadline that is never armed, the default
+    /// limit, a progress nobody reads).
     pub fn with_run(mut self, run: RunContext) -> Self {
         self.run = run;
         self
@@ -63,19 +62,6 @@ impl PathOracle {
     /// The run context the oracle plans within.
     pub fn run(&self) -> &RunContext {
         &self.run
-    }
-
-    /// Tells `progress` the number of paths planned after each plan.
-    pub fn with_progress(mut self, progress: Option<ProgressFn>) -> Self {
-        self.progress = progress;
-        self
-    }
-
-    /// Tells the progress display how many paths are planned.
-    fn report_progress(&self) {
-        if let Some(progress) = &self.progress {
-            progress(self.stats.paths_planned);
-        }
     }
 
     /// Serves the pairs `known` holds without planning (counted as `known_hits`).
@@ -269,7 +255,11 @@ impl PathOracle {
             .iter()
             .map(|(i, js)| (self.poses[*i], js.iter().map(|&j| self.poses[j]).collect()))
             .collect();
-        let answers = self.planner.plan_rows(&queries)?;
+        let legs: usize = asked.iter().map(|(_, js)| js.len()).sum();
+        let asked_so_far = self.run.progress.ask(legs as u64);
+        let answers = self.planner.plan_rows(&queries);
+        self.run.progress.answered_up_to(asked_so_far);
+        let answers = answers?;
         for ((i, wanted), outcomes) in asked.into_iter().zip(answers) {
             self.stats.paths_planned += wanted.len() as u64;
             for (j, outcome) in wanted.into_iter().zip(outcomes) {
@@ -284,7 +274,6 @@ impl PathOracle {
                 self.store(i, j, planned);
             }
         }
-        self.report_progress();
         Ok(())
     }
 
@@ -412,8 +401,10 @@ impl PathOracle {
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
         refuse_after_deadline(&self.run.deadline)?;
         self.stats.paths_planned += 1;
-        self.report_progress();
-        let outcome = self.planner.plan(&self.poses[i], &self.poses[j])?;
+        let asked_so_far = self.run.progress.ask(1);
+        let outcome = self.planner.plan(&self.poses[i], &self.poses[j]);
+        self.run.progress.answered_up_to(asked_so_far);
+        let outcome = outcome?;
         let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
         Ok(PlannedPath { outcome, cost })
     }

@@ -132,6 +132,8 @@ pub(crate) struct Shared {
     caches: caches::Caches,
     /// The run's deadline: searches stop at it.
     deadline: smug_core::Deadline,
+    /// The run's progress: rows searched side by side count their legs as they end.
+    progress: smug_core::RunProgress,
 }
 
 /// The lattice planner.
@@ -158,6 +160,13 @@ impl LatticePlanner {
     /// Searches stop at `deadline` (a run's; by default one that is never armed).
     pub fn with_deadline(mut self, deadline: smug_core::Deadline) -> Self {
         self.shared.deadline = deadline;
+        self
+    }
+
+    /// Counts the legs of rows searched side by side in `progress` as each row ends
+    /// (a run's; by default one nobody reads).
+    pub fn with_progress(mut self, progress: smug_core::RunProgress) -> Self {
+        self.shared.progress = progress;
         self
     }
 
@@ -232,6 +241,7 @@ impl LatticePlanner {
                 radius,
                 shot_radius,
                 deadline: smug_core::Deadline::new(),
+                progress: smug_core::RunProgress::default(),
             },
             searchers: Mutex::new(Vec::new()),
             counts: Counts::default(),
@@ -397,7 +407,11 @@ impl PointToPointPlanner for LatticePlanner {
         let answered: Vec<(search::Answers, Counts)> = rows
             .par_iter()
             .with_max_len(1)
-            .map(|(start, goals)| Self::search_with_pool(shared, pool, start, goals, max))
+            .map(|(start, goals)| {
+                let answered = Self::search_with_pool(shared, pool, start, goals, max);
+                shared.progress.answer(goals.len() as u64);
+                answered
+            })
             .collect();
         self.counts.queries += rows
             .iter()
@@ -460,8 +474,8 @@ impl PointToPointPlanner for LatticePlanner {
     }
 }
 
-/// The lattice planner on the pipeline of `ctx` (its world, space, objective, checkers
-/// and deadline).
+/// The lattice planner on the pipeline of `ctx` (its world, space, objective, checkers,
+/// deadline and progress).
 pub(crate) fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result<LatticePlanner> {
     let world = ctx.world()?;
     Ok(LatticePlanner::new(
@@ -472,7 +486,8 @@ pub(crate) fn build_planner(params: LatticeParams, ctx: &BuildContext) -> Result
         ctx.state_validity()?,
         ctx.motion_validator()?,
     )?
-    .with_deadline(ctx.deadline()))
+    .with_deadline(ctx.deadline())
+    .with_progress(ctx.progress()))
 }
 
 smug_core::register_plugin!(

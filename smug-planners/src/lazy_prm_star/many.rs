@@ -55,6 +55,7 @@ impl LazyPrmStar {
         self.answer_connected(&mut prepared, connected);
         for ((row, (start, goals)), unconnected) in prepared.iter_mut().zip(rows).zip(unconnected) {
             self.finish_row(row, start, goals, unconnected);
+            self.progress.answer(goals.len() as u64);
         }
         let outcomes: Vec<Vec<PlannerOutcome>> = prepared
             .into_iter()

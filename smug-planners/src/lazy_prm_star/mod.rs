@@ -81,6 +81,8 @@ pub struct LazyPrmStar {
     last_budget: Budget,
     /// The run's deadline: queries stop at it, keeping their best path.
     deadline: Deadline,
+    /// The run's progress: rows answered together count their legs as each ends.
+    progress: smug_core::RunProgress,
 }
 
 /// Bytes a roadmap vertex takes with its share of edges (measured order of magnitude:
@@ -206,6 +208,7 @@ impl LazyPrmStar {
             regions: None,
             last_budget: Budget::Samples,
             deadline: run.deadline.clone(),
+            progress: run.progress.clone(),
         })
     }
 
