@@ -69,9 +69,6 @@ pub enum AppError {
     /// plan.mcap could not be written.
     #[error(transparent)]
     Mcap(#[from] crate::plan_mcap::McapError),
-    /// A sweep could not start, or its rows file could not be read or written.
-    #[error(transparent)]
-    Sweep(#[from] crate::sweep::SweepError),
     /// A plan or result could not be written as JSON.
     #[error(transparent)]
     Json(#[from] serde_json::Error),

@@ -37,15 +37,14 @@ pub mod replan;
 pub mod roadmap;
 pub mod ros;
 pub mod sweep;
+pub mod version;
 
 pub use error::{AppError, Result};
 pub use outcome::{one_line, NoSolution, Outcome};
 pub use plan::{load_config, plan, Planned, WORLD_STAGES};
 pub use replan::{replan, ReplanRequest};
 pub use roadmap::{load_roadmap, save_roadmap};
-
-/// SMUG's version (the workspace's), as plan outputs and sweep rows record it.
-pub const VERSION: &str = env!("CARGO_PKG_VERSION");
 /// The long-lived mission session (plan, then replan in place as the robot goes), for
 /// the front ends: through the application layer, like every other command.
 pub use smug_mission::{MissionSession, WorldUpdate};
+pub use version::VERSION;

@@ -2,7 +2,8 @@
 //! (the timing fields, [`TIMING_FIELDS`], aside).
 
 use super::spec::RunSpec;
-use crate::NoSolution;
+use crate::outcome::NoSolution;
+use crate::version::VERSION;
 use serde::{Deserialize, Serialize};
 use smug_core::plan::PlanMetrics;
 use smug_core::Plan;
@@ -98,7 +99,7 @@ impl SweepRow {
             metrics: None,
             stage_times_s: BTreeMap::new(),
             total_time_s,
-            smug_version: crate::VERSION.to_string(),
+            smug_version: VERSION.to_string(),
         }
     }
 

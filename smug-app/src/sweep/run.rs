@@ -3,7 +3,7 @@
 
 use super::row::{RunStatus, SweepRow};
 use super::spec::RunSpec;
-use crate::{one_line, Outcome};
+use crate::outcome::{one_line, Outcome};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::Instant;
 
@@ -32,7 +32,7 @@ pub fn run_one(spec: &RunSpec, threads: Option<usize>) -> SweepRow {
 /// The row of `spec` planned, or the error's line.
 fn plan_row(spec: &RunSpec) -> Result<SweepRow, String> {
     let loaded = spec.load().map_err(|err| one_line(&err))?;
-    let row = match crate::plan(&loaded, None, None).map_err(|err| one_line(&err))? {
+    let row = match crate::plan::plan(&loaded, None, None).map_err(|err| one_line(&err))? {
         Outcome::Solved(planned) => SweepRow::planned(spec, &planned.plan, 0.0),
         Outcome::NoSolution { why } => SweepRow::no_solution(spec, &why, 0.0),
     };

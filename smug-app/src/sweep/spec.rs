@@ -46,7 +46,7 @@ pub enum SweepError {
         /// The combination of the grid's overrides.
         overrides: Vec<String>,
         /// The config's error (it names the key and the override).
-        source: ConfigError,
+        source: Box<ConfigError>,
     },
     /// The sweep names no config or no seed.
     #[error("a sweep needs at least one {0}")]
@@ -240,7 +240,7 @@ fn canonical_overrides(config: &Path, overrides: &[String]) -> Result<Vec<String
             let key = apply_override(&mut table, text).map_err(|source| SweepError::Config {
                 config: config.to_path_buf(),
                 overrides: overrides.to_vec(),
-                source,
+                source: Box::new(source),
             })?;
             let key = key.to_string();
             let root = toml::Value::Table(table);
@@ -259,7 +259,13 @@ fn canonical_overrides(config: &Path, overrides: &[String]) -> Result<Vec<String
 /// lies; another version plans anew.
 pub fn run_id(config_content: &[u8], overrides: &[String], seed: u64) -> String {
     let content = hex(&Sha256::digest(config_content));
-    let key = serde_json::json!(["smug-sweep-run", crate::VERSION, content, overrides, seed]);
+    let key = serde_json::json!([
+        "smug-sweep-run",
+        crate::version::VERSION,
+        content,
+        overrides,
+        seed
+    ]);
     hex(&Sha256::digest(key.to_string().as_bytes()))[..16].to_string()
 }
 
@@ -316,7 +322,7 @@ impl Sweep {
                 first.load().map_err(|source| SweepError::Config {
                     config: config.clone(),
                     overrides: first.overrides.clone(),
-                    source,
+                    source: Box::new(source),
                 })?;
                 runs.extend(self.seeds.iter().map(|&seed| RunSpec {
                     run_id: run_id(&content, &first.overrides, seed),
