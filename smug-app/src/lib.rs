@@ -7,6 +7,8 @@
 //! - [`replan()`]: the rest of a mission from a mission state file;
 //! - [`p2p`]: point-to-point queries on one shared roadmap, one typed result;
 //! - [`save_roadmap`] / [`load_roadmap`]: the planner's roadmap file;
+//! - [`sweep`]: configs × seeds × a grid of overrides, one row per run (`smug sweep`,
+//!   `smug.sweep`);
 //! - one [`Outcome`] (`Solved` / `NoSolution { why }`) beside a typed [`AppError`],
 //!   instead of each front end deciding what counts as "no solution".
 //!
@@ -34,6 +36,8 @@ pub mod plan_mcap;
 pub mod replan;
 pub mod roadmap;
 pub mod ros;
+pub mod sweep;
+pub mod version;
 
 pub use error::{AppError, Result};
 pub use outcome::{one_line, NoSolution, Outcome};
@@ -43,3 +47,4 @@ pub use roadmap::{load_roadmap, save_roadmap};
 /// The long-lived mission session (plan, then replan in place as the robot goes), for
 /// the front ends: through the application layer, like every other command.
 pub use smug_mission::{MissionSession, WorldUpdate};
+pub use version::VERSION;

@@ -16,6 +16,7 @@ mod p2p;
 mod plan;
 mod plugins;
 mod replan;
+mod sweep;
 mod tsp;
 mod worlds;
 mod worlds_generate;
@@ -59,6 +60,12 @@ enum Command {
     Mtsp(mtsp::MtspArgs),
     /// Run benchmarks.
     Bench(bench::BenchArgs),
+    /// Sweep configs × seeds × a grid of overrides in local processes, one JSON row per
+    /// run (resumable).
+    Sweep(sweep::SweepArgs),
+    /// One run of a sweep, its row on stdout (what `smug sweep` runs in each process).
+    #[command(hide = true)]
+    SweepRun(sweep::SweepRunArgs),
     /// Look at, convert, generate and export worlds.
     Worlds(worlds::WorldsArgs),
 }
@@ -74,6 +81,8 @@ fn run(cli: Cli) -> anyhow::Result<Outcome> {
         Command::Gtsp(args) => gtsp::run(args),
         Command::Mtsp(args) => mtsp::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Sweep(args) => sweep::run(args),
+        Command::SweepRun(args) => sweep::run_one_row(args),
         Command::Worlds(args) => worlds::run(args),
     }
 }

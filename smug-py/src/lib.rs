@@ -14,6 +14,7 @@ use pyo3::prelude::*;
 
 mod mcap;
 mod replan;
+mod sweep;
 use smug_app::p2p::{P2pRequest, P2pWorld};
 use smug_core::{
     Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Pose2,
@@ -573,6 +574,10 @@ fn _smug(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(plugins_json, m)?)?;
     m.add_function(wrap_pyfunction!(p2p, m)?)?;
     m.add_function(wrap_pyfunction!(mcap::write_plan_mcap, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_seeds, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_task, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_failed_row, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -40,6 +40,9 @@ __all__ = [
     "plan",
     "replan",
     "plugins",
+    "sweep",
+    "sweep_rows",
+    "sweep_task",
 ]
 
 __version__: str = _smug.__version__
@@ -181,6 +184,26 @@ class World:
     def __repr__(self) -> str:
         return repr(self._native)
 
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        """Pickles the world as its arrays and mission (rebuilt by
+        :meth:`from_arrays`); which PoIs the robot could not use is not kept."""
+        state = (self.elevation, self.resolution, self.origin, self.traversability)
+        return (_world_from_pickle, (*state, self.mission, self.name))
+
+
+def _world_from_pickle(
+    elevation: np.ndarray,
+    resolution: float,
+    origin: Tuple[float, float],
+    traversability: Optional[np.ndarray],
+    mission: Dict[str, Any],
+    name: str,
+) -> World:
+    """A world from what :meth:`World.__reduce__` pickled."""
+    return World.from_arrays(
+        elevation, resolution, origin, traversability, mission=mission, name=name
+    )
+
 
 def _json_default(value: Any) -> Any:
     if isinstance(value, np.ndarray):
@@ -263,6 +286,11 @@ class Plan:
         _smug.write_plan_mcap(
             os.fspath(path), self._json, self.world._native, config_toml, seed, append
         )
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        """Pickles the plan as its JSON, waypoints, world and run (for Ray, Dask and
+        process pools)."""
+        return (Plan, (self._json, self.waypoints, self.world, self._run))
 
     def __repr__(self) -> str:
         return (
@@ -448,3 +476,6 @@ def p2p(
         float(obstacle_height),
     )
     return json.loads(text)
+
+
+from ._sweep import sweep, sweep_rows, sweep_task  # noqa: E402  (they use the helpers above)
