@@ -34,6 +34,8 @@ pub mod plan_mcap;
 pub mod replan;
 pub mod roadmap;
 pub mod ros;
+pub mod team;
+pub mod team_outputs;
 
 pub use error::{AppError, Result};
 pub use outcome::{one_line, NoSolution, Outcome};

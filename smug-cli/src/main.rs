@@ -16,6 +16,7 @@ mod p2p;
 mod plan;
 mod plugins;
 mod replan;
+mod team;
 mod tsp;
 mod worlds;
 mod worlds_generate;

@@ -49,6 +49,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, &[])?;
+    if smug_app::team::is_team(&loaded) {
+        return crate::team::run(&loaded, &out, args.json, args.save_roadmap.as_ref());
+    }
     let progress = Progress::start("building the world and the checkers");
     let mut pipeline = smug_app::plan::assemble(&loaded, None, None)?;
     progress.stage("planning: sequencing the targets, selecting the poses of interest");

@@ -23,6 +23,7 @@ mod replan;
 mod run;
 mod sequential;
 mod session;
+mod team;
 #[cfg(test)]
 mod test_support;
 
@@ -34,4 +35,5 @@ pub use replan::{
 };
 pub use run::{plan_mission, Unreachable};
 pub use session::{MissionSession, WorldUpdate};
+pub use team::{plan_team, TeamMember, TeamMission};
 pub use smug_core::mission::{Mission, PlanOptions};
