@@ -28,9 +28,12 @@ pub struct BenchTeamArgs {
         default_value = "configs/lunar-team.toml,configs/indoor-team.toml"
     )]
     configs: Vec<PathBuf>,
-    /// Seeds per config (1..=N): each seed a new world and new roadmaps.
+    /// Seeds per config (1..=N): new roadmaps (and new LNS runs) per seed.
     #[arg(long, default_value_t = 10)]
     runs: u64,
+    /// A new world per seed (default: the world of seed 1 for every run).
+    #[arg(long)]
+    vary_world: bool,
     /// Plan only on shared oracles (skip the objectives planned alone).
     #[arg(long)]
     shared_only: bool,
@@ -42,24 +45,44 @@ pub struct BenchTeamArgs {
 /// Runs `smug bench team`.
 pub fn run(args: BenchTeamArgs) -> crate::Result<()> {
     let both = [TeamObjective::Sum, TeamObjective::Makespan];
+    let mut set = args.report.set.clone();
+    if !args.vary_world {
+        set.insert(0, "world.params.seed=1".to_string());
+    }
     let mut runs = Vec::new();
+    let mut failures = Vec::new();
     for config in &args.configs {
         for seed in 1..=args.runs {
-            runs.extend(plan_once(config, seed, &args.report.set, "shared", &both)?);
+            let mut asked: Vec<(&'static str, Vec<TeamObjective>)> = vec![("shared", both.to_vec())];
             if !args.shared_only {
-                for objective in both {
-                    runs.extend(plan_once(
-                        config,
-                        seed,
-                        &args.report.set,
-                        "alone",
-                        &[objective],
-                    )?);
+                asked.extend(both.map(|o| ("alone", vec![o])));
+            }
+            for (how, objectives) in asked {
+                match plan_once(config, seed, &set, how, &objectives) {
+                    Ok(planned) => runs.extend(planned),
+                    Err(err) => failures.push(format!(
+                        "{} seed {seed} ({how}): {}",
+                        config.display(),
+                        smug_app::one_line(&err)
+                    )),
                 }
             }
         }
     }
-    let report = report::report(&args.configs, args.runs, &runs);
+    let mut report = report::report(&args.configs, args.runs, &runs);
+    if !failures.is_empty() {
+        report.push_str("## Runs without a plan\n\n");
+        for failure in &failures {
+            report.push_str(&format!("- {failure}\n"));
+        }
+        report.push('\n');
+    }
+    report.push_str(&format!(
+        "Command: `smug bench team --runs {}{}{}`\n",
+        args.runs,
+        if args.vary_world { " --vary-world" } else { "" },
+        if args.shared_only { " --shared-only" } else { "" }
+    ));
     args.report.write(&report, &runs)?;
     Ok(())
 }

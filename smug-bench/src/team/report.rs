@@ -32,8 +32,8 @@ pub(super) fn report(configs: &[PathBuf], seeds: u64, runs: &[Run]) -> String {
     let mut out = String::from("# Teams: the sum of the robots' times against the makespan\n\n");
     let _ = writeln!(
         out,
-        "Each team config planned with seeds 1 to {seeds} (each seed a new world and new \
-         roadmaps) for both team objectives. `shared`: both objectives on the same robots' \
+        "Each team config planned with seeds 1 to {seeds} (new roadmaps and team-sequencer \
+         runs per seed; the world of seed 1 unless `--vary-world`) for both team objectives. `shared`: both objectives on the same robots' \
          oracles, the makespan's routes seeding the sum's again (both plans rest on the same \
          planned costs; the makespan plan's makespan and the sum plan's sum are then each \
          at least as good as the other plan's by construction of the seeding, so the checks \

@@ -159,17 +159,31 @@ impl LazyTeam<'_> {
                     },
                 ));
             }
-            let mut planned = 0;
-            let legs = self.legs(&solution);
-            for (robot, legs) in self.robots.iter_mut().zip(legs) {
-                let open: Vec<(usize, usize)> = legs
-                    .into_iter()
-                    .filter(|&(a, b)| !robot.is_planned(a, b))
-                    .collect();
-                planned += robot.plan_legs(&open)?;
-            }
-            if planned == 0 {
+            let open: Vec<Vec<(usize, usize)>> = self
+                .legs(&solution)
+                .into_iter()
+                .zip(self.robots.iter())
+                .map(|(legs, robot)| {
+                    legs.into_iter()
+                        .filter(|&(a, b)| !robot.is_planned(a, b))
+                        .collect()
+                })
+                .collect();
+            if open.iter().all(Vec::is_empty) {
                 return Ok(solution);
+            }
+            for ((robot, open), route) in self.robots.iter_mut().zip(open).zip(&solution.routes) {
+                if open.is_empty() {
+                    continue;
+                }
+                // Rows to every PoI of the route's targets: the PoI choices along the
+                // route get planned costs at once (one search per row).
+                let mut goals: Vec<usize> = route
+                    .iter()
+                    .flat_map(|v| self.nodes.pois(v.target, self.mission))
+                    .collect();
+                goals.push(robot.end);
+                robot.plan_rows_of(&open, &goals)?;
             }
             previous = Some(solution);
         }

@@ -75,7 +75,11 @@ pub(super) fn robot_plan(
         .map_or("path-length", |section| section.kind.as_str());
     let states = concatenate(&plan).0;
     plan.metrics = plan_metrics(&pipeline.context(), world, objective, &states);
-    if !plan.segments.is_empty() {
+    if plan.segments.is_empty() {
+        // A robot that stays (an empty sum is -0.0).
+        plan.metrics.length_m = 0.0;
+        plan.metrics.climb_m = 0.0;
+    } else {
         (plan.waypoints, plan.reversing) = waypoints(&plan, pipeline, world, keep_headings);
     }
     plan.cost = cost;

@@ -175,14 +175,35 @@ impl RobotOracle {
     }
 
     /// Plans the legs `(from, to)` (shared nodes) not planned yet.
-    pub(super) fn plan_legs(&mut self, legs: &[(usize, usize)]) -> Result<usize> {
+    pub(super) fn plan_legs(&mut self, legs: &[(usize, usize)]) -> Result<()> {
         let pairs: Vec<(usize, usize)> = legs
             .iter()
             .filter_map(|&(a, b)| Some((self.local[a]?, self.local[b]?)))
             .filter(|&(a, b)| !self.oracle.is_planned(a, b))
             .collect();
-        self.oracle.plan_pairs(&pairs)?;
-        Ok(pairs.len())
+        self.oracle.plan_pairs(&pairs)
+    }
+
+    /// Plans, for each unplanned leg `(from, to)` (shared nodes), the row from `from` to
+    /// every node of `goals` (one search per row where the planner answers many goals
+    /// at once; only the legs themselves otherwise).
+    pub(super) fn plan_rows_of(&mut self, legs: &[(usize, usize)], goals: &[usize]) -> Result<()> {
+        if !self.oracle.answers_many() {
+            return self.plan_legs(legs);
+        }
+        let goals: Vec<usize> = goals.iter().filter_map(|&g| self.local[g]).collect();
+        let mut rows: Vec<(usize, Vec<usize>)> = Vec::new();
+        for &(a, b) in legs {
+            let (Some(from), Some(to)) = (self.local[a], self.local[b]) else {
+                continue;
+            };
+            let mut row: Vec<usize> = goals.iter().copied().filter(|&g| g != from).collect();
+            if !row.contains(&to) {
+                row.push(to);
+            }
+            rows.push((from, row));
+        }
+        self.oracle.plan_rows(&rows)
     }
 
     /// True when the leg `from → to` (shared nodes) has been planned.
