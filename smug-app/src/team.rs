@@ -56,12 +56,11 @@ pub fn assemble_team(loaded: &LoadedConfig) -> Result<Team> {
     let allowed = restrictions(loaded, team, &mission)?;
     let mut members = Vec::with_capacity(team.robots.len());
     for (k, robot) in team.robots.iter().enumerate() {
-        let member = assemble_member(loaded, k, team.unit, &world).map_err(|source| {
-            AppError::Robot {
+        let member =
+            assemble_member(loaded, k, team.unit, &world).map_err(|source| AppError::Robot {
                 robot: robot.name.clone(),
                 source: Box::new(source),
-            }
-        })?;
+            })?;
         members.push(TeamMember {
             name: robot.name.clone(),
             start: robot.start,
@@ -94,7 +93,10 @@ pub fn assemble_team(loaded: &LoadedConfig) -> Result<Team> {
 
 /// Plans an assembled team for `objectives` (see [`plan_team`]); unreachable or
 /// unservable targets are no solution.
-pub fn plan_assembled(mut team: Team, objectives: &[TeamObjective]) -> Result<Outcome<TeamPlanned>> {
+pub fn plan_assembled(
+    mut team: Team,
+    objectives: &[TeamObjective],
+) -> Result<Outcome<TeamPlanned>> {
     let planned = plan_team(
         &mut team.members,
         &team.mission,
@@ -179,7 +181,10 @@ fn assemble_member(
 /// `[robot] max_speed` and `turn_rate`; the objective's defaults where absent).
 fn time_section(robot: &RobotConfig) -> PluginSection {
     let mut section = PluginSection::new(ObjectiveStage::NAME, "time");
-    for (key, value) in [("max_speed", robot.max_speed), ("turn_rate", robot.turn_rate)] {
+    for (key, value) in [
+        ("max_speed", robot.max_speed),
+        ("turn_rate", robot.turn_rate),
+    ] {
         if let Some(value) = value {
             section.params.insert(key.into(), toml::Value::Float(value));
         }
@@ -198,11 +203,10 @@ fn time_objective(pipeline: &Pipeline) -> Result<Arc<dyn Objective>> {
 /// The config's `[team_sequencer]` (else [`DEFAULT_TEAM_SEQUENCER`]), built in the first
 /// robot's context (the config's seed, its run context).
 fn team_sequencer(loaded: &LoadedConfig, pipeline: &Pipeline) -> Result<Box<dyn TeamSequencer>> {
-    let section = loaded
-        .config
-        .team_sequencer
-        .clone()
-        .unwrap_or_else(|| PluginSection::new(TeamSequencerStage::NAME, DEFAULT_TEAM_SEQUENCER));
+    let section =
+        loaded.config.team_sequencer.clone().unwrap_or_else(|| {
+            PluginSection::new(TeamSequencerStage::NAME, DEFAULT_TEAM_SEQUENCER)
+        });
     Ok(pipeline
         .context()
         .build::<TeamSequencerStage>(&section)?

@@ -17,16 +17,17 @@ const SMALL: [&str; 4] = [
     "world.params.pois_per_target=4",
 ];
 
-/// A flat world with a corridor 0.9 m wide: `slot`'s only PoI lies in it, where
-/// ANYmal fits and the `big` robot does not.
+/// A flat world with a corridor 1.1 m wide: `slot`'s only PoI lies in it, where
+/// ANYmal fits and the `big` robot does not; `gauge-b` is the rover's (a car on the
+/// lattice, turning radius 1.5 m).
 const FLAT_TEAM: &str = r#"seed = 1
 [world]
 type = "flat"
 [world.params]
 size = [12.0, 8.0]
 obstacles = [
-    { min = [6.0, 0.0], max = [7.0, 3.0], height = 1.0 },
-    { min = [7.9, 0.0], max = [9.0, 3.0], height = 1.0 },
+    { min = [6.0, 0.0], max = [7.0, 2.2], height = 1.0 },
+    { min = [8.1, 0.0], max = [9.0, 2.2], height = 1.0 },
 ]
 [world.params.mission]
 start = { x = 1.0, y = 1.0 }
@@ -40,8 +41,10 @@ position = { x = 10.5, y = 6.0 }
 pois = [{ x = 10.5, y = 5.0, yaw = 1.5708 }]
 [[world.params.mission.targets]]
 id = "slot"
-position = { x = 7.45, y = 0.5 }
-pois = [{ x = 7.45, y = 1.6, yaw = -1.5708 }]
+position = { x = 7.55, y = 0.3 }
+pois = [{ x = 7.55, y = 1.2, yaw = -1.5708 }]
+[traversability]
+type = "geometric"
 [sampler]
 type = "informed"
 [planner]
@@ -59,6 +62,14 @@ include = "robots/anymal.toml"
 start = { x = 1.5, y = 3.0 }
 validity = { type = "volumetric" }
 robot = { length = 1.5, width = 1.2, max_speed = 2.0 }
+[[team.robots]]
+name = "rover"
+include = "robots/rover.toml"
+start = { x = 2.0, y = 4.5, yaw = 0.0 }
+validity = { type = "volumetric" }
+[[team.targets]]
+id = "gauge-b"
+robots = ["rover"]
 "#;
 
 /// Writes `text` as a config beside a copy of the robot profiles (so includes resolve).
@@ -131,12 +142,21 @@ fn check_curvature(robot: &Value, radius: f64) -> usize {
         .as_array()
         .unwrap()
         .iter()
-        .map(|w| w.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect())
+        .map(|w| {
+            w.as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        })
         .collect();
     for (k, w) in points.windows(2).enumerate() {
         let d = (w[1][3] - w[0][3]).rem_euclid(std::f64::consts::TAU);
         let dyaw = d.min(std::f64::consts::TAU - d);
-        assert!(dyaw <= 0.1 / radius * (1.0 + 1e-6) + 1e-9, "step {k} turns {dyaw}");
+        assert!(
+            dyaw <= 0.1 / radius * (1.0 + 1e-6) + 1e-9,
+            "step {k} turns {dyaw}"
+        );
         let chord = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
         assert!(chord <= 0.1 * (1.0 + 1e-6), "step {k}: {chord} m");
     }
@@ -163,6 +183,7 @@ fn the_lunar_team_plans_for_the_sum_and_for_the_makespan() {
         }
         check_curvature(robot(&plan, "rover"), 1.5);
         assert!(robot(&plan, "anymal")["reversing"].is_null());
+        assert!(robot(&plan, "wheeled")["reversing"].is_null());
         plans.push(plan);
     }
     let makespan_plan_serves: usize = plans[1]["robots"]
@@ -184,23 +205,28 @@ fn a_poi_invalid_for_a_robot_is_never_its_own() {
         check_served_once(&plan, &ids);
         let small = robot(&plan, "small")["sequence"].to_string();
         assert!(small.contains("slot"), "only `small` fits the slot: {plan}");
+        let rover = robot(&plan, "rover");
+        assert_eq!(rover["sequence"], serde_json::json!(["gauge-b"]));
+        assert!(
+            check_curvature(rover, 1.5) > 50,
+            "the rover drives its curves"
+        );
     }
-    let svg = std::fs::read_to_string(
-        workspace().join("target/cli-test-team/flat-makespan/plan.svg"),
-    )
-    .unwrap();
-    let colours: BTreeSet<&str> = ["#1f77b4", "#d62728"]
+    let svg =
+        std::fs::read_to_string(workspace().join("target/cli-test-team/flat-makespan/plan.svg"))
+            .unwrap();
+    let colours: BTreeSet<&str> = ["#1f77b4", "#d62728", "#9467bd"]
         .into_iter()
         .filter(|c| svg.contains(&format!("stroke=\"{c}\"")))
         .collect();
-    assert!(!colours.is_empty(), "the robots' colours");
+    assert!(colours.len() >= 2, "the robots' colours: {colours:?}");
 }
 
 #[test]
 fn bad_teams_are_named() {
     let bad = |name: &str, text: String, needles: &[&str]| {
         let path = config(name, &text);
-        let out = scratch_dir("cli-test-team", name);
+        let out = scratch_dir("cli-test-team-out", name);
         let run = smug(&["plan", &path, "--out", out.to_str().unwrap()]);
         assert_bad_input(&run, needles);
     };
@@ -221,20 +247,24 @@ fn bad_teams_are_named() {
     bad(
         "unknown-robot.toml",
         restricted("\"small\", \"drone\"", "slot"),
-        &["team.targets[0].robots", "`drone`"],
+        &["team.targets[1].robots", "`drone`"],
     );
     bad(
         "unknown-target.toml",
         restricted("\"small\"", "valve"),
-        &["team.targets[0].id", "no target `valve`"],
+        &["team.targets[1].id", "no target `valve`"],
     );
     // A target only `big` may serve, whose PoI `big` cannot stand at: no solution.
     let path = config("unservable.toml", &restricted("\"big\"", "slot"));
-    let out = scratch_dir("cli-test-team", "unservable");
+    let out = scratch_dir("cli-test-team-out", "unservable");
     let run = smug(&["plan", &path, "--out", out.to_str().unwrap()]);
     let err = stderr(&run);
     assert_eq!(run.status.code(), Some(1), "{err}");
-    for needle in ["`slot`", "robot `big`", "none of its 1 PoIs is valid", "robot `small`: not allowed"] {
+    for needle in [
+        "`slot`",
+        "robot `big`: none of its 1 PoIs is valid",
+        "robot `small`: not allowed",
+    ] {
         assert!(err.contains(needle), "`{needle}` missing from: {err}");
     }
 }

@@ -35,5 +35,5 @@ pub use replan::{
 };
 pub use run::{plan_mission, Unreachable};
 pub use session::{MissionSession, WorldUpdate};
-pub use team::{plan_team, TeamMember, TeamMission};
 pub use smug_core::mission::{Mission, PlanOptions};
+pub use team::{plan_team, TeamMember, TeamMission};

@@ -15,10 +15,7 @@ type TeamParts<'py> = (String, Bound<'py, PyArray2<f64>>, PyWorld, (String, u64)
 
 /// Plans the team of `loaded`; the parts `smug.plan` returns, with no waypoints of
 /// its own (each robot's are in `Plan.robots`).
-pub(crate) fn plan_team<'py>(
-    py: Python<'py>,
-    loaded: LoadedConfig,
-) -> PyResult<TeamParts<'py>> {
+pub(crate) fn plan_team<'py>(py: Python<'py>, loaded: LoadedConfig) -> PyResult<TeamParts<'py>> {
     let seed = loaded.config.seed;
     let config_toml = smug_core::toml::to_string(&loaded.config).unwrap_or_default();
     let outcome = py

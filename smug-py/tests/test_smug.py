@@ -646,6 +646,8 @@ pois = [{ x = 2.5, y = 5.5, yaw = 1.5708 }]
 id = "gauge-b"
 position = { x = 10.5, y = 6.0 }
 pois = [{ x = 10.5, y = 5.0, yaw = 1.5708 }]
+[traversability]
+type = "geometric"
 [sampler]
 type = "informed"
 [planner]

@@ -53,7 +53,8 @@ pub fn run(args: BenchTeamArgs) -> crate::Result<()> {
     let mut failures = Vec::new();
     for config in &args.configs {
         for seed in 1..=args.runs {
-            let mut asked: Vec<(&'static str, Vec<TeamObjective>)> = vec![("shared", both.to_vec())];
+            let mut asked: Vec<(&'static str, Vec<TeamObjective>)> =
+                vec![("shared", both.to_vec())];
             if !args.shared_only {
                 asked.extend(both.map(|o| ("alone", vec![o])));
             }
@@ -81,7 +82,11 @@ pub fn run(args: BenchTeamArgs) -> crate::Result<()> {
         "Command: `smug bench team --runs {}{}{}`\n",
         args.runs,
         if args.vary_world { " --vary-world" } else { "" },
-        if args.shared_only { " --shared-only" } else { "" }
+        if args.shared_only {
+            " --shared-only"
+        } else {
+            ""
+        }
     ));
     args.report.write(&report, &runs)?;
     Ok(())
@@ -117,7 +122,13 @@ fn plan_once(
         .collect())
 }
 
-fn measure(config: &std::path::Path, seed: u64, how: &'static str, plan: &TeamPlan, wall_s: f64) -> Run {
+fn measure(
+    config: &std::path::Path,
+    seed: u64,
+    how: &'static str,
+    plan: &TeamPlan,
+    wall_s: f64,
+) -> Run {
     Run {
         config: config.display().to_string(),
         seed,

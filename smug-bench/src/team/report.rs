@@ -14,7 +14,13 @@ fn mean(values: impl Iterator<Item = f64>) -> f64 {
     values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
-fn find<'a>(runs: &'a [Run], config: &str, seed: u64, how: &str, o: TeamObjective) -> Option<&'a Run> {
+fn find<'a>(
+    runs: &'a [Run],
+    config: &str,
+    seed: u64,
+    how: &str,
+    o: TeamObjective,
+) -> Option<&'a Run> {
     runs.iter()
         .find(|r| r.config == config && r.seed == seed && r.how == how && r.objective == o)
 }

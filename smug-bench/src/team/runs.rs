@@ -29,4 +29,3 @@ pub(super) struct Run {
     /// Wall time of the run that made it (both objectives for `shared`), seconds.
     pub(super) wall_s: f64,
 }
-

@@ -10,8 +10,8 @@ mod team;
 mod team_tests;
 
 pub use schema::{OutputConfig, PipelineConfig, PluginSection, RobotConfig};
-pub use team::{team_key, TargetRestriction, TeamConfig, TeamMemberConfig, TeamUnit};
 pub use source::{KeyPath, KeySegment, SourceMap};
+pub use team::{team_key, TargetRestriction, TeamConfig, TeamMemberConfig, TeamUnit};
 
 use crate::error::ConfigError;
 use source::{column_of, line_of, SourceFile};

@@ -139,7 +139,11 @@ impl TeamConfig {
                     format!("target `{}` names no robot", restriction.id),
                 ));
             }
-            if let Some(unknown) = restriction.robots.iter().find(|r| !names.contains(r.as_str())) {
+            if let Some(unknown) = restriction
+                .robots
+                .iter()
+                .find(|r| !names.contains(r.as_str()))
+            {
                 return Some((
                     team_key("targets", k, "robots"),
                     format!(

@@ -83,8 +83,12 @@ impl LazyTeam<'_> {
                 let reason = if let Some(allowed) =
                     self.allowed[t].as_ref().filter(|a| !a.contains(&r))
                 {
-                    let names: Vec<&str> = allowed.iter().map(|&a| self.names[a].as_str()).collect();
-                    format!("not allowed (the target is restricted to {})", names.join(", "))
+                    let names: Vec<&str> =
+                        allowed.iter().map(|&a| self.names[a].as_str()).collect();
+                    format!(
+                        "not allowed (the target is restricted to {})",
+                        names.join(", ")
+                    )
                 } else if valid == 0 {
                     format!(
                         "none of its {} PoIs is valid for it (in collision, untraversable or \
@@ -92,9 +96,7 @@ impl LazyTeam<'_> {
                         target.pois.len()
                     )
                 } else {
-                    format!(
-                        "no path joins its start, any of its {valid} valid PoIs and its end"
-                    )
+                    format!("no path joins its start, any of its {valid} valid PoIs and its end")
                 };
                 format!("target `{}`, robot `{name}`: {reason}", target.id)
             })

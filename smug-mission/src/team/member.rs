@@ -33,4 +33,3 @@ pub struct TeamMission {
     /// Keep the roadmap's headings in the waypoints (`[plan] keep_headings`).
     pub keep_headings: bool,
 }
-

@@ -41,7 +41,14 @@ pub fn plan_team(
         .enumerate()
         .map(|(r, member)| {
             let poses = (member.start, member.end);
-            RobotOracle::new(r, &member.name, &mut member.pipeline, poses, &team.mission, &nodes)
+            RobotOracle::new(
+                r,
+                &member.name,
+                &mut member.pipeline,
+                poses,
+                &team.mission,
+                &nodes,
+            )
         })
         .collect::<Result<Vec<RobotOracle>>>()?;
     let planned = plan_on_robots(members, &mut robots, &nodes, team, sequencer, objectives)

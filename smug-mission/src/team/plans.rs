@@ -1,8 +1,8 @@
 //! A team solution turned into one plan per robot: its legs from its own oracle (the
 //! paths planned for the matrix), its waypoints from its own model, its metrics and time.
 
-use super::robots::{Nodes, RobotOracle};
 use super::member::TeamMember;
+use super::robots::{Nodes, RobotOracle};
 use crate::assembly::{assemble_plan, stats};
 use crate::evaluation::plan_metrics;
 use crate::post_process::{concatenate, waypoints};
