@@ -2,7 +2,8 @@
 //! makespan), plan.csv (a `robot` column) and plan.svg (one colour per robot), as the
 //! config's `[output]` asks (plan.mcap holds single-robot plans only).
 
-use crate::{AppError, Result};
+use crate::outputs::file_writer;
+use crate::Result;
 use smug_core::config::OutputConfig;
 use smug_core::{Mission, TeamPlan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
@@ -22,19 +23,7 @@ pub fn write_team_outputs(
     output: &OutputConfig,
     dir: &Path,
 ) -> Result<Vec<&'static str>> {
-    std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
-        path: dir.to_path_buf(),
-        what: "cannot create",
-        source,
-    })?;
-    let write = |name: &str, text: String| {
-        let path = dir.join(name);
-        smug_core::output::write_atomic(&path, text.as_bytes()).map_err(|source| AppError::Write {
-            path,
-            what: "cannot write",
-            source,
-        })
-    };
+    let write = file_writer(dir)?;
     let mut written = Vec::new();
     if output.json {
         write("plan.json", serde_json::to_string_pretty(plan)?)?;

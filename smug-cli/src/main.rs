@@ -30,6 +30,15 @@ pub enum Outcome {
     NoSolution,
 }
 
+/// Says on stderr why a plan has no solution; the outcome to exit with.
+pub fn no_solution(why: smug_app::NoSolution) -> Outcome {
+    match why {
+        smug_app::NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
+        why => eprintln!("smug: no solution: {why}"),
+    }
+    Outcome::NoSolution
+}
+
 /// Safe multi-goal planning for mobile robots.
 #[derive(Parser, Debug)]
 #[command(name = "smug", version, about, long_about = None)]

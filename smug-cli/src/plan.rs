@@ -3,7 +3,7 @@
 use crate::Outcome;
 use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
 use smug_app::plan_mcap::WriteMode;
-use smug_app::{NoSolution, Planned};
+use smug_app::Planned;
 use smug_core::{Pipeline, Plan};
 use std::path::{Path, PathBuf};
 
@@ -64,13 +64,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         world,
     } = match planned? {
         smug_app::Outcome::Solved(planned) => planned,
-        smug_app::Outcome::NoSolution { why } => {
-            match why {
-                NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
-                why => eprintln!("smug: no solution: {why}"),
-            }
-            return Ok(Outcome::NoSolution);
-        }
+        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
     };
     if plan.deadline_reached {
         eprintln!(

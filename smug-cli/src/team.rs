@@ -3,7 +3,6 @@
 use crate::Outcome;
 use smug_app::team::{plan_team_config, TeamPlanned};
 use smug_app::team_outputs::write_team_outputs;
-use smug_app::NoSolution;
 use smug_core::{LoadedConfig, TeamPlan};
 use std::path::{Path, PathBuf};
 
@@ -20,13 +19,7 @@ pub fn run(
     }
     let TeamPlanned { plans, team } = match plan_team_config(loaded)? {
         smug_app::Outcome::Solved(planned) => planned,
-        smug_app::Outcome::NoSolution { why } => {
-            match why {
-                NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
-                why => eprintln!("smug: no solution: {why}"),
-            }
-            return Ok(Outcome::NoSolution);
-        }
+        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
     };
     let plan = &plans[0];
     let written = write_team_outputs(
