@@ -47,6 +47,17 @@ pub enum AppError {
     /// The config has no `[planner]` section (p2p).
     #[error("the config has no [planner] section")]
     NoPlanner,
+    /// A team command was given a config without `[team]`.
+    #[error("the config has no [team] section (a team names its robots in [[team.robots]])")]
+    NotATeam,
+    /// Building one robot of a team failed.
+    #[error("robot `{robot}`: {source}")]
+    Robot {
+        /// The robot's name.
+        robot: String,
+        /// Why.
+        source: Box<smug_core::Error>,
+    },
     /// The config has no `[world]` section.
     #[error("the config has no [world] section")]
     NoWorld,

@@ -37,6 +37,8 @@ pub mod replan;
 pub mod roadmap;
 pub mod ros;
 pub mod sweep;
+pub mod team;
+pub mod team_outputs;
 pub mod version;
 
 pub use error::{AppError, Result};

@@ -16,19 +16,7 @@ pub const OUTPUT_FILES: [&str; 4] = ["plan.json", "plan.csv", "plan.svg", "plan.
 /// appended (a replan).
 pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMode) -> Result<()> {
     let output = &pipeline.config.output;
-    std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
-        path: dir.to_path_buf(),
-        what: "cannot create",
-        source,
-    })?;
-    let write = |name: &str, text: String| {
-        let path = dir.join(name);
-        smug_core::output::write_atomic(&path, text.as_bytes()).map_err(|source| AppError::Write {
-            path,
-            what: "cannot write",
-            source,
-        })
-    };
+    let write = file_writer(dir)?;
     if output.json {
         write("plan.json", serde_json::to_string_pretty(plan)?)?;
     }
@@ -63,6 +51,24 @@ pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMo
         )?;
     }
     Ok(())
+}
+
+/// Creates `dir`; the writer of whole files `(name, text)` into it (each whole or not
+/// at all: a killed run leaves the previous file intact).
+pub fn file_writer(dir: &Path) -> Result<impl Fn(&str, String) -> Result<()> + '_> {
+    std::fs::create_dir_all(dir).map_err(|source| AppError::Write {
+        path: dir.to_path_buf(),
+        what: "cannot create",
+        source,
+    })?;
+    Ok(move |name: &str, text: String| {
+        let path = dir.join(name);
+        smug_core::output::write_atomic(&path, text.as_bytes()).map_err(|source| AppError::Write {
+            path,
+            what: "cannot write",
+            source,
+        })
+    })
 }
 
 /// The run's kind, config and seed for plan.mcap's metadata.

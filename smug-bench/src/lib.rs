@@ -19,6 +19,7 @@ pub mod paper;
 pub mod replan;
 pub mod robots;
 pub mod solvers;
+pub mod team;
 pub mod tsp;
 pub mod validity;
 

@@ -4,7 +4,7 @@
 use crate::Outcome;
 use clap::Subcommand;
 use smug_bench::{
-    gtsp, lattice, modes, mtsp, objectives, p2p, paper, replan, robots, tsp, validity,
+    gtsp, lattice, modes, mtsp, objectives, p2p, paper, replan, robots, team, tsp, validity,
 };
 
 /// Arguments of `smug bench`.
@@ -45,6 +45,9 @@ enum BenchCommand {
     /// The lattice planner against LazyPRM* with ten times its budget, query by query,
     /// on generated maps for every car model: costlier how often, by how much, time.
     Lattice(lattice::BenchLatticeArgs),
+    /// Team missions (lunar-team, indoor-team) for the sum and the makespan: per-robot
+    /// loads, costs and times, and the two objectives checked against each other.
+    Team(team::BenchTeamArgs),
 }
 
 /// Runs `smug bench`.
@@ -61,6 +64,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<Outcome> {
         BenchCommand::Modes(args) => modes::run(args),
         BenchCommand::Robots(args) => robots::run(args),
         BenchCommand::Lattice(args) => lattice::run(&args),
+        BenchCommand::Team(args) => team::run(args),
     }?;
     Ok(Outcome::Ok)
 }

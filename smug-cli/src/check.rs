@@ -17,7 +17,11 @@ pub struct CheckArgs {
 
 /// Runs `smug check`: load, validate, assemble, print the resolved pipeline.
 pub fn run_check(args: CheckArgs) -> anyhow::Result<Outcome> {
-    let pipeline = Pipeline::assemble(&LoadedConfig::from_file(&args.config, &args.set)?)?;
+    let loaded = LoadedConfig::from_file(&args.config, &args.set)?;
+    if smug_app::team::is_team(&loaded) {
+        return crate::team::check(&args.config, &loaded);
+    }
+    let pipeline = Pipeline::assemble(&loaded)?;
     println!("# {}: configuration is valid", args.config.display());
     if let (Some(world), Some(m)) = (&pipeline.world, &pipeline.given_mission) {
         let g = world.elevation.geometry;

@@ -17,6 +17,7 @@ mod plan;
 mod plugins;
 mod replan;
 mod sweep;
+mod team;
 mod tsp;
 mod worlds;
 mod worlds_generate;
@@ -28,6 +29,15 @@ pub enum Outcome {
     Ok,
     /// Ran fine but found no solution (exit 1).
     NoSolution,
+}
+
+/// Says on stderr why a plan has no solution; the outcome to exit with.
+pub fn no_solution(why: smug_app::NoSolution) -> Outcome {
+    match why {
+        smug_app::NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
+        why => eprintln!("smug: no solution: {why}"),
+    }
+    Outcome::NoSolution
 }
 
 /// Safe multi-goal planning for mobile robots.

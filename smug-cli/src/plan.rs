@@ -3,7 +3,7 @@
 use crate::Outcome;
 use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
 use smug_app::plan_mcap::WriteMode;
-use smug_app::{NoSolution, Planned};
+use smug_app::Planned;
 use smug_core::{Pipeline, Plan};
 use std::path::{Path, PathBuf};
 
@@ -49,6 +49,9 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, &[])?;
+    if smug_app::team::is_team(&loaded) {
+        return crate::team::run(&loaded, &out, args.json, args.save_roadmap.as_ref());
+    }
     let progress = Progress::start("building the world and the checkers");
     let pipeline = smug_app::plan::assemble(&loaded, None, None)?;
     progress.stage("planning");
@@ -61,13 +64,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         world,
     } = match planned? {
         smug_app::Outcome::Solved(planned) => planned,
-        smug_app::Outcome::NoSolution { why } => {
-            match why {
-                NoSolution::DeadlinePassed(why) => eprintln!("smug: no plan: {why}"),
-                why => eprintln!("smug: no solution: {why}"),
-            }
-            return Ok(Outcome::NoSolution);
-        }
+        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
     };
     if plan.deadline_reached {
         eprintln!(

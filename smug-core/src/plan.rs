@@ -153,3 +153,37 @@ pub struct SkippedTarget {
     /// Why, e.g. "every PoI failed".
     pub reason: String,
 }
+
+/// One robot's part of a team plan: its name, its plan (targets, PoIs, waypoints,
+/// cost, gears) and its travel time.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RobotPlan {
+    /// The robot's name in the team config.
+    pub name: String,
+    /// Travel time of its route under the `time` objective at its own speed, seconds.
+    pub time: f64,
+    /// Its plan (the cost in the team's unit).
+    #[serde(flatten)]
+    pub plan: Plan,
+}
+
+/// A team plan: one plan per robot, the team's sum and makespan.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TeamPlan {
+    /// What the team minimised.
+    pub objective: crate::stages::TeamObjective,
+    /// The unit of the costs (`time`, or the objective every robot planned with).
+    pub unit: String,
+    /// The objective's value: `total` for the sum, `makespan` for the makespan.
+    pub cost: f64,
+    /// Sum of the robots' costs.
+    pub total: f64,
+    /// Largest robot cost.
+    pub makespan: f64,
+    /// One entry per robot, in the config's order (a robot with nothing to do has an
+    /// empty sequence).
+    pub robots: Vec<RobotPlan>,
+    /// Counters and timings of the whole team run (paths planned by every robot,
+    /// rounds of the lazy team sequencing, stage times).
+    pub stats: PlanStats,
+}

@@ -23,6 +23,7 @@ mod replan;
 mod run;
 mod sequential;
 mod session;
+mod team;
 #[cfg(test)]
 mod test_support;
 
@@ -35,3 +36,4 @@ pub use replan::{
 pub use run::{plan_mission, Unreachable};
 pub use session::{MissionSession, WorldUpdate};
 pub use smug_core::mission::{Mission, PlanOptions};
+pub use team::{plan_team, TeamMember, TeamMission};

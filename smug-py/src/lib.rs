@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 mod mcap;
 mod replan;
 mod sweep;
+mod team;
 use smug_app::p2p::{P2pRequest, P2pWorld};
 use smug_core::{
     Error, GridGeometry, GridLayer, LoadedConfig, Mission, Pipeline, Pose2,
@@ -85,7 +86,16 @@ fn app_to_py(err: AppError) -> PyErr {
         AppError::Registry(err) => to_py(err.into()),
         AppError::Map(err) => to_py(Error::stage("world", err)),
         AppError::State(err) => InputError::new_err(err.to_string()),
-        err @ (AppError::NoPlanner | AppError::NoWorld) => ConfigError::new_err(err.to_string()),
+        err @ (AppError::NoPlanner | AppError::NoWorld | AppError::NotATeam) => {
+            ConfigError::new_err(err.to_string())
+        }
+        AppError::Robot { robot, source } => {
+            let class = to_py(*source);
+            Python::attach(|py| {
+                let message = format!("robot `{robot}`: {}", class.value(py));
+                PyErr::from_type(class.get_type(py), message)
+            })
+        }
         err => InputError::new_err(one_line(&err)),
     }
 }

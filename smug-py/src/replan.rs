@@ -50,6 +50,9 @@ pub fn plan<'py>(
     save_roadmap: Option<PathBuf>,
 ) -> PyResult<PlanParts<'py>> {
     let loaded = load(&config, set, seed)?;
+    if smug_app::team::is_team(&loaded) && world.is_none() && traversability.is_none() {
+        return crate::team::plan_team(py, loaded);
+    }
     let given_world = world.map(|w| ((*w.world).clone(), Some((*w.mission).clone())));
     let raised = Arc::new(Mutex::new(None));
     let estimator = traversability.map(|function| {

@@ -628,3 +628,60 @@ def test_a_bad_onnx_model_is_an_error_naming_the_file_and_why(model, reason, tmp
         "--out", str(tmp_path),
     )
     assert cli.returncode == 2 and Path(model).name in cli.stderr and reason in cli.stderr
+
+
+FLAT_TEAM = """seed = 1
+[world]
+type = "flat"
+[world.params]
+size = [12.0, 8.0]
+obstacles = [{ min = [6.0, 0.0], max = [7.0, 3.0], height = 1.0 }]
+[world.params.mission]
+start = { x = 1.0, y = 1.0 }
+[[world.params.mission.targets]]
+id = "gauge-a"
+position = { x = 2.5, y = 6.5 }
+pois = [{ x = 2.5, y = 5.5, yaw = 1.5708 }]
+[[world.params.mission.targets]]
+id = "gauge-b"
+position = { x = 10.5, y = 6.0 }
+pois = [{ x = 10.5, y = 5.0, yaw = 1.5708 }]
+[traversability]
+type = "geometric"
+[sampler]
+type = "informed"
+[planner]
+type = "lazy-prm-star"
+[team]
+objective = "makespan"
+[[team.robots]]
+name = "one"
+include = "ANYMAL"
+start = { x = 1.0, y = 1.0 }
+validity = { type = "volumetric" }
+[[team.robots]]
+name = "two"
+include = "ANYMAL"
+start = { x = 1.5, y = 3.0 }
+validity = { type = "volumetric" }
+"""
+
+
+def test_a_team_plan_has_one_entry_per_robot(tmp_path: Path) -> None:
+    config = tmp_path / "team.toml"
+    anymal = REPO / "configs" / "robots" / "anymal.toml"
+    config.write_text(FLAT_TEAM.replace("ANYMAL", str(anymal)))
+    plan = smug.plan(config)
+    robots = plan.robots
+    assert [r["name"] for r in robots] == ["one", "two"]
+    served = sorted(t for r in robots for t in r["sequence"])
+    assert served == ["gauge-a", "gauge-b"]
+    data = plan.to_dict()
+    assert data["objective"] == "makespan"
+    assert math.isclose(data["makespan"], max(r["cost"] for r in robots))
+    assert math.isclose(plan.cost, data["makespan"])
+    for r in robots:
+        assert r["waypoints"].shape[1] == 4 and r["waypoints"].dtype == np.float64
+        assert r["time"] == pytest.approx(r["cost"])
+    assert "team of 2" in repr(plan)
+    assert smug.plan(LUNAR, set={"world.params.targets": 2}).robots == []

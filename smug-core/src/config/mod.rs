@@ -5,9 +5,13 @@
 
 mod schema;
 mod source;
+mod team;
+#[cfg(test)]
+mod team_tests;
 
 pub use schema::{OutputConfig, PipelineConfig, PluginSection, RobotConfig};
 pub use source::{KeyPath, KeySegment, SourceMap};
+pub use team::{team_key, TargetRestriction, TeamConfig, TeamMemberConfig, TeamUnit};
 
 use crate::error::ConfigError;
 use source::{column_of, line_of, SourceFile};
@@ -104,10 +108,58 @@ impl LoadedConfig {
         if let Some((field, message)) = config.limits.invalid_field() {
             return Err(sources.key_error(&KeyPath::dotted("limits").join(field), message));
         }
+        if let Some((key, message)) = config.team.as_ref().and_then(|t| t.invalid_field()) {
+            return Err(sources.key_error(&key, message));
+        }
         Ok(Self {
             config,
             table,
             sources: Arc::new(sources),
+        })
+    }
+}
+
+impl LoadedConfig {
+    /// The whole config of team robot `k`: the shared keys (without `[team]`), its
+    /// includes above them, its inline sections above those; typed and checked like a
+    /// config file (errors name the robot's key). `None` without a `[team]` or robot `k`.
+    pub fn member(&self, k: usize) -> Option<Result<LoadedConfig, ConfigError>> {
+        let member = self.config.team.as_ref()?.robots.get(k)?;
+        Some(self.member_config(k, member))
+    }
+
+    fn member_config(
+        &self,
+        k: usize,
+        member: &team::TeamMemberConfig,
+    ) -> Result<LoadedConfig, ConfigError> {
+        let mut table = self.table.clone();
+        table.remove("team");
+        let base_dir = self.sources.base_dir().to_path_buf();
+        let mut files: Vec<SourceFile> = Vec::new();
+        for include in &member.include {
+            let layer = read_layered(&base_dir.join(include), &mut Vec::new(), &mut files)?;
+            merge_tables(&mut table, layer);
+        }
+        merge_tables(&mut table, member.sections.clone());
+        files.reverse();
+        // The robot's own keys (in the main file, under team.robots[k]) come first.
+        let mut main = self.sources.files.iter().cloned();
+        let mut all: Vec<SourceFile> = main.next().into_iter().collect();
+        all.extend(files);
+        all.extend(main);
+        LoadedConfig::finish(table, all, base_dir, &[]).map_err(|err| match err {
+            ConfigError::Key { key, message, .. } => {
+                let key = format!("team.robots[{k}].{key}");
+                let mut path = KeyPath::dotted("team.robots");
+                path.0.push(KeySegment::Index(k));
+                ConfigError::Key {
+                    origin: self.sources.locate(&path),
+                    key,
+                    message: format!("robot `{}`: {message}", member.name),
+                }
+            }
+            other => other,
         })
     }
 }

@@ -41,6 +41,13 @@ pub struct RobotConfig {
     pub height: f64,
     /// Height of the box centre above the terrain, metres.
     pub base_height: f64,
+    /// Top speed on good flat ground, m/s: the `time` objective's `max_speed` when a
+    /// team compares its robots in time (`[team] unit = "time"`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_speed: Option<f64>,
+    /// Turning rate, rad/s: the `time` objective's `turn_rate` in a team's time unit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_rate: Option<f64>,
 }
 
 impl Default for RobotConfig {
@@ -51,6 +58,8 @@ impl Default for RobotConfig {
             width: 0.55,
             height: 0.3,
             base_height: 0.5,
+            max_speed: None,
+            turn_rate: None,
         }
     }
 }
@@ -65,6 +74,13 @@ impl RobotConfig {
         ];
         if let Some((name, v)) = fields.iter().find(|(_, v)| !(v.is_finite() && *v > 0.0)) {
             return Some((name, format!("must be a finite length > 0, got {v}")));
+        }
+        let rates = [("max_speed", self.max_speed), ("turn_rate", self.turn_rate)];
+        if let Some((name, Some(v))) = rates
+            .iter()
+            .find(|(_, v)| v.is_some_and(|v| !(v.is_finite() && v > 0.0)))
+        {
+            return Some((name, format!("must be a finite rate > 0, got {v}")));
         }
         (!self.base_height.is_finite()).then(|| {
             (
@@ -135,6 +151,9 @@ macro_rules! pipeline_config {
             /// Resource limits (`[limits] memory_gb`).
             #[serde(default)]
             pub limits: crate::limits::LimitsConfig,
+            /// A team of robots (`[team]`, team missions only).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub team: Option<super::team::TeamConfig>,
         }
 
         impl PipelineConfig {

@@ -241,8 +241,22 @@ class Plan:
 
     @property
     def sequence(self) -> List[str]:
-        """Target ids in visiting order."""
-        return self._data["sequence"]
+        """Target ids in visiting order (a team plan's are per robot: :attr:`robots`)."""
+        return self._data.get("sequence", [])
+
+    @property
+    def robots(self) -> List[Dict[str, Any]]:
+        """A team plan's robots (empty for one robot), as in ``plan.json``: ``{"name",
+        "sequence", "pois", "waypoints", "cost", "time", ...}``, with ``"waypoints"`` an
+        ``(n, 4)`` float64 array ``x, y, z, yaw``. The team's ``total`` and ``makespan``
+        are in :meth:`to_dict`."""
+        robots = []
+        for robot in self._data.get("robots", []):
+            robot = dict(robot)
+            points = robot["waypoints"]
+            robot["waypoints"] = np.array(points, dtype=np.float64).reshape(-1, 4)
+            robots.append(robot)
+        return robots
 
     @property
     def pois(self) -> List[Dict[str, Any]]:
@@ -293,6 +307,11 @@ class Plan:
         return (Plan, (self._json, self.waypoints, self.world, self._run))
 
     def __repr__(self) -> str:
+        if "robots" in self._data:
+            return (
+                f"Plan(team of {len(self._data['robots'])}, {self._data['objective']} "
+                f"{self.cost:.3f})"
+            )
         return (
             f"Plan(cost={self.cost:.3f}, {len(self.sequence)} targets, "
             f"{len(self.waypoints)} waypoints)"

@@ -7,8 +7,15 @@ use super::svg::{
 use smug_core::{Mission, Pose2};
 use std::fmt::Write as _;
 
-pub(super) fn draw_paths(svg: &mut String, paths: &[Vec<[f64; 2]>], view: &View) {
-    for path in paths.iter().filter(|p| p.len() >= 2) {
+/// Draws `paths`, path `k` in `colours[k]` (the default path colour where absent).
+pub(super) fn draw_paths(
+    svg: &mut String,
+    paths: &[Vec<[f64; 2]>],
+    colours: &[String],
+    view: &View,
+) {
+    for (k, path) in paths.iter().enumerate().filter(|(_, p)| p.len() >= 2) {
+        let colour = colours.get(k).map_or(PATH_COLOUR, String::as_str);
         let points: Vec<String> = path
             .iter()
             .filter(|p| p[0].is_finite() && p[1].is_finite())
@@ -19,7 +26,7 @@ pub(super) fn draw_paths(svg: &mut String, paths: &[Vec<[f64; 2]>], view: &View)
             .collect();
         let _ = writeln!(
             svg,
-            r#"<polyline class="path" points="{}" fill="none" stroke="{PATH_COLOUR}" stroke-width="2.5" stroke-linejoin="round" stroke-linecap="round"/>"#,
+            r#"<polyline class="path" points="{}" fill="none" stroke="{colour}" stroke-width="2.5" stroke-linejoin="round" stroke-linecap="round"/>"#,
             points.join(" ")
         );
     }

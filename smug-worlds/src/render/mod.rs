@@ -61,7 +61,7 @@ pub fn render_svg(world: &World, mission: Option<&Mission>, options: &RenderOpti
         );
     }
     draw_raster(&mut svg, world, &raster, &view);
-    draw_paths(&mut svg, &options.paths, &view);
+    draw_paths(&mut svg, &options.paths, &options.path_colours, &view);
     if let Some(mission) = mission {
         draw_pois(&mut svg, mission, &options.highlighted_pois, &view);
         draw_targets(&mut svg, mission, &view);

@@ -19,6 +19,9 @@ pub struct RenderOptions {
     pub title: Option<String>,
     /// Polylines of world points `[x, y]` drawn over the map (e.g. a plan's paths).
     pub paths: Vec<Vec<[f64; 2]>>,
+    /// SVG colour of each path (e.g. one per robot of a team); the default colour for
+    /// paths without one.
+    pub path_colours: Vec<String>,
     /// PoIs to emphasise, as `(target index, PoI index)` in the world's mission.
     pub highlighted_pois: Vec<(usize, usize)>,
     /// The layer shown as raster.
@@ -36,6 +39,7 @@ impl Default for RenderOptions {
         Self {
             title: None,
             paths: Vec::new(),
+            path_colours: Vec::new(),
             highlighted_pois: Vec::new(),
             layer: RasterLayer::Auto,
             map_size_px: 800.0,

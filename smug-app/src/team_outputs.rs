@@ -1,0 +1,112 @@
+//! The files of a team plan: plan.json (one entry per robot, the team's sum and
+//! makespan), plan.csv (a `robot` column) and plan.svg (one colour per robot), as the
+//! config's `[output]` asks (plan.mcap holds single-robot plans only).
+
+use crate::outputs::file_writer;
+use crate::Result;
+use smug_core::config::OutputConfig;
+use smug_core::{Mission, TeamPlan, World};
+use smug_worlds::render::{render_svg, RenderOptions};
+use std::path::Path;
+
+/// The colours of the robots' paths in plan.svg, in the team's order (then again).
+pub const ROBOT_COLOURS: [&str; 6] = [
+    "#1f77b4", "#d62728", "#9467bd", "#ff7f0e", "#17becf", "#e377c2",
+];
+
+/// Writes `plan` into `dir` (plan.json, plan.csv, plan.svg, as `output` asks), each
+/// file whole or not at all.
+pub fn write_team_outputs(
+    plan: &TeamPlan,
+    world: &World,
+    mission: &Mission,
+    output: &OutputConfig,
+    dir: &Path,
+) -> Result<Vec<&'static str>> {
+    let write = file_writer(dir)?;
+    let mut written = Vec::new();
+    if output.json {
+        write("plan.json", serde_json::to_string_pretty(plan)?)?;
+        written.push("plan.json");
+    }
+    if output.csv {
+        write("plan.csv", team_csv(plan))?;
+        written.push("plan.csv");
+    }
+    if output.svg {
+        let options = team_render_options(plan, world, mission);
+        write("plan.svg", render_svg(world, Some(mission), &options))?;
+        written.push("plan.svg");
+    }
+    Ok(written)
+}
+
+/// `plan.csv` of a team: `robot,x,y,z,yaw` per waypoint, robot after robot, and a
+/// `reversing` column (0/1) when some robot ever drives backwards.
+pub fn team_csv(plan: &TeamPlan) -> String {
+    let gears = plan.robots.iter().any(|r| !r.plan.reversing.is_empty());
+    let mut csv = String::from(if gears {
+        "robot,x,y,z,yaw,reversing\n"
+    } else {
+        "robot,x,y,z,yaw\n"
+    });
+    for robot in &plan.robots {
+        for (i, w) in robot.plan.waypoints.iter().enumerate() {
+            csv += &format!("{},{},{},{},{}", robot.name, w.x, w.y, w.z, w.yaw);
+            if gears {
+                let reversing = robot.plan.reversing.get(i).copied().unwrap_or(false);
+                csv += if reversing { ",1" } else { ",0" };
+            }
+            csv.push('\n');
+        }
+    }
+    csv
+}
+
+/// How plan.svg draws a team plan: one path per robot in its colour, the chosen PoIs,
+/// a title with the team's sum and makespan.
+pub fn team_render_options(plan: &TeamPlan, world: &World, mission: &Mission) -> RenderOptions {
+    let highlighted = plan
+        .robots
+        .iter()
+        .flat_map(|r| &r.plan.pois)
+        .filter_map(|c| {
+            let t = mission.targets.iter().position(|t| t.id == c.target)?;
+            Some((t, c.index))
+        })
+        .collect();
+    let names: Vec<String> = plan
+        .robots
+        .iter()
+        .enumerate()
+        .map(|(r, robot)| {
+            format!(
+                "{} ({}, {})",
+                robot.name,
+                ROBOT_COLOURS[r % ROBOT_COLOURS.len()],
+                robot.plan.sequence.len()
+            )
+        })
+        .collect();
+    RenderOptions {
+        title: Some(format!(
+            "{}: team {:?}, sum {:.2}, makespan {:.2} ({}); {}",
+            world.name,
+            plan.objective,
+            plan.total,
+            plan.makespan,
+            plan.unit,
+            names.join(", ")
+        )),
+        paths: plan
+            .robots
+            .iter()
+            .map(|r| r.plan.waypoints.iter().map(|w| [w.x, w.y]).collect())
+            .collect(),
+        path_colours: (0..plan.robots.len())
+            .map(|r| ROBOT_COLOURS[r % ROBOT_COLOURS.len()].to_string())
+            .collect(),
+        highlighted_pois: highlighted,
+        ..RenderOptions::default()
+    }
+}

@@ -1,0 +1,95 @@
+//! `smug plan` on a team config: one plan per robot, a per-robot summary.
+
+use crate::Outcome;
+use smug_app::team::{plan_team_config, TeamPlanned};
+use smug_app::team_outputs::write_team_outputs;
+use smug_core::{LoadedConfig, TeamPlan};
+use std::path::{Path, PathBuf};
+
+/// Plans the team of `loaded`, writes its files into `out`, prints plan.json (`json`)
+/// or a summary.
+pub fn run(
+    loaded: &LoadedConfig,
+    out: &Path,
+    json: bool,
+    save_roadmap: Option<&PathBuf>,
+) -> anyhow::Result<Outcome> {
+    if save_roadmap.is_some() {
+        anyhow::bail!("--save-roadmap: a team has one roadmap per robot; not supported yet");
+    }
+    let TeamPlanned { plans, team } = match plan_team_config(loaded)? {
+        smug_app::Outcome::Solved(planned) => planned,
+        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
+    };
+    let plan = &plans[0];
+    let written = write_team_outputs(
+        plan,
+        &team.world,
+        &team.mission.mission,
+        &loaded.config.output,
+        out,
+    )?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(plan)?);
+    } else {
+        print_team_summary(plan);
+        println!("wrote {}/{}", out.display(), written.join(", "));
+    }
+    Ok(Outcome::Ok)
+}
+
+/// The team's sum and makespan, then one line per robot.
+fn print_team_summary(plan: &TeamPlan) {
+    let s = &plan.stats;
+    println!(
+        "team of {} robots, objective {:?} ({}): sum {:.3}, makespan {:.3}; {} paths planned, \
+         {} rounds, {:.3} s",
+        plan.robots.len(),
+        plan.objective,
+        plan.unit,
+        plan.total,
+        plan.makespan,
+        s.paths_planned,
+        s.counters.get("team_rounds").copied().unwrap_or(0),
+        s.stage_times_s.get("total").copied().unwrap_or(0.0),
+    );
+    let width = plan.robots.iter().map(|r| r.name.len()).max().unwrap_or(0);
+    for robot in &plan.robots {
+        let p = &robot.plan;
+        println!(
+            "  {:width$}  {:2} targets, cost {:8.3}, time {:8.3} s, {:.1} m, {} waypoints: {}",
+            robot.name,
+            p.sequence.len(),
+            p.cost,
+            robot.time,
+            p.metrics.length_m,
+            p.waypoints.len(),
+            if p.sequence.is_empty() {
+                "(stays)".to_string()
+            } else {
+                p.sequence.join(" → ")
+            }
+        );
+    }
+}
+
+/// `smug check` on a team config: the team assembled, each robot's pipeline resolved.
+pub fn check(config: &Path, loaded: &LoadedConfig) -> anyhow::Result<Outcome> {
+    let team = smug_app::team::assemble_team(loaded)?;
+    println!("# {}: configuration is valid", config.display());
+    let m = &team.mission.mission;
+    println!(
+        "# team of {} robots, objective {:?} ({}); world `{}`: {} targets, {} poses of interest",
+        team.members.len(),
+        team.objective,
+        team.mission.unit,
+        team.world.name,
+        m.targets.len(),
+        m.poi_count()
+    );
+    for member in &team.members {
+        println!("\n# robot `{}`", member.name);
+        print!("{}", member.pipeline.resolved_toml());
+    }
+    Ok(Outcome::Ok)
+}

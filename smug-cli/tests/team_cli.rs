@@ -1,0 +1,270 @@
+//! Team missions through the CLI (issue 32): `smug plan` on a team config in both
+//! objectives (every target served once, PoIs valid for their robot, the rover's
+//! curvature), and bad team configs (exit 2 naming the key; exit 1 for a target no
+//! robot can serve).
+
+mod common;
+
+use common::*;
+use serde_json::Value;
+use std::collections::BTreeSet;
+
+/// A smaller lunar mission, so the team plans in seconds.
+const SMALL: [&str; 4] = [
+    "--set",
+    "world.params.targets=5",
+    "--set",
+    "world.params.pois_per_target=4",
+];
+
+/// A flat world with a corridor 1.1 m wide: `slot`'s only PoI lies in it, where
+/// ANYmal fits and the `big` robot does not; `gauge-b` is the rover's (a car on the
+/// lattice, turning radius 1.5 m).
+const FLAT_TEAM: &str = r#"seed = 1
+[world]
+type = "flat"
+[world.params]
+size = [12.0, 8.0]
+obstacles = [
+    { min = [6.0, 0.0], max = [7.0, 2.2], height = 1.0 },
+    { min = [8.1, 0.0], max = [9.0, 2.2], height = 1.0 },
+]
+[world.params.mission]
+start = { x = 1.0, y = 1.0 }
+[[world.params.mission.targets]]
+id = "gauge-a"
+position = { x = 2.5, y = 6.5 }
+pois = [{ x = 2.5, y = 5.5, yaw = 1.5708 }, { x = 1.5, y = 6.5, yaw = 0.0 }]
+[[world.params.mission.targets]]
+id = "gauge-b"
+position = { x = 10.5, y = 6.0 }
+pois = [{ x = 10.5, y = 5.0, yaw = 1.5708 }]
+[[world.params.mission.targets]]
+id = "slot"
+position = { x = 7.55, y = 0.3 }
+pois = [{ x = 7.55, y = 1.2, yaw = -1.5708 }]
+[traversability]
+type = "geometric"
+[sampler]
+type = "informed"
+[planner]
+type = "lazy-prm-star"
+[team]
+objective = "makespan"
+[[team.robots]]
+name = "small"
+include = "robots/anymal.toml"
+start = { x = 1.0, y = 1.0 }
+validity = { type = "volumetric" }
+[[team.robots]]
+name = "big"
+include = "robots/anymal.toml"
+start = { x = 1.5, y = 3.0 }
+validity = { type = "volumetric" }
+robot = { length = 1.5, width = 1.2, max_speed = 2.0 }
+[[team.robots]]
+name = "rover"
+include = "robots/rover.toml"
+start = { x = 2.0, y = 4.5, yaw = 0.0 }
+validity = { type = "volumetric" }
+[[team.targets]]
+id = "gauge-b"
+robots = ["rover"]
+"#;
+
+/// Writes `text` as a config beside a copy of the robot profiles (so includes resolve).
+fn config(name: &str, text: &str) -> String {
+    let dir = workspace().join("target/cli-test-team");
+    std::fs::create_dir_all(dir.join("robots")).unwrap();
+    for profile in ["anymal.toml", "rover.toml", "wheeled.toml"] {
+        let from = workspace().join("configs/robots").join(profile);
+        std::fs::copy(from, dir.join("robots").join(profile)).unwrap();
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// Plans `config` with `set`; the plan.json written and what stdout said.
+fn plan(config: &str, name: &str, set: &[&str]) -> (Value, String) {
+    let out = scratch_dir("cli-test-team", name);
+    let mut args = vec!["plan", config, "--out", out.to_str().unwrap()];
+    args.extend(set);
+    let run = smug(&args);
+    assert_eq!(run.status.code(), Some(0), "{name}: {}", stderr(&run));
+    for file in ["plan.json", "plan.csv", "plan.svg"] {
+        assert!(out.join(file).exists(), "{name}: no {file}");
+    }
+    let csv = std::fs::read_to_string(out.join("plan.csv")).unwrap();
+    assert!(csv.starts_with("robot,x,y,z,yaw"), "{csv}");
+    let text = std::fs::read_to_string(out.join("plan.json")).unwrap();
+    (serde_json::from_str(&text).unwrap(), stdout(&run))
+}
+
+/// The robot entry called `name`.
+fn robot<'a>(plan: &'a Value, name: &str) -> &'a Value {
+    plan["robots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["name"] == name)
+        .unwrap_or_else(|| panic!("no robot `{name}` in {plan}"))
+}
+
+/// Checks every target of `ids` is served exactly once, and the team's sum and
+/// makespan are its robots' costs'.
+fn check_served_once(plan: &Value, ids: &[String]) {
+    let mut served = Vec::new();
+    let mut costs = Vec::new();
+    for robot in plan["robots"].as_array().unwrap() {
+        let sequence: Vec<String> = robot["sequence"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(robot["pois"].as_array().unwrap().len(), sequence.len());
+        served.extend(sequence);
+        costs.push(robot["cost"].as_f64().unwrap());
+    }
+    served.sort();
+    assert_eq!(served, ids, "every target exactly once");
+    let total: f64 = costs.iter().sum();
+    let makespan = costs.iter().copied().fold(0.0, f64::max);
+    assert!((plan["total"].as_f64().unwrap() - total).abs() < 1e-6);
+    assert!((plan["makespan"].as_f64().unwrap() - makespan).abs() < 1e-6);
+}
+
+/// `|Δyaw| ≤ spacing / r` between consecutive waypoints (sampled every 0.1 m along
+/// the model's own curves, as `smug plan` documents), and no two farther apart.
+fn check_curvature(robot: &Value, radius: f64) -> usize {
+    let points: Vec<Vec<f64>> = robot["waypoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| {
+            w.as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    for (k, w) in points.windows(2).enumerate() {
+        let d = (w[1][3] - w[0][3]).rem_euclid(std::f64::consts::TAU);
+        let dyaw = d.min(std::f64::consts::TAU - d);
+        assert!(
+            dyaw <= 0.1 / radius * (1.0 + 1e-6) + 1e-9,
+            "step {k} turns {dyaw}"
+        );
+        let chord = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+        assert!(chord <= 0.1 * (1.0 + 1e-6), "step {k}: {chord} m");
+    }
+    points.len()
+}
+
+#[test]
+fn the_lunar_team_plans_for_the_sum_and_for_the_makespan() {
+    let ids: Vec<String> = (1..=5).map(|k| format!("stone-{k:02}")).collect();
+    let mut plans = Vec::new();
+    for objective in ["sum", "makespan"] {
+        let set = format!("team.objective={objective}");
+        let mut args = SMALL.to_vec();
+        args.extend(["--set", set.as_str()]);
+        let (plan, printed) = plan("configs/lunar-team.toml", objective, &args);
+        assert_eq!(plan["objective"], objective);
+        assert_eq!(plan["unit"], "time");
+        check_served_once(&plan, &ids);
+        for name in ["anymal", "rover", "wheeled"] {
+            assert!(printed.contains(name), "{printed}");
+            let r = robot(&plan, name);
+            assert!(r["time"].as_f64().unwrap() >= 0.0);
+            assert_eq!(r["metrics"]["objective"], "time");
+        }
+        check_curvature(robot(&plan, "rover"), 1.5);
+        assert!(robot(&plan, "anymal")["reversing"].is_null());
+        assert!(robot(&plan, "wheeled")["reversing"].is_null());
+        plans.push(plan);
+    }
+    let makespan_plan_serves: usize = plans[1]["robots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|r| !r["sequence"].as_array().unwrap().is_empty())
+        .count();
+    assert!(makespan_plan_serves >= 2, "the makespan splits the targets");
+}
+
+#[test]
+fn a_poi_invalid_for_a_robot_is_never_its_own() {
+    let path = config("flat-team.toml", FLAT_TEAM);
+    let ids: Vec<String> = ["gauge-a", "gauge-b", "slot"].map(String::from).to_vec();
+    for objective in ["sum", "makespan"] {
+        let set = format!("team.objective={objective}");
+        let (plan, _) = plan(&path, &format!("flat-{objective}"), &["--set", &set]);
+        check_served_once(&plan, &ids);
+        let small = robot(&plan, "small")["sequence"].to_string();
+        assert!(small.contains("slot"), "only `small` fits the slot: {plan}");
+        let rover = robot(&plan, "rover");
+        assert_eq!(rover["sequence"], serde_json::json!(["gauge-b"]));
+        assert!(
+            check_curvature(rover, 1.5) > 50,
+            "the rover drives its curves"
+        );
+    }
+    let svg =
+        std::fs::read_to_string(workspace().join("target/cli-test-team/flat-makespan/plan.svg"))
+            .unwrap();
+    let colours: BTreeSet<&str> = ["#1f77b4", "#d62728", "#9467bd"]
+        .into_iter()
+        .filter(|c| svg.contains(&format!("stroke=\"{c}\"")))
+        .collect();
+    assert!(colours.len() >= 2, "the robots' colours: {colours:?}");
+}
+
+#[test]
+fn bad_teams_are_named() {
+    let bad = |name: &str, text: String, needles: &[&str]| {
+        let path = config(name, &text);
+        let out = scratch_dir("cli-test-team-out", name);
+        let run = smug(&["plan", &path, "--out", out.to_str().unwrap()]);
+        assert_bad_input(&run, needles);
+    };
+    let team_start = FLAT_TEAM.find("[team]").unwrap();
+    bad(
+        "no-robots.toml",
+        format!("{}[team]\nobjective = \"sum\"\n", &FLAT_TEAM[..team_start]),
+        &["team.robots", "at least one robot"],
+    );
+    bad(
+        "twice.toml",
+        FLAT_TEAM.replace("name = \"big\"", "name = \"small\""),
+        &["team.robots[1].name", "`small` is used twice"],
+    );
+    let restricted = |robots: &str, id: &str| {
+        format!("{FLAT_TEAM}[[team.targets]]\nid = \"{id}\"\nrobots = [{robots}]\n")
+    };
+    bad(
+        "unknown-robot.toml",
+        restricted("\"small\", \"drone\"", "slot"),
+        &["team.targets[1].robots", "`drone`"],
+    );
+    bad(
+        "unknown-target.toml",
+        restricted("\"small\"", "valve"),
+        &["team.targets[1].id", "no target `valve`"],
+    );
+    // A target only `big` may serve, whose PoI `big` cannot stand at: no solution.
+    let path = config("unservable.toml", &restricted("\"big\"", "slot"));
+    let out = scratch_dir("cli-test-team-out", "unservable");
+    let run = smug(&["plan", &path, "--out", out.to_str().unwrap()]);
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    for needle in [
+        "`slot`",
+        "robot `big`: none of its 1 PoIs is valid",
+        "robot `small`: not allowed",
+    ] {
+        assert!(err.contains(needle), "`{needle}` missing from: {err}");
+    }
+}
