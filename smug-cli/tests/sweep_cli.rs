@@ -128,12 +128,13 @@ fn a_failed_run_is_a_row_with_its_error_not_a_failed_sweep() {
     let dir = scratch_dir("sweep-cli-tests", "failed-run");
     let configs = two_configs(&dir);
     let out = dir.join("runs.jsonl");
-    // A planner parameter the planner does not know: the config loads, the run fails.
+    // A threshold above its pair: the config and its parameters read, the run fails
+    // when the checker is built.
     let result = smug(&[
         "sweep",
-        &configs[1].display().to_string(),
+        &configs[0].display().to_string(),
         "--grid",
-        "planner.params.not_a_param=1",
+        "validity.params.t_low=0.9",
         "--out",
         &out.display().to_string(),
     ]);
@@ -142,7 +143,7 @@ fn a_failed_run_is_a_row_with_its_error_not_a_failed_sweep() {
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].status, RunStatus::Error);
     let error = rows[0].error.as_deref().unwrap();
-    assert!(error.contains("not_a_param"), "{error}");
+    assert!(error.contains("t_low"), "{error}");
     assert!(rows[0].cost.is_none());
 }
 
@@ -173,6 +174,18 @@ fn bad_input_is_exit_2_naming_it() {
         (
             vec![&config, "--grid", "robot.lenght=1,2"],
             vec!["lunar-small.toml", "robot.lenght", "unknown field"],
+        ),
+        (
+            vec![&config, "--grid", "planner.params.not_a_param=1,2"],
+            vec![
+                "lunar-small.toml",
+                "planner.params.not_a_param",
+                "unknown field",
+            ],
+        ),
+        (
+            vec![&config, "--grid", "planner.type=no-such-planner"],
+            vec!["lunar-small.toml", "planner.type", "no-such-planner"],
         ),
         (
             vec![&config, "--grid", "seed=1,2"],

@@ -41,6 +41,9 @@ pub struct Plugin<S: Stage> {
     pub default_params: fn() -> toml::Table,
     /// Builds the stage object from its config section.
     pub build: fn(&PluginSection, &BuildContext) -> Result<Built<S>>,
+    /// Checks the section's parameters as `build` reads them (unknown keys, wrong
+    /// types), without building anything.
+    pub check_params: fn(&PluginSection, &BuildContext) -> Result<()>,
 }
 
 /// One stage's plugins by name.
@@ -130,6 +133,22 @@ macro_rules! define_stages {
         /// Every stage's config key, in pipeline order.
         pub const STAGE_KEYS: &[&str] = &[$(stringify!($key)),*];
 
+        /// Checks that every stage section of `config` names a registered plugin whose
+        /// parameters read (unknown keys, wrong types: errors name the key), without
+        /// building anything.
+        pub fn check_sections(
+            config: &crate::config::PipelineConfig,
+            ctx: &BuildContext,
+        ) -> Result<()> {
+            for section in config.sections() {
+                match section.key.as_str() {
+                    $(stringify!($key) => ctx.check_params::<$marker>(section)?,)*
+                    _ => {}
+                }
+            }
+            Ok(())
+        }
+
         /// Every stage with its registered plugins, in pipeline order.
         pub fn catalogue() -> std::result::Result<Vec<StageInfo>, RegistryError> {
             Ok(vec![$(stage_info::<$marker>()?),*])
@@ -191,13 +210,24 @@ impl BuildContext {
     /// Builds `section` with the plugin it names; an unknown name is an error that
     /// lists the known ones and points at the `type` line.
     pub fn build<S: Stage>(&self, section: &PluginSection) -> Result<Built<S>> {
-        let plugin = S::registry()?.get(&section.kind).map_err(|err| {
-            let key = KeyPath::dotted(&section.key).join("type");
-            self.sources.key_error(&key, err.to_string())
-        })?;
+        let plugin = self.plugin::<S>(section)?;
         let mut ctx = self.clone();
         ctx.building = section.key.clone();
         (plugin.build)(section, &ctx)
+    }
+
+    /// Checks `section`'s plugin name and parameters without building it.
+    pub fn check_params<S: Stage>(&self, section: &PluginSection) -> Result<()> {
+        (self.plugin::<S>(section)?.check_params)(section, self)
+    }
+
+    /// The plugin `section` names; an unknown name is an error that lists the known
+    /// ones and points at the `type` line.
+    fn plugin<S: Stage>(&self, section: &PluginSection) -> Result<&'static Plugin<S>> {
+        S::registry()?.get(&section.kind).map_err(|err| {
+            let key = KeyPath::dotted(&section.key).join("type");
+            self.sources.key_error(&key, err.to_string()).into()
+        })
     }
 }
 
@@ -220,6 +250,13 @@ macro_rules! register_plugin {
         const _: () = {
             fn __smug_default_params() -> $crate::toml::Table {
                 $crate::registry::params_table(&<$params as ::core::default::Default>::default())
+            }
+
+            fn __smug_check_params(
+                section: &$crate::config::PluginSection,
+                ctx: &$crate::context::BuildContext,
+            ) -> $crate::Result<()> {
+                ctx.params::<$params>(section).map(|_| ())
             }
 
             fn __smug_build(
@@ -246,6 +283,7 @@ macro_rules! register_plugin {
                     summary: $summary,
                     default_params: __smug_default_params,
                     build: __smug_build,
+                    check_params: __smug_check_params,
                 }
             }
         };
@@ -260,6 +298,10 @@ mod tests {
         toml::Table::new()
     }
 
+    fn no_check(_: &PluginSection, _: &BuildContext) -> Result<()> {
+        Ok(())
+    }
+
     fn never_built(_: &PluginSection, _: &BuildContext) -> Result<Built<SequencerStage>> {
         Err(crate::Error::InvalidInput("test plugin".into()))
     }
@@ -269,18 +311,21 @@ mod tests {
         summary: "first",
         default_params: no_params,
         build: never_built,
+        check_params: no_check,
     };
     static SECOND: Plugin<SequencerStage> = Plugin {
         name: "twin",
         summary: "second",
         default_params: no_params,
         build: never_built,
+        check_params: no_check,
     };
     static OTHER: Plugin<SequencerStage> = Plugin {
         name: "other",
         summary: "other",
         default_params: no_params,
         build: never_built,
+        check_params: no_check,
     };
 
     #[test]

@@ -48,6 +48,17 @@ pub enum SweepError {
         /// The config's error (it names the key and the override).
         source: Box<ConfigError>,
     },
+    /// A stage section of a config with one of the grid's combinations names an
+    /// unknown plugin or a parameter its plugin does not read.
+    #[error("{} with {}: {source}", config.display(), overrides_text(overrides))]
+    Params {
+        /// The config file.
+        config: PathBuf,
+        /// The combination of the grid's overrides.
+        overrides: Vec<String>,
+        /// The stage's error (it names the key).
+        source: Box<smug_core::Error>,
+    },
     /// The sweep names no config or no seed.
     #[error("a sweep needs at least one {0}")]
     Empty(&'static str),
@@ -319,10 +330,17 @@ impl Sweep {
                     overrides,
                     seed: self.seeds[0],
                 };
-                first.load().map_err(|source| SweepError::Config {
+                let loaded = first.load().map_err(|source| SweepError::Config {
                     config: config.clone(),
                     overrides: first.overrides.clone(),
                     source: Box::new(source),
+                })?;
+                smug_core::Pipeline::check_params(&loaded).map_err(|source| {
+                    SweepError::Params {
+                        config: config.clone(),
+                        overrides: first.overrides.clone(),
+                        source: Box::new(source),
+                    }
                 })?;
                 runs.extend(self.seeds.iter().map(|&seed| RunSpec {
                     run_id: run_id(&content, &first.overrides, seed),

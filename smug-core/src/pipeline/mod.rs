@@ -149,6 +149,14 @@ impl Pipeline {
         *self.build_times_s.entry(key.to_string()).or_default() += started.elapsed().as_secs_f64();
     }
 
+    /// Checks `loaded`'s stage sections without building anything: every plugin
+    /// name registered, every parameter one its plugin reads (errors name the key and
+    /// where it was written).
+    pub fn check_params(loaded: &LoadedConfig) -> Result<()> {
+        let pipeline = Pipeline::empty(loaded);
+        crate::registry::check_sections(&pipeline.config, &pipeline.context())
+    }
+
     /// A context holding this pipeline's stages (to build more, e.g. a fresh planner):
     /// composed from them on demand, so it always sees the current ones.
     pub fn context(&self) -> BuildContext {
