@@ -72,9 +72,13 @@ id = "gauge-b"
 robots = ["rover"]
 "#;
 
-/// Writes `text` as a config beside a copy of the robot profiles (so includes resolve).
+/// Writes `text` as a config beside a copy of the robot profiles (so includes resolve),
+/// in a directory of its own: tests run side by side, and a profile copied again while
+/// another test's plan reads it is read half written.
 fn config(name: &str, text: &str) -> String {
-    let dir = workspace().join("target/cli-test-team");
+    let dir = workspace()
+        .join("target/cli-test-team")
+        .join(name.trim_end_matches(".toml"));
     std::fs::create_dir_all(dir.join("robots")).unwrap();
     for profile in ["anymal.toml", "rover.toml", "wheeled.toml"] {
         let from = workspace().join("configs/robots").join(profile);
