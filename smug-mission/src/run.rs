@@ -234,15 +234,9 @@ fn plan_unbounded(
         stage: "plan".into(),
         needed: "world",
     })?;
-    let planner = pipeline.planner.take().ok_or(Error::MissingStage {
-        stage: "plan".into(),
-        needed: "planner",
-    })?;
+    let oracle = PathOracle::of_pipeline(pipeline, "plan")?;
     let known = answers.as_deref_mut().map(std::mem::take);
-    let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
-        .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
-        .with_known(known.unwrap_or_default())
-        .with_run(pipeline.run().clone());
+    let mut oracle = oracle.with_known(known.unwrap_or_default());
     let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
     if let Some(answers) = answers {
         *answers = oracle.take_known_answers();

@@ -7,6 +7,7 @@ use smug_core::deadline::Deadline;
 use smug_core::error::{Error, Result};
 use smug_core::objective::Objective;
 use smug_core::path::Path;
+use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
 use smug_core::run_context::RunContext;
 use smug_core::stages::{NoPathReason, PathCosts, PlannerOutcome, PointToPointPlanner};
@@ -48,6 +49,19 @@ impl PathOracle {
             known: KnownAnswers::default(),
             run: RunContext::default(),
         }
+    }
+
+    /// An oracle over the planner taken out of `pipeline` (an error naming `stage` if it
+    /// has none), with its objective, the symmetry of its space and objective, and its
+    /// run context. Give the planner back with [`into_planner`](Self::into_planner).
+    pub fn of_pipeline(pipeline: &mut Pipeline, stage: &str) -> Result<Self> {
+        let planner = pipeline.planner.take().ok_or(Error::MissingStage {
+            stage: stage.into(),
+            needed: "planner",
+        })?;
+        Ok(Self::new(pipeline.objective.clone(), planner)
+            .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
+            .with_run(pipeline.run().clone()))
     }
 
     /// Runs within `run`: plans nothing more once its deadline's hard stop has passed,

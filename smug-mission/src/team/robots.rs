@@ -80,13 +80,7 @@ impl RobotOracle {
         mission: &Mission,
         nodes: &Nodes,
     ) -> Result<Self> {
-        let planner = pipeline.planner.take().ok_or(Error::MissingStage {
-            stage: "team plan".into(),
-            needed: "planner",
-        })?;
-        let mut oracle = PathOracle::new(pipeline.objective.clone(), planner)
-            .with_symmetry(pipeline.space.is_symmetric() && pipeline.objective.is_symmetric())
-            .with_run(pipeline.run().clone());
+        let mut oracle = PathOracle::of_pipeline(pipeline, "team plan")?;
         let valid = |pose: &Pose2| {
             pipeline
                 .state_validity
