@@ -111,14 +111,21 @@ pub fn plan_csv(plan: &Plan) -> String {
     } else {
         "x,y,z,yaw\n"
     });
+    push_waypoint_rows(&mut csv, "", plan, gears);
+    csv
+}
+
+/// Appends one line per waypoint of `plan` to `csv`: `prefix` then `x,y,z,yaw`, and
+/// `,1` / `,0` for reversing when `gears` (a waypoint without a gear goes forwards).
+pub(crate) fn push_waypoint_rows(csv: &mut String, prefix: &str, plan: &Plan, gears: bool) {
     for (i, w) in plan.waypoints.iter().enumerate() {
-        csv += &format!("{},{},{},{}", w.x, w.y, w.z, w.yaw);
+        *csv += &format!("{prefix}{},{},{},{}", w.x, w.y, w.z, w.yaw);
         if gears {
-            csv += if plan.reversing[i] { ",1" } else { ",0" };
+            let reversing = plan.reversing.get(i).copied().unwrap_or(false);
+            *csv += if reversing { ",1" } else { ",0" };
         }
         csv.push('\n');
     }
-    csv
 }
 
 /// How plan.svg draws `plan` on `world` with the mission as given: the path, the

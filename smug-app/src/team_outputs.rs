@@ -2,7 +2,7 @@
 //! makespan), plan.csv (a `robot` column) and plan.svg (one colour per robot), as the
 //! config's `[output]` asks (plan.mcap holds single-robot plans only).
 
-use crate::outputs::file_writer;
+use crate::outputs::{file_writer, push_waypoint_rows};
 use crate::Result;
 use smug_core::config::OutputConfig;
 use smug_core::{Mission, TeamPlan, World};
@@ -51,14 +51,7 @@ pub fn team_csv(plan: &TeamPlan) -> String {
         "robot,x,y,z,yaw\n"
     });
     for robot in &plan.robots {
-        for (i, w) in robot.plan.waypoints.iter().enumerate() {
-            csv += &format!("{},{},{},{},{}", robot.name, w.x, w.y, w.z, w.yaw);
-            if gears {
-                let reversing = robot.plan.reversing.get(i).copied().unwrap_or(false);
-                csv += if reversing { ",1" } else { ",0" };
-            }
-            csv.push('\n');
-        }
+        push_waypoint_rows(&mut csv, &format!("{},", robot.name), &robot.plan, gears);
     }
     csv
 }
