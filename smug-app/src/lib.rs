@@ -39,6 +39,8 @@ pub mod ros;
 pub mod sweep;
 pub mod team;
 pub mod team_outputs;
+pub mod team_replan;
+pub mod team_session;
 pub mod version;
 
 pub use error::{AppError, Result};

@@ -9,7 +9,7 @@ use smug_core::registry::{
     ObjectiveStage, Stage, TeamSequencerStage, TraversabilityStage, WorldStage,
 };
 use smug_core::{LoadedConfig, Mission, Objective, Pipeline, RobotConfig, TeamObjective, TeamPlan};
-use smug_core::{TeamSequencer, World};
+use smug_core::{Pose2, TeamSequencer, World};
 use smug_mission::{plan_team, TeamMember, TeamMission};
 use std::sync::Arc;
 
@@ -45,7 +45,7 @@ pub fn is_team(loaded: &LoadedConfig) -> bool {
 }
 
 /// The `[team]` section, or an error saying the config has none.
-fn team_config(loaded: &LoadedConfig) -> Result<&TeamConfig> {
+pub(crate) fn team_config(loaded: &LoadedConfig) -> Result<&TeamConfig> {
     loaded.config.team.as_ref().ok_or(AppError::NotATeam)
 }
 
@@ -54,17 +54,68 @@ pub fn assemble_team(loaded: &LoadedConfig) -> Result<Team> {
     let team = team_config(loaded)?;
     let (world, mission) = shared_world(loaded)?;
     let allowed = restrictions(loaded, team, &mission)?;
-    let mut members = Vec::with_capacity(team.robots.len());
-    for (k, robot) in team.robots.iter().enumerate() {
-        let member =
-            assemble_member(loaded, k, team.unit, &world).map_err(|source| AppError::Robot {
-                robot: robot.name.clone(),
+    assemble_on_all(loaded, world, mission, &allowed)
+}
+
+/// Every robot of the config from its configured start, on `world` for `mission`
+/// (`allowed` as [`assemble_on`] takes it).
+pub(crate) fn assemble_on_all(
+    loaded: &LoadedConfig,
+    world: Arc<World>,
+    mission: Mission,
+    allowed: &[Option<Vec<usize>>],
+) -> Result<Team> {
+    let everyone = everyone(team_config(loaded)?);
+    assemble_on(loaded, world, mission, allowed, &everyone)
+}
+
+/// Every robot of `team`, from its configured start to its configured end.
+pub(crate) fn everyone(team: &TeamConfig) -> Vec<Deployment> {
+    team.robots
+        .iter()
+        .enumerate()
+        .map(|(robot, r)| Deployment {
+            robot,
+            start: r.start,
+            end: r.end,
+        })
+        .collect()
+}
+
+/// One robot of the config sent on a mission: its index in `[[team.robots]]`, where it
+/// starts and ends (`None`: back at its start).
+pub(crate) struct Deployment {
+    /// Index in the config's robots.
+    pub(crate) robot: usize,
+    /// Start pose.
+    pub(crate) start: Pose2,
+    /// End pose.
+    pub(crate) end: Option<Pose2>,
+}
+
+/// The `deployed` robots' pipelines on `world` for `mission`; `allowed` holds per
+/// target the config's robot indices that may serve it (renumbered for the team).
+pub(crate) fn assemble_on(
+    loaded: &LoadedConfig,
+    world: Arc<World>,
+    mission: Mission,
+    allowed: &[Option<Vec<usize>>],
+    deployed: &[Deployment],
+) -> Result<Team> {
+    let team = team_config(loaded)?;
+    let mut members = Vec::with_capacity(deployed.len());
+    for d in deployed {
+        let name = &team.robots[d.robot].name;
+        let member = assemble_member(loaded, d.robot, team.unit, &world).map_err(|source| {
+            AppError::Robot {
+                robot: name.clone(),
                 source: Box::new(source),
-            })?;
+            }
+        })?;
         members.push(TeamMember {
-            name: robot.name.clone(),
-            start: robot.start,
-            end: robot.end,
+            name: name.clone(),
+            start: d.start,
+            end: d.end,
             time: match team.unit {
                 TeamUnit::Time => None,
                 TeamUnit::Objective => Some(time_objective(&member)?),
@@ -77,10 +128,11 @@ pub fn assemble_team(loaded: &LoadedConfig) -> Result<Team> {
         TeamUnit::Time => "time".to_string(),
         TeamUnit::Objective => "objective".to_string(),
     };
+    let robots: Vec<usize> = deployed.iter().map(|d| d.robot).collect();
     Ok(Team {
         mission: TeamMission {
             mission,
-            allowed,
+            allowed: renumbered(allowed, &robots),
             unit,
             keep_headings: loaded.config.plan.keep_headings,
         },
@@ -89,6 +141,20 @@ pub fn assemble_team(loaded: &LoadedConfig) -> Result<Team> {
         world,
         objective: team.objective,
     })
+}
+
+/// `allowed` (per target, the config's robot indices that may serve it) in the
+/// numbering of a team made of the config's robots `robots`, in that order.
+pub(crate) fn renumbered(
+    allowed: &[Option<Vec<usize>>],
+    robots: &[usize],
+) -> Vec<Option<Vec<usize>>> {
+    let renumber = |able: &Vec<usize>| -> Vec<usize> {
+        able.iter()
+            .filter_map(|r| robots.iter().position(|d| d == r))
+            .collect()
+    };
+    allowed.iter().map(|a| a.as_ref().map(renumber)).collect()
 }
 
 /// Plans an assembled team for `objectives` (see [`plan_team`]); unreachable or
@@ -131,7 +197,7 @@ fn shared_world(loaded: &LoadedConfig) -> Result<(Arc<World>, Mission)> {
 
 /// Per target of `mission`, the robots allowed to serve it; a restriction naming a
 /// target the mission does not have is an error naming its key.
-fn restrictions(
+pub(crate) fn restrictions(
     loaded: &LoadedConfig,
     team: &TeamConfig,
     mission: &Mission,

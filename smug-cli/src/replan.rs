@@ -15,7 +15,8 @@ use std::path::PathBuf;
 pub struct ReplanArgs {
     /// The pipeline config (TOML) the mission was planned with.
     config: PathBuf,
-    /// The mission state (TOML): `pose`, `visited`, `failed_pois`, `[[obstacles]]`.
+    /// The mission state (TOML): `pose`, `visited`, `failed_pois`, `[[obstacles]]`; for a
+    /// team config, `[[robots]]` with each robot's `name` and `pose` (or `lost = true`).
     #[arg(long, value_name = "STATE.toml")]
     state: PathBuf,
     /// Override a config key (see `smug check --help`).
@@ -40,13 +41,17 @@ pub struct ReplanArgs {
 /// Runs `smug replan`.
 pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
     let loaded = smug_app::load_config(&args.config, &args.set, args.seed)?;
-    let state = MissionState::from_file(&args.state)?;
     let out = args
         .out
         .clone()
         .or_else(|| loaded.config.output.dir.clone())
         .unwrap_or_else(|| PathBuf::from("out"));
     refuse_overwriting_inputs(&out, &loaded, std::slice::from_ref(&args.state))?;
+    if smug_app::team::is_team(&loaded) {
+        let roadmap = args.roadmap.as_ref();
+        return crate::team::replan(&loaded, &args.state, &out, args.json, roadmap);
+    }
+    let state = MissionState::from_file(&args.state)?;
     let progress = Progress::start(stages::ASSEMBLING);
     let request = ReplanRequest {
         state: &args.state,

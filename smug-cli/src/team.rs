@@ -1,8 +1,11 @@
-//! `smug plan` on a team config: one plan per robot, a per-robot summary.
+//! `smug plan` and `smug replan` on a team config: one plan per robot, a per-robot
+//! summary.
 
 use crate::Outcome;
 use smug_app::team::{plan_team_config, TeamPlanned};
 use smug_app::team_outputs::write_team_outputs;
+use smug_app::team_replan::replan_team;
+use smug_core::mission::TeamState;
 use smug_core::{LoadedConfig, TeamPlan};
 use std::path::{Path, PathBuf};
 
@@ -17,7 +20,42 @@ pub fn run(
     if save_roadmap.is_some() {
         anyhow::bail!("--save-roadmap: a team has one roadmap per robot; not supported yet");
     }
-    let TeamPlanned { plans, team } = match plan_team_config(loaded)? {
+    finish(plan_team_config(loaded)?, loaded, out, json)
+}
+
+/// `smug replan` on a team config: the team state in `state`, the plan written to `out`.
+pub fn replan(
+    loaded: &LoadedConfig,
+    state: &Path,
+    out: &Path,
+    json: bool,
+    roadmap: Option<&PathBuf>,
+) -> anyhow::Result<Outcome> {
+    if roadmap.is_some() {
+        anyhow::bail!("--roadmap: a team has one roadmap per robot; not supported yet");
+    }
+    let text = std::fs::read_to_string(state)
+        .map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", state.display()))?;
+    let name = state.display().to_string();
+    if !TeamState::is_team_toml(&text) {
+        anyhow::bail!(
+            "{name}: a team config needs a team state: `[[robots]]` entries with each robot's \
+             `name` and `pose` (or `lost = true`), see docs/teams.md"
+        );
+    }
+    let state = TeamState::from_toml(&text, &name)?;
+    finish(replan_team(loaded, &state, Some(&name))?, loaded, out, json)
+}
+
+/// Writes a team plan's files into `out` and prints it (`json`) or its summary; no
+/// solution is exit 1.
+fn finish(
+    outcome: smug_app::Outcome<TeamPlanned>,
+    loaded: &LoadedConfig,
+    out: &Path,
+    json: bool,
+) -> anyhow::Result<Outcome> {
+    let TeamPlanned { plans, team } = match outcome {
         smug_app::Outcome::Solved(planned) => planned,
         smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
     };
@@ -53,6 +91,17 @@ fn print_team_summary(plan: &TeamPlan) {
         s.counters.get("team_rounds").copied().unwrap_or(0),
         s.stage_times_s.get("total").copied().unwrap_or(0.0),
     );
+    if let Some(replan) = &plan.replan {
+        if !replan.lost.is_empty() {
+            println!(
+                "  lost: {} (their targets shared among the others)",
+                replan.lost.join(", ")
+            );
+        }
+        for skipped in &replan.skipped {
+            println!("  skipped `{}`: {}", skipped.target, skipped.reason);
+        }
+    }
     let width = plan.robots.iter().map(|r| r.name.len()).max().unwrap_or(0);
     for robot in &plan.robots {
         let p = &robot.plan;

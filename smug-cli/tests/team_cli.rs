@@ -272,3 +272,168 @@ fn bad_teams_are_named() {
         assert!(err.contains(needle), "`{needle}` missing from: {err}");
     }
 }
+
+/// Replans `config` from the team state `state` (TOML); the run, and plan.json when
+/// it planned.
+fn replan(config: &str, name: &str, state: &str) -> (std::process::Output, Option<Value>) {
+    let out = scratch_dir("cli-test-team-out", name);
+    let file = out.join("state.toml");
+    std::fs::write(&file, state).unwrap();
+    let plan_dir = out.join("plan");
+    let run = smug(&[
+        "replan",
+        config,
+        "--state",
+        file.to_str().unwrap(),
+        "--out",
+        plan_dir.to_str().unwrap(),
+    ]);
+    let text = std::fs::read_to_string(plan_dir.join("plan.json")).ok();
+    (run, text.map(|t| serde_json::from_str(&t).unwrap()))
+}
+
+/// The flat team's robots at their starts, `lost` marking the lost ones.
+fn team_state(visited: &[&str], lost: &[&str]) -> String {
+    let mut text = format!("visited = {visited:?}\n");
+    for (name, pose) in [
+        ("small", "[1.0, 1.0, 0.0]"),
+        ("big", "[1.5, 3.0, 0.0]"),
+        ("rover", "[2.0, 4.5, 0.0]"),
+    ] {
+        text += &format!("[[robots]]\nname = \"{name}\"\n");
+        if lost.contains(&name) {
+            text += "lost = true\n";
+        } else {
+            text += &format!("pose = {pose}\n");
+        }
+    }
+    text
+}
+
+#[test]
+fn a_team_replan_from_the_starts_is_the_plan() {
+    let path = config("flat-team-replan.toml", FLAT_TEAM);
+    let (planned, _) = plan(&path, "flat-replan-reference", &[]);
+    let (run, replanned) = replan(&path, "from-starts", &team_state(&[], &[]));
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let replanned = replanned.unwrap();
+    for key in ["total", "makespan", "objective"] {
+        assert_eq!(replanned[key], planned[key], "{key}");
+    }
+    for name in ["small", "big", "rover"] {
+        assert_eq!(
+            robot(&replanned, name)["sequence"],
+            robot(&planned, name)["sequence"]
+        );
+    }
+    assert!(planned["replan"].is_null());
+    assert_eq!(replanned["replan"]["state"]["robots"][0]["name"], "small");
+}
+
+#[test]
+fn a_lost_robots_targets_go_to_the_others() {
+    let path = config("flat-team-lost.toml", FLAT_TEAM);
+    // The rover is lost: `gauge-b` (the rover's only) is skipped, the rest shared.
+    let (run, plan) = replan(&path, "rover-lost", &team_state(&["gauge-a"], &["rover"]));
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let plan = plan.unwrap();
+    check_served_once(&plan, &["slot".to_string()]);
+    assert!(robot(&plan, "small")["sequence"]
+        .to_string()
+        .contains("slot"));
+    let names: Vec<&str> = plan["robots"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["small", "big"], "a lost robot plans nothing");
+    assert_eq!(plan["replan"]["lost"], serde_json::json!(["rover"]));
+    assert_eq!(plan["replan"]["skipped"][0]["target"], "gauge-b");
+    let reason = plan["replan"]["skipped"][0]["reason"].as_str().unwrap();
+    assert!(reason.contains("only lost robots") && reason.contains("rover"));
+    assert!(stdout(&run).contains("lost: rover"), "{}", stdout(&run));
+    // `small` is lost: `gauge-a` goes to the others, `slot` fits nobody left (exit 1).
+    let (run, _) = replan(&path, "small-lost", &team_state(&[], &["small"]));
+    let err = stderr(&run);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("`slot`") && err.contains("robot `big`"),
+        "{err}"
+    );
+    // A robot elsewhere with an obstacle seen: its route keeps out of the obstacle.
+    let moved = team_state(&[], &["rover"]).replace("[1.5, 3.0, 0.0]", "[4.0, 5.0, 0.0]")
+        + "[[obstacles]]\ncenter = [5.0, 3.5]\nradius = 0.4\nheight = 1.0\n";
+    let (run, plan) = replan(&path, "obstacle", &moved);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let plan = plan.unwrap();
+    for r in plan["robots"].as_array().unwrap() {
+        let points: Vec<[f64; 2]> = r["waypoints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| [w[0].as_f64().unwrap(), w[1].as_f64().unwrap()])
+            .collect();
+        for w in points.windows(2) {
+            let gap = distance_to_segment([5.0, 3.5], w[0], w[1]);
+            assert!(
+                gap > 0.4,
+                "{}: {w:?} passes {gap} m from the centre",
+                r["name"]
+            );
+        }
+    }
+    let big = robot(&plan, "big");
+    let first = &big["waypoints"][0];
+    assert_eq!(
+        (first[0].as_f64(), first[1].as_f64()),
+        (Some(4.0), Some(5.0))
+    );
+}
+
+#[test]
+fn bad_team_states_are_named() {
+    let path = config("flat-team-bad-state.toml", FLAT_TEAM);
+    let bad = |name: &str, state: String, needles: &[&str]| {
+        let (run, _) = replan(&path, name, &state);
+        assert_bad_input(&run, needles);
+    };
+    let good = team_state(&[], &[]);
+    bad(
+        "unknown-robot",
+        good.replace("name = \"big\"", "name = \"drone\""),
+        &["robots[1].name", "no robot `drone`"],
+    );
+    bad(
+        "missing-robot",
+        good[..good.find("[[robots]]\nname = \"rover\"").unwrap()].to_string(),
+        &["`robots`", "`rover`", "not listed"],
+    );
+    bad(
+        "all-lost",
+        team_state(&[], &["small", "big", "rover"]),
+        &["every robot is lost"],
+    );
+    bad(
+        "off-map",
+        good.replace("[1.5, 3.0, 0.0]", "[40.0, 3.0, 0.0]"),
+        &["robots[1].pose", "off the map"],
+    );
+    bad(
+        "one-robot-state",
+        "pose = [1.0, 1.0, 0.0]\n".to_string(),
+        &["team state", "[[robots]]"],
+    );
+}
+
+/// The distance from `p` to the segment `a`–`b`.
+fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length2 = dx * dx + dy * dy;
+    let t = if length2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1])
+}

@@ -49,7 +49,7 @@ pub use mission::{Mission, Target};
 pub use objective::{Objective, PathLength};
 pub use path::Path;
 pub use pipeline::{BuildContext, Pipeline, WorldChange};
-pub use plan::{Plan, PlanStats, RobotPlan, TeamPlan, TimeBreakdown};
+pub use plan::{Plan, PlanStats, RobotPlan, TeamPlan, TeamReplanInfo, TimeBreakdown};
 pub use pose::{Bounds2, Point3, Pose2, PoseBits, Waypoint};
 pub use run_context::{RunContext, RunProgress};
 pub use space::{MotionExtent, Se2Space, SpaceError, StateSpace};

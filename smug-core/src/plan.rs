@@ -186,4 +186,25 @@ pub struct TeamPlan {
     /// Counters and timings of the whole team run (paths planned by every robot,
     /// rounds of the lazy team sequencing, stage times).
     pub stats: PlanStats,
+    /// Set when the plan is a team replan: the state it started from, the robots
+    /// lost and the targets left out.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replan: Option<TeamReplanInfo>,
+}
+
+/// What a team replan started from and left out.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TeamReplanInfo {
+    /// The state file, when the state came from one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state_file: Option<String>,
+    /// The team state the replan started from.
+    pub state: crate::mission::TeamState,
+    /// Robots lost: no plan of theirs, their targets shared among the others.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub lost: Vec<String>,
+    /// Targets not visited by this plan (besides the visited ones), with the reason.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub skipped: Vec<SkippedTarget>,
 }

@@ -3,6 +3,7 @@
 //! (with `roadmap=`: on a saved roadmap), and `smug.Session`: a mission session kept in
 //! memory across replans.
 
+use crate::team::PyTeamSession;
 use crate::{app_to_py, load, raise, solved, to_py, InputError, PyEstimator, PyWorld};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
@@ -94,6 +95,14 @@ pub fn replan<'py>(
     roadmap: Option<PathBuf>,
 ) -> PyResult<PlanParts<'py>> {
     let loaded = load(&config, set, seed)?;
+    if smug_app::team::is_team(&loaded) {
+        if roadmap.is_some() {
+            return Err(InputError::new_err(
+                "roadmap: a team has one roadmap per robot; not supported yet",
+            ));
+        }
+        return crate::team::replan_team_file(py, loaded, &state);
+    }
     let request = ReplanRequest {
         state: &state,
         roadmap: roadmap.as_deref(),
@@ -105,11 +114,20 @@ pub fn replan<'py>(
     parts(py, &planned.plan, &planned.pipeline)
 }
 
+/// What a session keeps: one robot's pipeline, or a team's.
+enum Kept {
+    /// One robot.
+    One(Box<MissionSession>),
+    /// A team config.
+    Team(Box<PyTeamSession>),
+}
+
 /// A mission session: the pipeline assembled once and kept in memory, the mission
-/// planned, then replanned in place for each mission state (see `MissionSession`).
+/// planned, then replanned in place for each mission state (see `MissionSession`); on
+/// a team config, every robot's pipeline (see `TeamSession`).
 #[pyclass(name = "Session", module = "smug")]
 pub struct PySession {
-    inner: MissionSession,
+    inner: Kept,
 }
 
 #[pymethods]
@@ -119,43 +137,63 @@ impl PySession {
     #[pyo3(signature = (config, set=Vec::new(), seed=None))]
     fn new(py: Python<'_>, config: PathBuf, set: Vec<String>, seed: Option<u64>) -> PyResult<Self> {
         let loaded = load(&config, set, seed)?;
-        let inner = py.detach(|| MissionSession::new(&loaded)).map_err(to_py)?;
+        let inner = if smug_app::team::is_team(&loaded) {
+            Kept::Team(Box::new(PyTeamSession::new(py, loaded)?))
+        } else {
+            Kept::One(Box::new(
+                py.detach(|| MissionSession::new(&loaded)).map_err(to_py)?,
+            ))
+        };
         Ok(Self { inner })
     }
 
     /// Plans the whole mission (as `smug plan`); returns the plan's parts.
     fn plan<'py>(&mut self, py: Python<'py>) -> PyResult<PlanParts<'py>> {
-        let session = &mut self.inner;
-        let plan = py.detach(|| session.plan()).map_err(to_py)?;
-        parts(py, &plan, self.inner.pipeline())
+        match &mut self.inner {
+            Kept::One(session) => {
+                let plan = py.detach(|| session.plan()).map_err(to_py)?;
+                parts(py, &plan, session.pipeline())
+            }
+            Kept::Team(team) => team.plan(py),
+        }
     }
 
     /// Replans from a mission state given as TOML text (`name` stands for it in
-    /// errors); returns the plan's parts.
+    /// errors; a team state on a team config); returns the plan's parts.
     fn replan<'py>(
         &mut self,
         py: Python<'py>,
         state: &str,
         name: &str,
     ) -> PyResult<PlanParts<'py>> {
+        let session = match &mut self.inner {
+            Kept::One(session) => session,
+            Kept::Team(team) => return team.replan(py, state, name),
+        };
         let parsed =
             MissionState::from_toml(state, name).map_err(|e| InputError::new_err(e.to_string()))?;
-        let session = &mut self.inner;
         let plan = py.detach(|| session.replan(&parsed)).map_err(to_py)?;
-        parts(py, &plan, self.inner.pipeline())
+        parts(py, &plan, session.pipeline())
     }
 
     /// The obstacles applied so far, as `(x, y, radius, height)` tuples.
     fn obstacles(&self) -> Vec<(f64, f64, f64, f64)> {
-        self.inner
-            .obstacles()
+        let obstacles = match &self.inner {
+            Kept::One(session) => session.obstacles(),
+            Kept::Team(team) => team.obstacles(),
+        };
+        obstacles
             .iter()
             .map(|o| (o.center[0], o.center[1], o.radius, o.height))
             .collect()
     }
 
-    /// The number of paths kept from earlier plans (each direction counts).
+    /// The number of paths kept from earlier plans (each direction counts; 0 for a
+    /// team, which keeps its robots' roadmaps, not their paths).
     fn known_paths(&self) -> usize {
-        self.inner.known_paths()
+        match &self.inner {
+            Kept::One(session) => session.known_paths(),
+            Kept::Team(_) => 0,
+        }
     }
 }

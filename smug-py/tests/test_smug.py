@@ -685,3 +685,32 @@ def test_a_team_plan_has_one_entry_per_robot(tmp_path: Path) -> None:
         assert r["time"] == pytest.approx(r["cost"])
     assert "team of 2" in repr(plan)
     assert smug.plan(LUNAR, set={"world.params.targets": 2}).robots == []
+
+
+def test_a_team_replans_without_a_lost_robot(tmp_path: Path) -> None:
+    config = tmp_path / "team.toml"
+    anymal = REPO / "configs" / "robots" / "anymal.toml"
+    config.write_text(FLAT_TEAM.replace("ANYMAL", str(anymal)))
+    state = {
+        "visited": ["gauge-a"],
+        "robots": [{"name": "one", "lost": True}, {"name": "two", "pose": (3.0, 4.0, 0.0)}],
+    }
+    state_file = tmp_path / "state.toml"
+    state_file.write_text(smug._state_toml(state))
+    plan = smug.replan(config, state_file)
+    assert [r["name"] for r in plan.robots] == ["two"]
+    assert plan.robots[0]["sequence"] == ["gauge-b"]
+    assert tuple(plan.robots[0]["waypoints"][0, :2]) == (3.0, 4.0)
+    assert plan.to_dict()["replan"]["lost"] == ["one"]
+    cli = run_cli("replan", str(config), "--state", str(state_file), "--out", str(tmp_path / "out"))
+    assert cli.returncode == 0, cli.stderr
+    expected = json.loads((tmp_path / "out" / "plan.json").read_text())
+    assert plan.cost == expected["cost"]
+    # A session keeps the team: its first plan is smug.plan's, its replans take states.
+    session = smug.Session(config)
+    assert session.plan().cost == smug.plan(config).cost
+    again = session.replan(state)
+    assert again.robots[0]["sequence"] == ["gauge-b"]
+    with pytest.raises(smug.InputError, match=r"`robots\[1\]\.name`: the team has no robot `three`"):
+        session.replan({"robots": [{"name": "one", "lost": True}, {"name": "three", "pose": (1, 1, 0)}]})
+    assert session.replan(state).robots[0]["sequence"] == ["gauge-b"], "usable after an error"

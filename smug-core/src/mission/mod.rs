@@ -5,10 +5,12 @@
 mod obstacles;
 mod options;
 mod state;
+mod team_state;
 
 pub use obstacles::{add_obstacles, mask_layer, DiscObstacle, MaskedEstimator};
 pub use options::{PlanMode, PlanOptions, Representative, SequencingCosts};
 pub use state::{MissionState, StateError};
+pub use team_state::{RobotState, TeamState};
 
 use crate::pose::{Bounds2, Point3, Pose2};
 use serde::{Deserialize, Serialize};

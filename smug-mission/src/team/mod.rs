@@ -88,6 +88,7 @@ pub fn plan_team(
             makespan: solution.makespan,
             robots,
             stats: team_stats(paths, rounds, sequencing_s, total_s),
+            replan: None,
         })
         .collect())
 }

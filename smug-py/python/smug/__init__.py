@@ -367,6 +367,9 @@ def replan(
     ``docs/replanning.md``), as ``smug replan`` does. The plan's ``to_dict()["replan"]``
     holds the state it started from and the skipped targets. ``roadmap``: a roadmap file
     saved by :func:`plan` (``save_roadmap``) to start from (``smug replan --roadmap``).
+    On a team config the state is a team state (``visited``, ``failed_pois``,
+    ``[[obstacles]]`` and one ``[[robots]]`` entry per robot: ``name`` and ``pose``, or
+    ``lost = true``; see ``docs/teams.md``): the robots not lost share the targets left.
 
     Raises :class:`ConfigError` (bad config), :class:`InputError` (bad state: the message
     names the file and the key; a roadmap file for another world, robot or config, or a
@@ -392,12 +395,14 @@ def _state_toml(state: Mapping[str, Any]) -> str:
     for key in ("pose", "visited", "failed_pois"):
         if key in state:
             lines.append(f"{key} = {_toml_value(list(state[key]))}")
+    tables = ("obstacles", "robots")
     for key in state:
-        if key not in ("pose", "visited", "failed_pois", "obstacles"):
+        if key not in ("pose", "visited", "failed_pois") + tables:
             lines.append(f"{key} = {_toml_value(state[key])}")
-    for obstacle in state.get("obstacles", []):
-        lines.append("[[obstacles]]")
-        lines.extend(f"{k} = {_toml_value(v)}" for k, v in obstacle.items())
+    for table in tables:
+        for entry in state.get(table, []):
+            lines.append(f"[[{table}]]")
+            lines.extend(f"{k} = {_toml_value(v)}" for k, v in entry.items())
     return "\n".join(lines) + "\n"
 
 
@@ -412,6 +417,12 @@ class Session:
     >>> session = smug.Session("configs/lunar.toml", seed=1)   # doctest: +SKIP
     >>> plan = session.plan()                                   # = smug.plan(...)
     >>> later = session.replan({"pose": (3.0, 4.0, 0.0), "visited": ["stone-1"]})
+
+    On a team config the session keeps every robot's pipeline and roadmap, and
+    :meth:`replan` takes a team state: ``{"visited": [...], "robots": [{"name":
+    "anymal", "pose": (x, y, yaw)}, {"name": "rover", "lost": True}]}`` (a lost robot's
+    targets go to the others; a state with other obstacles than the last one builds the
+    team again on the updated world).
     """
 
     __slots__ = ("_native",)
@@ -427,7 +438,8 @@ class Session:
     def replan(self, state: State) -> Plan:
         """Replans the rest of the mission from ``state``: a state file, or a dict with its
         keys (``pose``, ``visited``, ``failed_pois``, ``obstacles`` as a list of
-        ``{"center": (x, y), "radius": r, "height": h}``). Obstacles accumulate: a state
+        ``{"center": (x, y), "radius": r, "height": h}``; for a team, ``robots`` as a
+        list of ``{"name", "pose"}`` or ``{"name", "lost": True}``). Obstacles accumulate: a state
         lists every obstacle the session applied before first, in the same order, then
         the new ones.
 
