@@ -12,6 +12,7 @@ use smug_core::{LoadedConfig, Mission, Objective, Pipeline, RobotConfig, TeamObj
 use smug_core::{Pose2, TeamSequencer, World};
 use smug_mission::{plan_team, TeamMember, TeamMission};
 use std::sync::Arc;
+use std::time::Instant;
 
 /// The team sequencer a team config gets without a `[team_sequencer]` section.
 pub const DEFAULT_TEAM_SEQUENCER: &str = "team-auto";
@@ -135,6 +136,7 @@ pub(crate) fn assemble_on(
             allowed: renumbered(allowed, &robots),
             unit,
             keep_headings: loaded.config.plan.keep_headings,
+            deadline_s: loaded.config.plan.deadline,
         },
         members,
         sequencer,
@@ -175,11 +177,23 @@ pub fn plan_assembled(
     })
 }
 
-/// Assembles and plans a team config for its own objective, as `smug plan` does.
+/// Assembles and plans a team config for its own objective, as `smug plan` does
+/// (a `[plan] deadline` counts from the start, assembly included).
 pub fn plan_team_config(loaded: &LoadedConfig) -> Result<Outcome<TeamPlanned>> {
-    let team = assemble_team(loaded)?;
+    let started = Instant::now();
+    let mut team = assemble_team(loaded)?;
+    team.spend(started.elapsed().as_secs_f64());
     let objective = team.objective;
     plan_assembled(team, &[objective])
+}
+
+impl Team {
+    /// Takes `seconds` (spent assembling it) off the planning's deadline, if any.
+    pub fn spend(&mut self, seconds: f64) {
+        if let Some(deadline) = self.mission.deadline_s.as_mut() {
+            *deadline -= seconds;
+        }
+    }
 }
 
 /// The world and its mission from the shared `[world]` and `[traversability]`.

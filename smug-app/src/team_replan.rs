@@ -32,8 +32,9 @@ pub fn replan_team(
     state: &TeamState,
     state_file: Option<&str>,
 ) -> Result<Outcome<TeamPlanned>> {
+    let started = std::time::Instant::now();
     let team = assemble_replan(loaded, state, state_file)?;
-    let (team, skipped) = match team {
+    let (mut team, skipped) = match team {
         Ok(assembled) => assembled,
         Err(none_left) => {
             return Ok(Outcome::of(Err(smug_core::Error::stage(
@@ -41,6 +42,7 @@ pub fn replan_team(
             )))?)
         }
     };
+    team.spend(started.elapsed().as_secs_f64());
     let objective = team.objective;
     let mut planned = match plan_assembled(team, &[objective])? {
         Outcome::Solved(planned) => planned,

@@ -114,6 +114,7 @@ impl TeamSession {
             allowed: renumbered(allowed, &robots),
             unit: kept.unit.clone(),
             keep_headings: kept.keep_headings,
+            deadline_s: kept.deadline_s,
         };
         let mut slots: Vec<Option<TeamMember>> = std::mem::take(&mut self.team.members)
             .into_iter()

@@ -60,6 +60,12 @@ fn finish(
         smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
     };
     let plan = &plans[0];
+    if plan.robots.iter().any(|r| r.plan.deadline_reached) {
+        eprintln!(
+            "smug: the deadline cut a search short: the team plan is complete and valid, the \
+             best found by then (each robot marked `deadline_reached` in plan.json)"
+        );
+    }
     let written = write_team_outputs(
         plan,
         &team.world,

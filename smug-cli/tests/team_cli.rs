@@ -437,3 +437,33 @@ fn distance_to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     };
     (a[0] + t * dx - p[0]).hypot(a[1] + t * dy - p[1])
 }
+
+#[test]
+fn a_team_deadline_holds() {
+    let out = scratch_dir("cli-test-team-out", "deadline");
+    let started = std::time::Instant::now();
+    let run = smug(&[
+        "plan",
+        "configs/lunar-team.toml",
+        "--set",
+        "plan.deadline=1.0",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let seconds = started.elapsed().as_secs_f64();
+    let err = stderr(&run);
+    // Unbounded, this team plans for 15-20 s; the hard stop is 1 s after the deadline.
+    assert!(seconds < 8.0, "{seconds} s: {err}");
+    match run.status.code() {
+        Some(0) => {
+            assert!(err.contains("deadline cut a search short"), "{err}");
+            let text = std::fs::read_to_string(out.join("plan.json")).unwrap();
+            let plan: Value = serde_json::from_str(&text).unwrap();
+            let ids: Vec<String> = (1..=13).map(|k| format!("stone-{k:02}")).collect();
+            check_served_once(&plan, &ids);
+            assert_eq!(robot(&plan, "anymal")["deadline_reached"], true);
+        }
+        Some(1) => assert!(err.contains("deadline"), "{err}"),
+        other => panic!("exit {other:?}: {err}"),
+    }
+}

@@ -32,4 +32,7 @@ pub struct TeamMission {
     pub unit: String,
     /// Keep the roadmap's headings in the waypoints (`[plan] keep_headings`).
     pub keep_headings: bool,
+    /// Seconds the planning may take, from when [`plan_team`](crate::plan_team) starts
+    /// (`None`: no limit); every robot's planner and the team sequencer stop at it.
+    pub deadline_s: Option<f64>,
 }

@@ -15,6 +15,7 @@ pub use member::{TeamMember, TeamMission};
 use lazy::LazyTeam;
 use plans::{robot_plan, PlanInputs};
 use robots::{Nodes, RobotOracle};
+use smug_core::deadline::Deadline;
 use smug_core::error::{Error, Result};
 use smug_core::plan::{PlanStats, TeamPlan};
 use smug_core::stages::{TeamObjective, TeamSequencer, TeamSolution};
@@ -27,6 +28,42 @@ use std::time::Instant;
 /// good for its objective as every other returned plan (on the same planned costs).
 /// One objective is what `smug plan` does; two compare them (`smug bench team`).
 pub fn plan_team(
+    members: &mut [TeamMember],
+    team: &TeamMission,
+    sequencer: &dyn TeamSequencer,
+    objectives: &[TeamObjective],
+) -> Result<Vec<TeamPlan>> {
+    let Some(seconds) = team.deadline_s else {
+        return plan_team_unbounded(members, team, sequencer, objectives);
+    };
+    // Every robot's stages (and the team sequencer, built in the first robot's
+    // context) hold their pipeline's deadline: arm them all.
+    let deadlines: Vec<Deadline> = members
+        .iter()
+        .map(|m| m.pipeline.run().deadline.clone())
+        .collect();
+    let _armed: Vec<_> = deadlines.iter().map(|d| d.arm(Some(seconds))).collect();
+    let reached = || deadlines.iter().any(Deadline::reached);
+    match plan_team_unbounded(members, team, sequencer, objectives) {
+        Ok(mut plans) => {
+            let reached = reached();
+            for robot in plans.iter_mut().flat_map(|p| p.robots.iter_mut()) {
+                robot.plan.deadline_reached = reached;
+            }
+            Ok(plans)
+        }
+        Err(Error::DeadlinePassed { during, .. }) => Err(Error::DeadlinePassed { seconds, during }),
+        // An anytime search cut short can look like a missing path: say what happened.
+        Err(_) if reached() => Err(Error::DeadlinePassed {
+            seconds,
+            during: "team planning".into(),
+        }),
+        Err(other) => Err(other),
+    }
+}
+
+/// [`plan_team`] without a deadline.
+fn plan_team_unbounded(
     members: &mut [TeamMember],
     team: &TeamMission,
     sequencer: &dyn TeamSequencer,
