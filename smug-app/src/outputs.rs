@@ -3,7 +3,7 @@
 
 use crate::plan_mcap::{write_plan_mcap, PlanScene, RunInfo, WriteMode};
 use crate::{AppError, Result};
-use smug_core::{LoadedConfig, Mission, Pipeline, Plan, World};
+use smug_core::{LoadedConfig, Mission, Pipeline, PipelineConfig, Plan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
 use std::path::{Path, PathBuf};
 
@@ -73,14 +73,20 @@ pub fn file_writer(dir: &Path) -> Result<impl Fn(&str, String) -> Result<()> + '
 
 /// The run's kind, config and seed for plan.mcap's metadata.
 pub fn run_info(pipeline: &Pipeline, mode: WriteMode) -> RunInfo {
+    config_run_info(&pipeline.config, mode)
+}
+
+/// [`run_info`] of a run of `config` (a team's, whose robots have pipelines of their
+/// own).
+pub fn config_run_info(config: &PipelineConfig, mode: WriteMode) -> RunInfo {
     RunInfo {
         kind: match mode {
             WriteMode::Replace => "plan",
             WriteMode::Append => "replan",
         },
-        config_toml: toml::to_string(&pipeline.config)
+        config_toml: toml::to_string(config)
             .unwrap_or_else(|err| format!("# the config could not be written as TOML: {err}")),
-        seed: pipeline.config.seed,
+        seed: config.seed,
     }
 }
 

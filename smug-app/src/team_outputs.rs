@@ -1,8 +1,9 @@
 //! The files of a team plan: plan.json (one entry per robot, the team's sum and
 //! makespan), plan.csv (a `robot` column) and plan.svg (one colour per robot), as the
-//! config's `[output]` asks (plan.mcap holds single-robot plans only).
+//! config's `[output]` asks, and plan.mcap (each robot on topics of its own).
 
 use crate::outputs::{file_writer, push_waypoint_rows};
+use crate::plan_mcap::{write_team_plan_mcap, RunInfo, TeamScene, WriteMode};
 use crate::Result;
 use smug_core::config::OutputConfig;
 use smug_core::{Mission, TeamPlan, World};
@@ -14,14 +15,16 @@ pub const ROBOT_COLOURS: [&str; 6] = [
     "#1f77b4", "#d62728", "#9467bd", "#ff7f0e", "#17becf", "#e377c2",
 ];
 
-/// Writes `plan` into `dir` (plan.json, plan.csv, plan.svg, as `output` asks), each
-/// file whole or not at all.
+/// Writes `plan` into `dir` (plan.json, plan.csv, plan.svg, plan.mcap, as `output`
+/// asks; `run` for plan.mcap's metadata, a replan appended as `mode` says), each file
+/// whole or not at all.
 pub fn write_team_outputs(
     plan: &TeamPlan,
     world: &World,
     mission: &Mission,
     output: &OutputConfig,
     dir: &Path,
+    (run, mode): (&RunInfo, WriteMode),
 ) -> Result<Vec<&'static str>> {
     let write = file_writer(dir)?;
     let mut written = Vec::new();
@@ -37,6 +40,15 @@ pub fn write_team_outputs(
         let options = team_render_options(plan, world, mission);
         write("plan.svg", render_svg(world, Some(mission), &options))?;
         written.push("plan.svg");
+    }
+    if output.mcap {
+        let scene = TeamScene {
+            plan,
+            world,
+            mission,
+        };
+        write_team_plan_mcap(&dir.join("plan.mcap"), &scene, run, mode)?;
+        written.push("plan.mcap");
     }
     Ok(written)
 }

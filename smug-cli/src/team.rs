@@ -2,6 +2,8 @@
 //! summary.
 
 use crate::Outcome;
+use smug_app::outputs::config_run_info;
+use smug_app::plan_mcap::WriteMode;
 use smug_app::team::{plan_team_config, TeamPlanned};
 use smug_app::team_outputs::write_team_outputs;
 use smug_app::team_replan::replan_team;
@@ -20,7 +22,12 @@ pub fn run(
     if save_roadmap.is_some() {
         anyhow::bail!("--save-roadmap: a team has one roadmap per robot; not supported yet");
     }
-    finish(plan_team_config(loaded)?, loaded, out, json)
+    finish(
+        plan_team_config(loaded)?,
+        loaded,
+        out,
+        (json, WriteMode::Replace),
+    )
 }
 
 /// `smug replan` on a team config: the team state in `state`, the plan written to `out`.
@@ -44,16 +51,17 @@ pub fn replan(
         );
     }
     let state = TeamState::from_toml(&text, &name)?;
-    finish(replan_team(loaded, &state, Some(&name))?, loaded, out, json)
+    let outcome = replan_team(loaded, &state, Some(&name))?;
+    finish(outcome, loaded, out, (json, WriteMode::Append))
 }
 
-/// Writes a team plan's files into `out` and prints it (`json`) or its summary; no
-/// solution is exit 1.
+/// Writes a team plan's files into `out` (plan.mcap as `mode` says) and prints it
+/// (`json`) or its summary; no solution is exit 1.
 fn finish(
     outcome: smug_app::Outcome<TeamPlanned>,
     loaded: &LoadedConfig,
     out: &Path,
-    json: bool,
+    (json, mode): (bool, WriteMode),
 ) -> anyhow::Result<Outcome> {
     let TeamPlanned { plans, team } = match outcome {
         smug_app::Outcome::Solved(planned) => planned,
@@ -72,6 +80,7 @@ fn finish(
         &team.mission.mission,
         &loaded.config.output,
         out,
+        (&config_run_info(&loaded.config, mode), mode),
     )?;
     if json {
         println!("{}", serde_json::to_string_pretty(plan)?);

@@ -467,3 +467,56 @@ fn a_team_deadline_holds() {
         other => panic!("exit {other:?}: {err}"),
     }
 }
+
+#[test]
+fn a_team_plan_mcap_has_each_robot_on_its_topics_and_a_replan_follows() {
+    use smug_app::plan_mcap::{read_plan_mcap, TF_TOPIC};
+    let path = config("flat-team-mcap.toml", FLAT_TEAM);
+    let (plan, _) = plan(&path, "mcap", &[]);
+    let dir = workspace().join("target/cli-test-team/mcap");
+    let mcap = read_plan_mcap(&dir.join("plan.mcap")).unwrap();
+    let robots = plan["robots"].as_array().unwrap();
+    assert_eq!(mcap.paths.len(), robots.len(), "one path per robot");
+    let mut transforms = 0;
+    for (robot, path) in robots.iter().zip(&mcap.paths) {
+        let name = robot["name"].as_str().unwrap();
+        let waypoints = robot["waypoints"].as_array().unwrap();
+        assert_eq!(path.poses.len(), waypoints.len(), "{name}");
+        for (pose, w) in path.poses.iter().zip(waypoints) {
+            let p = &pose.pose.position;
+            assert_eq!([p.x, p.y], [w[0].as_f64().unwrap(), w[1].as_f64().unwrap()]);
+        }
+        for (topic, schema) in [
+            (format!("/smug/{name}/plan"), "nav_msgs/msg/Path"),
+            (format!("/smug/{name}/pois"), "geometry_msgs/msg/PoseArray"),
+        ] {
+            let channel = (topic, schema.to_owned(), "ros2msg".to_owned());
+            assert!(mcap.channels.contains(&channel), "{channel:?}");
+        }
+        transforms += waypoints.len();
+    }
+    assert_eq!(mcap.counts[TF_TOPIC], transforms);
+    assert_eq!(mcap.counts["/smug/markers"], 1);
+    assert_eq!(mcap.metadata[0]["kind"], "plan");
+    // A team replan into the same directory follows the plan in plan.mcap.
+    let state = dir.join("state.toml");
+    std::fs::write(&state, team_state(&["gauge-a"], &["rover"])).unwrap();
+    let out = dir.to_str().unwrap();
+    let run = smug(&[
+        "replan",
+        &path,
+        "--state",
+        state.to_str().unwrap(),
+        "--out",
+        out,
+    ]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let both = read_plan_mcap(&dir.join("plan.mcap")).unwrap();
+    let kinds: Vec<&str> = both.metadata.iter().map(|m| m["kind"].as_str()).collect();
+    assert_eq!(kinds, ["plan", "replan"]);
+    assert_eq!(
+        both.paths.len(),
+        robots.len() + 2,
+        "the replan's two robots follow"
+    );
+}

@@ -1,9 +1,10 @@
-//! `Plan.to_mcap`: a plan with its world as plan.mcap, as `smug plan` writes it.
+//! `Plan.to_mcap`: a plan (or a team plan) with its world as plan.mcap, as `smug plan`
+//! writes it.
 
 use crate::{app_to_py, input_error, PyWorld};
 use pyo3::prelude::*;
-use smug_app::plan_mcap::{PlanScene, RunInfo, WriteMode};
-use smug_core::Plan;
+use smug_app::plan_mcap::{PlanScene, RunInfo, TeamScene, WriteMode};
+use smug_core::{Plan, TeamPlan};
 use std::path::PathBuf;
 
 /// Writes `plan_json`'s plan in `world` to `path` (appended after the file's plans when
@@ -19,8 +20,12 @@ pub fn write_plan_mcap(
     seed: u64,
     append: bool,
 ) -> PyResult<()> {
-    let plan: Plan = serde_json::from_str(plan_json)
-        .map_err(|e| input_error(format!("the plan's JSON: {e}")))?;
+    let team = serde_json::from_str::<TeamPlan>(plan_json).ok();
+    let plan: Plan = match team {
+        Some(_) => Plan::default(),
+        None => serde_json::from_str(plan_json)
+            .map_err(|e| input_error(format!("the plan's JSON: {e}")))?,
+    };
     let (world_, mission, invalid) = (
         world.world.clone(),
         world.mission.clone(),
@@ -36,6 +41,14 @@ pub fn write_plan_mcap(
         seed,
     };
     py.detach(move || {
+        if let Some(plan) = &team {
+            let scene = TeamScene {
+                plan,
+                world: &world_,
+                mission: &mission,
+            };
+            return smug_app::plan_mcap::write_team_plan_mcap(&path, &scene, &run, mode);
+        }
         let scene = PlanScene {
             plan: &plan,
             world: &world_,

@@ -706,6 +706,8 @@ def test_a_team_replans_without_a_lost_robot(tmp_path: Path) -> None:
     assert cli.returncode == 0, cli.stderr
     expected = json.loads((tmp_path / "out" / "plan.json").read_text())
     assert plan.cost == expected["cost"]
+    plan.to_mcap(tmp_path / "team.mcap", append=True)
+    assert (tmp_path / "team.mcap").read_bytes() == (tmp_path / "out" / "plan.mcap").read_bytes()
     # A session keeps the team: its first plan is smug.plan's, its replans take states.
     session = smug.Session(config)
     assert session.plan().cost == smug.plan(config).cost

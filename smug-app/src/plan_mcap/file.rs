@@ -1,6 +1,7 @@
 //! Writing plan.mcap (whole, or with a replan appended) and reading its plans back.
 
-use super::scene::{scene_messages, PlanScene, PLAN_TOPIC};
+use super::scene::{scene_messages, PlanScene, Stamped, PLAN_TOPIC};
+use super::team::{team_scene_messages, TeamScene};
 use crate::ros::cdr::CdrError;
 use crate::ros::msgs::{decode, Path};
 use crate::ros::schema::{definition, schema_name};
@@ -74,6 +75,27 @@ pub fn write_plan_mcap(
     run: &RunInfo,
     mode: WriteMode,
 ) -> Result<(), McapError> {
+    write_messages(path, run, mode, |t0| scene_messages(scene, t0))
+}
+
+/// Writes the team plan of `scene` to `path` as `mode` says, whole or not at all.
+pub fn write_team_plan_mcap(
+    path: &FsPath,
+    scene: &TeamScene<'_>,
+    run: &RunInfo,
+    mode: WriteMode,
+) -> Result<(), McapError> {
+    write_messages(path, run, mode, |t0| team_scene_messages(scene, t0))
+}
+
+/// Writes the messages `messages` gives for a start time to `path` (after the file's
+/// plans for [`WriteMode::Append`]), with `run`'s metadata.
+fn write_messages(
+    path: &FsPath,
+    run: &RunInfo,
+    mode: WriteMode,
+    messages: impl FnOnce(u64) -> Vec<Stamped>,
+) -> Result<(), McapError> {
     let earlier = match mode {
         WriteMode::Append if path.exists() => read_bytes(path)?,
         _ => Vec::new(),
@@ -88,7 +110,7 @@ pub fn write_plan_mcap(
         .compression(None);
     let mut writer = options.create(Cursor::new(Vec::new())).map_err(mcap_err)?;
     let (t0, plans) = copy_earlier(&mut writer, &earlier).map_err(mcap_err)?;
-    write_scene(&mut writer, scene, t0).map_err(mcap_err)?;
+    write_scene(&mut writer, messages(t0)).map_err(mcap_err)?;
     writer
         .write_metadata(&metadata(run, plans))
         .map_err(mcap_err)?;
@@ -153,15 +175,14 @@ fn metadata(run: &RunInfo, index: usize) -> Metadata {
     }
 }
 
-/// Writes the scene's messages, stamped from `t0`.
+/// Writes `messages`, a channel per topic.
 fn write_scene<W: std::io::Write + std::io::Seek>(
     writer: &mut mcap::Writer<W>,
-    scene: &PlanScene<'_>,
-    t0: u64,
+    messages: Vec<Stamped>,
 ) -> Result<(), mcap::McapError> {
-    let mut channels: HashMap<&str, u16> = HashMap::new();
-    for (sequence, message) in (1u32..).zip(scene_messages(scene, t0)) {
-        let channel_id = match channels.get(message.topic) {
+    let mut channels: HashMap<String, u16> = HashMap::new();
+    for (sequence, message) in (1u32..).zip(messages) {
+        let channel_id = match channels.get(&message.topic) {
             Some(&id) => id,
             None => {
                 let schema = writer.add_schema(
@@ -169,8 +190,8 @@ fn write_scene<W: std::io::Write + std::io::Seek>(
                     "ros2msg",
                     definition(message.type_name).as_bytes(),
                 )?;
-                let id = writer.add_channel(schema, message.topic, "cdr", &BTreeMap::new())?;
-                channels.insert(message.topic, id);
+                let id = writer.add_channel(schema, &message.topic, "cdr", &BTreeMap::new())?;
+                channels.insert(message.topic.clone(), id);
                 id
             }
         };
@@ -190,7 +211,8 @@ fn write_scene<W: std::io::Write + std::io::Seek>(
 pub struct McapPlan {
     /// The file's profile (`ros2`).
     pub profile: String,
-    /// Each plan's path on [`PLAN_TOPIC`], in order.
+    /// Each plan's path on [`PLAN_TOPIC`] (a team plan's: each robot's, on
+    /// `/smug/<robot>/plan`), in order.
     pub paths: Vec<Path>,
     /// Each plan's metadata (`kind`, `plan`, `seed`, `version`, `config`).
     pub metadata: Vec<BTreeMap<String, String>>,
@@ -226,7 +248,7 @@ pub fn read_plan_mcap(path: &FsPath) -> Result<McapPlan, McapError> {
         let topic = message.channel.topic.clone();
         note_channel(&mut read.channels, &message);
         *read.counts.entry(topic.clone()).or_default() += 1;
-        if topic == PLAN_TOPIC {
+        if is_path_topic(&topic) {
             let decoded = decode::<Path>(&message.data).map_err(|source| McapError::Cdr {
                 path: path.to_path_buf(),
                 topic,
@@ -249,4 +271,14 @@ fn note_channel(channels: &mut Vec<(String, String, String)>, message: &Message<
     if !channels.contains(&entry) {
         channels.push(entry);
     }
+}
+
+/// Whether `topic` carries a plan's path: [`PLAN_TOPIC`], or a team robot's
+/// `/smug/<robot>/plan`.
+fn is_path_topic(topic: &str) -> bool {
+    topic == PLAN_TOPIC
+        || topic
+            .strip_prefix("/smug/")
+            .and_then(|rest| rest.strip_suffix("/plan"))
+            .is_some_and(|robot| !robot.is_empty() && !robot.contains('/'))
 }

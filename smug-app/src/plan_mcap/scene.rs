@@ -56,7 +56,7 @@ pub struct PlanScene<'a> {
 /// One message: topic, ROS type (`package/Type`), log time and CDR bytes.
 pub struct Stamped {
     /// The topic.
-    pub topic: &'static str,
+    pub topic: String,
     /// The ROS type, `nav_msgs/Path`.
     pub type_name: &'static str,
     /// Log (and header) time, nanoseconds.
@@ -65,50 +65,129 @@ pub struct Stamped {
     pub data: Vec<u8>,
 }
 
+/// Where one robot's messages go: its path and chosen PoIs' topics, its frame on `/tf`.
+pub struct RobotTopics {
+    /// `nav_msgs/Path` topic.
+    pub plan: String,
+    /// `geometry_msgs/PoseArray` topic.
+    pub pois: String,
+    /// The child frame of its transforms.
+    pub frame: String,
+}
+
+impl RobotTopics {
+    /// A single robot's: [`PLAN_TOPIC`], [`POIS_TOPIC`], [`ROBOT_FRAME`].
+    pub fn single() -> Self {
+        Self {
+            plan: PLAN_TOPIC.into(),
+            pois: POIS_TOPIC.into(),
+            frame: ROBOT_FRAME.into(),
+        }
+    }
+
+    /// Team robot `name`'s: `/smug/<name>/plan`, `/smug/<name>/pois` and frame
+    /// `<name>/base_link`, the name made a ROS name (characters other than letters,
+    /// digits and `_` become `_`; a leading digit gets an `r`).
+    pub fn of_robot(name: &str) -> Self {
+        let mut ros: String = name
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        if !ros.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            ros.insert(0, 'r');
+        }
+        Self {
+            plan: format!("/smug/{ros}/plan"),
+            pois: format!("/smug/{ros}/pois"),
+            frame: format!("{ros}/{ROBOT_FRAME}"),
+        }
+    }
+}
+
+/// A message on `topic` of `type_name` at `time_ns`.
+fn stamped(topic: &str, type_name: &'static str, time_ns: u64, data: Vec<u8>) -> Stamped {
+    Stamped {
+        topic: topic.into(),
+        type_name,
+        time_ns,
+        data,
+    }
+}
+
 /// Every message of `scene`, stamped from `t0_ns` on (the transforms one
 /// [`WAYPOINT_STEP_NS`] apart), in log-time order.
 pub fn scene_messages(scene: &PlanScene<'_>, t0_ns: u64) -> Vec<Stamped> {
+    let topics = RobotTopics::single();
+    let mut messages = vec![occupancy_message(scene, t0_ns)];
+    messages.extend(route_messages(scene, &topics, t0_ns));
+    messages.extend(map_messages(scene, t0_ns));
+    messages.extend(transforms(scene.plan, &topics, t0_ns));
+    messages
+}
+
+/// The occupancy grid of `scene`'s world at `t0_ns`.
+pub(super) fn occupancy_message(scene: &PlanScene<'_>, t0_ns: u64) -> Stamped {
+    let grid = occupancy_grid(scene.world, &header_at(t0_ns));
+    stamped(
+        OCCUPANCY_TOPIC,
+        "nav_msgs/OccupancyGrid",
+        t0_ns,
+        encode(&grid),
+    )
+}
+
+/// `scene`'s markers (targets, every PoI coloured) and traversability grid at `t0_ns`.
+pub(super) fn map_messages(scene: &PlanScene<'_>, t0_ns: u64) -> Vec<Stamped> {
     let header = header_at(t0_ns);
-    let stamped = |topic, type_name, data| Stamped {
-        topic,
-        type_name,
-        time_ns: t0_ns,
-        data,
-    };
-    let mut messages = vec![
-        stamped(
-            OCCUPANCY_TOPIC,
-            "nav_msgs/OccupancyGrid",
-            encode(&occupancy_grid(scene.world, &header)),
-        ),
-        stamped(
-            PLAN_TOPIC,
-            "nav_msgs/Path",
-            encode(&path(scene.plan, &header)),
-        ),
-        stamped(
-            POIS_TOPIC,
-            "geometry_msgs/PoseArray",
-            encode(&chosen_pois(scene, &header)),
-        ),
-        stamped(
-            MARKERS_TOPIC,
-            "visualization_msgs/MarkerArray",
-            encode(&markers(scene, &header)),
-        ),
-    ];
+    let mut messages = vec![stamped(
+        MARKERS_TOPIC,
+        "visualization_msgs/MarkerArray",
+        t0_ns,
+        encode(&markers(scene, &header)),
+    )];
     if let Some(layer) = &scene.world.traversability {
         messages.push(stamped(
             TRAVERSABILITY_TOPIC,
             "nav_msgs/OccupancyGrid",
+            t0_ns,
             encode(&traversability_grid(layer, &header)),
         ));
     }
-    for (k, w) in scene.plan.waypoints.iter().enumerate() {
+    messages
+}
+
+/// `scene.plan`'s path and chosen PoIs on `topics` at `t0_ns`.
+pub(super) fn route_messages(
+    scene: &PlanScene<'_>,
+    topics: &RobotTopics,
+    t0_ns: u64,
+) -> [Stamped; 2] {
+    let header = header_at(t0_ns);
+    [
+        stamped(
+            &topics.plan,
+            "nav_msgs/Path",
+            t0_ns,
+            encode(&path(scene.plan, &header)),
+        ),
+        stamped(
+            &topics.pois,
+            "geometry_msgs/PoseArray",
+            t0_ns,
+            encode(&chosen_pois(scene, &header)),
+        ),
+    ]
+}
+
+/// `map` → `topics.frame` at each of `plan`'s waypoints, one [`WAYPOINT_STEP_NS`]
+/// apart from `t0_ns` on.
+pub(super) fn transforms(plan: &Plan, topics: &RobotTopics, t0_ns: u64) -> Vec<Stamped> {
+    let mut messages = Vec::with_capacity(plan.waypoints.len());
+    for (k, w) in plan.waypoints.iter().enumerate() {
         let time_ns = t0_ns + k as u64 * WAYPOINT_STEP_NS;
         let transform = TransformStamped {
             header: header_at(time_ns),
-            child_frame_id: ROBOT_FRAME.into(),
+            child_frame_id: topics.frame.clone(),
             transform: Transform {
                 translation: Point {
                     x: w.x,
@@ -118,14 +197,15 @@ pub fn scene_messages(scene: &PlanScene<'_>, t0_ns: u64) -> Vec<Stamped> {
                 rotation: Quaternion::from_yaw(w.yaw),
             },
         };
-        messages.push(Stamped {
-            topic: TF_TOPIC,
-            type_name: "tf2_msgs/TFMessage",
+        let message = TfMessage {
+            transforms: vec![transform],
+        };
+        messages.push(stamped(
+            TF_TOPIC,
+            "tf2_msgs/TFMessage",
             time_ns,
-            data: encode(&TfMessage {
-                transforms: vec![transform],
-            }),
-        });
+            encode(&message),
+        ));
     }
     messages
 }

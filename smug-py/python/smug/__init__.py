@@ -295,6 +295,8 @@ class Plan:
         """Writes the plan as ``plan.mcap`` (ROS 2 messages for Foxglove, RViz2 and
         ``ros2 bag play``; see the README), byte for byte what ``smug plan`` writes;
         ``append=True`` adds it after the plans already in the file, as ``smug replan``.
+        A team plan puts each robot's path and PoIs on ``/smug/<robot>/plan`` and
+        ``/smug/<robot>/pois`` and its pose on ``/tf`` as frame ``<robot>/base_link``.
         """
         config_toml, seed = self._run
         _smug.write_plan_mcap(
