@@ -180,8 +180,18 @@ pub fn plan_assembled(
 /// Assembles and plans a team config for its own objective, as `smug plan` does
 /// (a `[plan] deadline` counts from the start, assembly included).
 pub fn plan_team_config(loaded: &LoadedConfig) -> Result<Outcome<TeamPlanned>> {
+    plan_team_config_with(loaded, &mut |_| {})
+}
+
+/// [`plan_team_config`], showing `assembled` the team before it plans (e.g. for a
+/// display following each robot's progress).
+pub fn plan_team_config_with(
+    loaded: &LoadedConfig,
+    assembled: &mut dyn FnMut(&Team),
+) -> Result<Outcome<TeamPlanned>> {
     let started = Instant::now();
     let mut team = assemble_team(loaded)?;
+    assembled(&team);
     team.spend(started.elapsed().as_secs_f64());
     let objective = team.objective;
     plan_assembled(team, &[objective])

@@ -130,6 +130,27 @@ impl Progress {
         }
     }
 
+    /// Shows beside the message each robot's legs planned of those asked so far
+    /// ("anymal 40/63, rover 3/5 legs planned"), read at every tick.
+    pub(crate) fn follow_team(&self, robots: Vec<(String, smug_core::RunProgress)>) {
+        let Some(bar) = &self.0 else {
+            return;
+        };
+        let legs = move |_: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+            let parts: Vec<String> = robots
+                .iter()
+                .map(|(name, run)| {
+                    let (answered, asked) = run.legs();
+                    format!("{name} {answered}/{asked}")
+                })
+                .collect();
+            let _ = write!(w, ": {} legs planned", parts.join(", "));
+        };
+        if let Ok(style) = indicatif::ProgressStyle::with_template("{spinner} {msg}{legs}") {
+            bar.set_style(style.with_key("legs", legs));
+        }
+    }
+
     pub(crate) fn finish(&self) {
         if let Some(bar) = &self.0 {
             bar.finish_and_clear();

@@ -1,10 +1,11 @@
 //! `smug plan` and `smug replan` on a team config: one plan per robot, a per-robot
 //! summary.
 
+use crate::plan::Progress;
 use crate::Outcome;
 use smug_app::outputs::config_run_info;
 use smug_app::plan_mcap::WriteMode;
-use smug_app::team::{plan_team_config, TeamPlanned};
+use smug_app::team::{plan_team_config_with, Team, TeamPlanned};
 use smug_app::team_outputs::write_team_outputs;
 use smug_app::team_replan::replan_team;
 use smug_core::mission::TeamState;
@@ -22,12 +23,21 @@ pub fn run(
     if save_roadmap.is_some() {
         anyhow::bail!("--save-roadmap: a team has one roadmap per robot; not supported yet");
     }
-    finish(
-        plan_team_config(loaded)?,
-        loaded,
-        out,
-        (json, WriteMode::Replace),
-    )
+    let progress = Progress::start("assembling the team");
+    let outcome = plan_team_config_with(loaded, &mut |team| {
+        progress.stage("planning the team");
+        progress.follow_team(robot_progress(team));
+    });
+    progress.finish();
+    finish(outcome?, loaded, out, (json, WriteMode::Replace))
+}
+
+/// Each robot's name and run progress.
+fn robot_progress(team: &Team) -> Vec<(String, smug_core::RunProgress)> {
+    team.members
+        .iter()
+        .map(|m| (m.name.clone(), m.pipeline.run().progress.clone()))
+        .collect()
 }
 
 /// `smug replan` on a team config: the team state in `state`, the plan written to `out`.

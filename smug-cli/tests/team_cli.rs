@@ -520,3 +520,23 @@ fn a_team_plan_mcap_has_each_robot_on_its_topics_and_a_replan_follows() {
         "the replan's two robots follow"
     );
 }
+
+#[test]
+fn each_robots_progress_counts_its_legs() {
+    let config = workspace().join("configs/indoor-team.toml");
+    let loaded = smug_app::load_config(&config, &[], None).unwrap();
+    let mut followed = Vec::new();
+    let outcome = smug_app::team::plan_team_config_with(&loaded, &mut |team| {
+        for member in &team.members {
+            followed.push((member.name.clone(), member.pipeline.run().progress.clone()));
+        }
+    });
+    let planned = outcome.unwrap().solved().expect("the indoor team plans");
+    assert_eq!(followed.len(), 2);
+    for ((name, progress), robot) in followed.iter().zip(&planned.plans[0].robots) {
+        let (answered, asked) = progress.legs();
+        assert!(asked > 0, "{name} asked no leg");
+        assert_eq!(answered, asked, "{name}: every leg asked is answered");
+        assert!(robot.plan.stats.paths_planned <= asked, "{name}");
+    }
+}
