@@ -74,20 +74,12 @@ impl MissionState {
 
     /// Parses a state from TOML text; `path` names it in errors.
     pub fn from_toml(text: &str, path: &str) -> Result<Self, StateError> {
-        toml::from_str(text).map_err(|e| StateError::Parse {
-            path: path.into(),
-            message: e.to_string().trim_end().replace('\n', " "),
-        })
+        parse_toml(text, path)
     }
 
     /// Reads and parses a state file.
     pub fn from_file(path: &Path) -> Result<Self, StateError> {
-        let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| StateError::Read {
-            path: name.clone(),
-            message: e.to_string(),
-        })?;
-        Self::from_toml(&text, &name)
+        read_toml(path)
     }
 
     /// The state as TOML (what [`MissionState::from_toml`] reads back).
@@ -161,6 +153,27 @@ impl MissionState {
     pub fn failed(&self, id: &str, index: usize) -> bool {
         self.failed_pois.iter().any(|(t, k)| t == id && *k == index)
     }
+}
+
+/// Parses a state of type `T` from TOML text; `path` names it in errors.
+pub(super) fn parse_toml<T: serde::de::DeserializeOwned>(
+    text: &str,
+    path: &str,
+) -> Result<T, StateError> {
+    toml::from_str(text).map_err(|e| StateError::Parse {
+        path: path.into(),
+        message: e.to_string().trim_end().replace('\n', " "),
+    })
+}
+
+/// Reads and parses a state file of type `T`.
+pub(super) fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, StateError> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| StateError::Read {
+        path: name.clone(),
+        message: e.to_string(),
+    })?;
+    parse_toml(&text, &name)
 }
 
 /// What is wrong with a pose or an obstacle of a mission state.

@@ -3,7 +3,7 @@
 //! is lost (its remaining targets go to the others).
 
 use super::obstacles::DiscObstacle;
-use super::state::{MissionState, StateError};
+use super::state::{parse_toml, read_toml, MissionState, StateError};
 use super::Mission;
 use crate::pose::Bounds2;
 use serde::{Deserialize, Serialize};
@@ -46,20 +46,12 @@ pub struct RobotState {
 impl TeamState {
     /// Parses a team state from TOML text; `path` names it in errors.
     pub fn from_toml(text: &str, path: &str) -> Result<Self, StateError> {
-        toml::from_str(text).map_err(|e| StateError::Parse {
-            path: path.into(),
-            message: e.to_string().trim_end().replace('\n', " "),
-        })
+        parse_toml(text, path)
     }
 
     /// Reads and parses a team state file.
     pub fn from_file(path: &Path) -> Result<Self, StateError> {
-        let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| StateError::Read {
-            path: name.clone(),
-            message: e.to_string(),
-        })?;
-        Self::from_toml(&text, &name)
+        read_toml(path)
     }
 
     /// The state as TOML (what [`TeamState::from_toml`] reads back).
