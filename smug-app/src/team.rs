@@ -137,6 +137,7 @@ pub(crate) fn assemble_on(
             unit,
             keep_headings: loaded.config.plan.keep_headings,
             deadline_s: loaded.config.plan.deadline,
+            spent_s: 0.0,
         },
         members,
         sequencer,
@@ -198,11 +199,9 @@ pub fn plan_team_config_with(
 }
 
 impl Team {
-    /// Takes `seconds` (spent assembling it) off the planning's deadline, if any.
+    /// Counts `seconds` (spent assembling it) against the run's deadline, if any.
     pub fn spend(&mut self, seconds: f64) {
-        if let Some(deadline) = self.mission.deadline_s.as_mut() {
-            *deadline -= seconds;
-        }
+        self.mission.spent_s += seconds;
     }
 }
 

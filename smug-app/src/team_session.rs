@@ -115,6 +115,7 @@ impl TeamSession {
             unit: kept.unit.clone(),
             keep_headings: kept.keep_headings,
             deadline_s: kept.deadline_s,
+            spent_s: 0.0,
         };
         let mut slots: Vec<Option<TeamMember>> = std::mem::take(&mut self.team.members)
             .into_iter()

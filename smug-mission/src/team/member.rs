@@ -32,7 +32,9 @@ pub struct TeamMission {
     pub unit: String,
     /// Keep the roadmap's headings in the waypoints (`[plan] keep_headings`).
     pub keep_headings: bool,
-    /// Seconds the planning may take, from when [`plan_team`](crate::plan_team) starts
-    /// (`None`: no limit); every robot's planner and the team sequencer stop at it.
+    /// The run's deadline in seconds (`None`: no limit); every robot's planner and the
+    /// team sequencer stop at it.
     pub deadline_s: Option<f64>,
+    /// Seconds of the deadline spent before planning (assembling the team).
+    pub spent_s: f64,
 }

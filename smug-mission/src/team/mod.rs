@@ -42,7 +42,8 @@ pub fn plan_team(
         .iter()
         .map(|m| m.pipeline.run().deadline.clone())
         .collect();
-    let _armed: Vec<_> = deadlines.iter().map(|d| d.arm(Some(seconds))).collect();
+    let left = seconds - team.spent_s;
+    let _armed: Vec<_> = deadlines.iter().map(|d| d.arm(Some(left))).collect();
     let reached = || deadlines.iter().any(Deadline::reached);
     match plan_team_unbounded(members, team, sequencer, objectives) {
         Ok(mut plans) => {
