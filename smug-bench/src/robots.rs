@@ -22,7 +22,7 @@ pub struct BenchRobotsArgs {
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "configs/lunar.toml,configs/indoor.toml"
+        default_value = "configs/lunar.toml,configs/indoor.toml,configs/imported-map.toml,configs/cluttered.toml"
     )]
     worlds: Vec<PathBuf>,
     /// Robots: `name=profile[+KEY=VALUE…]` (profile: a file of `configs/robots/`

@@ -190,6 +190,37 @@ fn bad_radii_unknown_models_and_oversized_robots_name_the_key() {
     }
 }
 
+/// The lattice planner's own bad input, through the CLI: a turning radius the map
+/// cannot hold, too few headings, a holonomic model it cannot serve; one line naming
+/// the key, exit 2.
+#[test]
+fn lattice_bad_input_names_the_key_and_exits_2() {
+    for (set, needles) in [
+        (
+            &["space.params.turning_radius=20.0"][..],
+            &["space.params.turning_radius", "does not fit"][..],
+        ),
+        (
+            &["space.params.turning_radius=inf"][..],
+            &["turning_radius", "finite"][..],
+        ),
+        (
+            &["planner.params.headings=8"][..],
+            &["planner.params.headings", "16"][..],
+        ),
+        (
+            &["space.type=\"se2\"", "space.params={}"][..],
+            &["space.type", "curvature-limited"][..],
+        ),
+    ] {
+        let mut args = vec!["check", "configs/lunar-rover.toml"];
+        for s in set {
+            args.extend(["--set", s]);
+        }
+        assert_bad_input(&smug(&args), needles);
+    }
+}
+
 #[test]
 fn a_dubins_car_on_lunar_ends_in_seconds_naming_the_stones_it_cannot_serve() {
     // The paper's config with its robot swapped for a forward-only car by the space

@@ -392,45 +392,65 @@ fn bad_generate_input_exits_2() {
 }
 
 /// The command documented in `configs/maps/README.md` for the imported-map example.
-const CONFIG_MAP_COMMAND: [&str; 10] = [
-    "worlds",
-    "generate",
-    "random",
-    "--size",
-    "32x32",
-    "--seed",
-    "1",
-    "--density",
-    "0.1",
-    "--yaml",
+/// The commands that made the tracked example maps (`configs/maps/`), with the stem of
+/// their files.
+const CONFIG_MAPS: [(&[&str], &str); 2] = [
+    (
+        &[
+            "worlds",
+            "generate",
+            "random",
+            "--size",
+            "32x32",
+            "--seed",
+            "1",
+            "--density",
+            "0.1",
+            "--yaml",
+        ],
+        "random-32x32-d10-s1",
+    ),
+    (
+        &[
+            "worlds",
+            "generate",
+            "polygons",
+            "--size",
+            "128x128",
+            "--seed",
+            "1",
+            "--yaml",
+            "--resolution",
+            "0.25",
+        ],
+        "polygons-128x128-d20-s1",
+    ),
 ];
 
 #[test]
-fn the_example_map_regenerates_bit_identically() {
+fn the_example_maps_regenerate_bit_identically() {
     let dir = scratch("config-map");
-    let map = dir.join("random-32x32-d10-s1.map");
-    assert_ok(&smug(
-        &[&CONFIG_MAP_COMMAND[..], &["--out", text(&map)]].concat(),
-    ));
     let maps = workspace().join("configs/maps");
-    for file in [
-        "random-32x32-d10-s1.map",
-        "random-32x32-d10-s1.yaml",
-        "random-32x32-d10-s1.pgm",
-    ] {
-        let fresh = std::fs::read(dir.join(file)).unwrap();
-        let tracked = std::fs::read(maps.join(file)).unwrap();
+    let readme = std::fs::read_to_string(maps.join("README.md")).unwrap();
+    for (command, stem) in CONFIG_MAPS {
+        let map = dir.join(format!("{stem}.map"));
+        assert_ok(&smug(&[command, &["--out", text(&map)]].concat()));
+        for ext in ["map", "yaml", "pgm"] {
+            let file = format!("{stem}.{ext}");
+            let fresh = std::fs::read(dir.join(&file)).unwrap();
+            let tracked = std::fs::read(maps.join(&file)).unwrap();
+            assert!(
+                fresh == tracked,
+                "{file} differs from a fresh `smug {}`",
+                command.join(" ")
+            );
+        }
         assert!(
-            fresh == tracked,
-            "{file} differs from a fresh `smug {}`",
-            CONFIG_MAP_COMMAND.join(" ")
+            readme.contains(&command.join(" ")),
+            "the README names `{}`",
+            command.join(" ")
         );
     }
-    let readme = std::fs::read_to_string(maps.join("README.md")).unwrap();
-    assert!(
-        readme.contains(&CONFIG_MAP_COMMAND.join(" ")),
-        "the README names the command"
-    );
 }
 
 #[test]

@@ -15,7 +15,8 @@ const SLACK: f64 = 1e-9;
 
 /// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
 /// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
-/// legs, repeat until the tour uses planned legs only (or one of them has no path).
+/// legs, repeat until the tour uses planned legs only (or one of them has no path; for
+/// a directed model, until the solver finds no tour round the legs without a path).
 ///
 /// With `warm`, each round is given the previous round's tour to start from; a warm
 /// round that ends on planned legs only is checked by one solve from scratch of the
@@ -110,6 +111,10 @@ fn converge(
             }
             tour = cold;
         }
+        // Only planned legs are infinite: the solver found no tour around them.
+        if !matrix.tour_cost(&tour.order, kind).is_finite() {
+            return Ok((tour, true));
+        }
         let unplanned = unplanned_legs(oracle, nodes, &tour, kind);
         if unplanned.is_empty() {
             return Ok((tour, false));
@@ -118,9 +123,12 @@ fn converge(
         for (a, b) in unplanned {
             dead_end |= !oracle.cost(a, b)?.is_finite();
         }
-        if dead_end {
+        if dead_end && oracle.is_symmetric() {
             return Ok((tour, true));
         }
+        // A directed model's leg without a path (a PoI a car can enter but not leave
+        // towards the end, say) may have a way round in another order: solve again
+        // with it infinite (each round plans a leg more, so the loop ends).
         previous = warm.then_some(tour);
     }
 }

@@ -110,8 +110,29 @@ fn lazy_tour(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_support::{oracle, Exhaustive};
+    use crate::test_support::{oracle, oracle_with_dead_leg, Exhaustive};
     use proptest::prelude::*;
+
+    /// A directed model whose cheapest order by bounds ends on a leg without a path
+    /// (a PoI a car can enter but not leave towards the end): the lazy tour goes round
+    /// it, in another order, on planned legs only.
+    #[test]
+    fn a_directed_leg_without_a_path_is_routed_round() {
+        let poses =
+            [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (1.0, 1.0)].map(|(x, y)| Pose2::new(x, y, 0.0));
+        // Closed tours: 0 → 1 → 2 → 3 → 0 and its reverse are the cheapest; 3 → 0
+        // has no path, so 0 → 3 → 2 → 1 → 0 (or another tour without it) must be taken.
+        let (mut directed, nodes) = oracle_with_dead_leg(&poses, vec![1.0; 16], Some((3, 0)));
+        let tour = lazy_tour(&Exhaustive, &mut directed, &nodes, TourKind::Closed, false).unwrap();
+        let matrix = full_matrix(&mut directed, &nodes).unwrap();
+        let cost = matrix.tour_cost(&tour.order, TourKind::Closed);
+        assert!(cost.is_finite(), "tour {:?} uses the dead leg", tour.order);
+        let (mut plain, nodes) = oracle(&poses, vec![1.0; 16]);
+        let best = Exhaustive
+            .solve(&full_matrix(&mut plain, &nodes).unwrap(), TourKind::Closed)
+            .unwrap();
+        assert!(cost >= best.cost - 1e-9);
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]

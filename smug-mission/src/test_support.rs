@@ -10,6 +10,7 @@ use smug_core::stages::{
     Clusters, CostMatrix, PlannerOutcome, PlannerStats, PointToPointPlanner, Sequencer, Tour,
     TourKind,
 };
+use smug_core::{NoPathReason, Proof};
 use std::sync::Arc;
 
 /// Answers every query with a straight path whose cost is the objective's cost
@@ -18,6 +19,8 @@ struct DetourPlanner {
     poses: Vec<Pose2>,
     detours: Vec<f64>,
     objective: PathLength,
+    /// A directed leg (indices of `poses`) without a path, if any.
+    dead: Option<(usize, usize)>,
 }
 
 impl DetourPlanner {
@@ -29,6 +32,11 @@ impl DetourPlanner {
 impl PointToPointPlanner for DetourPlanner {
     fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
         let (i, j) = (self.index(start), self.index(goal));
+        if self.dead == Some((i, j)) {
+            return Ok(PlannerOutcome::NoPath(NoPathReason::Proved(
+                Proof::Exhausted,
+            )));
+        }
         let n = self.poses.len();
         let factor = self.detours[i.min(j) * n + i.max(j)];
         let mut path = Path::new(vec![*start, *goal], &self.objective);
@@ -119,13 +127,25 @@ fn permute(items: &mut [usize], k: usize, visit: &mut impl FnMut(&[usize])) {
 }
 
 pub(crate) fn oracle(poses: &[Pose2], detours: Vec<f64>) -> (PathOracle, Vec<usize>) {
+    oracle_with_dead_leg(poses, detours, None)
+}
+
+/// [`oracle`] whose planner finds no path for the directed leg `dead` (indices of
+/// `poses`), a directed oracle when there is one.
+pub(crate) fn oracle_with_dead_leg(
+    poses: &[Pose2],
+    detours: Vec<f64>,
+    dead: Option<(usize, usize)>,
+) -> (PathOracle, Vec<usize>) {
     let objective = PathLength::default();
     let planner = DetourPlanner {
         poses: poses.to_vec(),
         detours,
         objective: objective.clone(),
+        dead,
     };
-    let mut oracle = PathOracle::new(Arc::new(objective), Box::new(planner));
+    let mut oracle =
+        PathOracle::new(Arc::new(objective), Box::new(planner)).with_symmetry(dead.is_none());
     let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
     (oracle, nodes)
 }

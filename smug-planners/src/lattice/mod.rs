@@ -71,6 +71,10 @@ pub struct LatticeParams {
     pub heuristic_weight: f64,
     /// Shortcut every path found with the model's curves (the cost never rises).
     pub shortcut: bool,
+    /// Smooth every path found: rounds of shortcutting and corner cutting with the
+    /// model's curves, each new curve checked (the cost never rises; as LazyPRM*'s
+    /// `smooth`). Pulls a path taut where the lattice's spacing made it swerve.
+    pub smooth: bool,
 }
 
 impl Default for LatticeParams {
@@ -86,6 +90,7 @@ impl Default for LatticeParams {
             obstacle_heuristic: true,
             heuristic_weight: 1.0,
             shortcut: true,
+            smooth: true,
         }
     }
 }

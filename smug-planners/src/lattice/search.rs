@@ -212,13 +212,22 @@ impl Worker<'_> {
         states.push(*start);
         states.reverse();
         let path = Path::new(states, self.sh.objective.as_ref());
-        if !self.sh.params.shortcut || path.states.len() <= 2 {
+        let (sh, params) = (self.sh, &self.sh.params);
+        if !(params.shortcut || params.smooth) || path.states.len() <= 2 {
             return PlannerOutcome::Exact(path);
         }
-        let shorter = Path::new(
-            crate::shortcut::shortcut_galloping(&path.states, self.sh.motions.as_ref()),
-            self.sh.objective.as_ref(),
-        );
+        let motions = sh.motions.as_ref();
+        let shorter = if params.smooth {
+            crate::shortcut::smooth(
+                &path.states,
+                motions,
+                sh.space.as_ref(),
+                sh.objective.as_ref(),
+            )
+        } else {
+            crate::shortcut::shortcut_galloping(&path.states, motions)
+        };
+        let shorter = Path::new(shorter, sh.objective.as_ref());
         PlannerOutcome::Exact(if shorter.cost < path.cost {
             shorter
         } else {
