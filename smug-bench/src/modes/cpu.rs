@@ -63,10 +63,11 @@ mod tests {
 
     #[test]
     fn work_on_this_thread_shows_as_cpu_time_on_linux() {
-        let Some(before) = CpuTimes::now() else {
-            assert!(!cfg!(target_os = "linux"), "Linux keeps schedstat");
+        if !cfg!(target_os = "linux") {
+            // Other systems may keep no schedstat: the report shows `–` there.
             return;
-        };
+        }
+        let before = CpuTimes::now().expect("Linux keeps schedstat");
         let mut x = 0u64;
         let started = std::time::Instant::now();
         while started.elapsed().as_millis() < 30 {
