@@ -15,6 +15,7 @@ mod stage_table;
 mod builtins;
 pub mod config;
 pub mod context;
+pub mod counter;
 pub mod deadline;
 pub mod digest;
 pub mod error;
@@ -40,6 +41,7 @@ pub mod timing;
 pub mod world;
 
 pub use config::{LoadedConfig, PipelineConfig, PluginSection, RobotConfig};
+pub use counter::Counter;
 pub use deadline::Deadline;
 pub use error::{ConfigError, Error, Origin, RegistryError, Result};
 pub use grid::{GridError, GridGeometry, GridLayer, VoxelGeometry, VoxelGrid};

@@ -5,10 +5,10 @@
 
 use crate::edt::squared_edt_2d;
 use serde::{Deserialize, Serialize};
+use smug_core::Counter;
 use smug_core::{
     BuildContext, Counters, DiscOnGrid, Error, GridGeometry, Pose2, StateValidityChecker, World,
 };
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 mod segment;
 
@@ -38,9 +38,9 @@ pub struct Clearance2dChecker {
     /// Distance (metres) from each cell centre to the nearest obstacle cell centre.
     distance: Vec<f64>,
     radius: f64,
-    checks: AtomicU64,
-    exact_checks: AtomicU64,
-    segment_checks: AtomicU64,
+    checks: Counter,
+    exact_checks: Counter,
+    segment_checks: Counter,
 }
 
 impl Clearance2dChecker {
@@ -74,9 +74,9 @@ impl Clearance2dChecker {
             obstacles,
             distance,
             radius: params.radius,
-            checks: AtomicU64::new(0),
-            exact_checks: AtomicU64::new(0),
-            segment_checks: AtomicU64::new(0),
+            checks: Counter::new(),
+            exact_checks: Counter::new(),
+            segment_checks: Counter::new(),
         })
     }
 
@@ -95,7 +95,7 @@ impl Clearance2dChecker {
     /// The gaps `(dx, dy)` from `(x, y)` to the obstacle squares whose cells lie within
     /// `reach` of it along both axes, row by row (one exact check).
     fn obstacle_gaps(&self, x: f64, y: f64, reach: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.exact_checks.fetch_add(1, Relaxed);
+        self.exact_checks.increment();
         let g = &self.geometry;
         let res = g.resolution;
         let lo = |v: f64, o: f64| ((v - reach - o) / res).floor().max(0.0) as usize;
@@ -156,7 +156,7 @@ impl Clearance2dChecker {
 
 impl StateValidityChecker for Clearance2dChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
-        self.checks.fetch_add(1, Relaxed);
+        self.checks.increment();
         let (x, y, r) = (state.x, state.y, self.radius);
         if !self.inside_border([x, y]) {
             return false;
@@ -191,7 +191,7 @@ impl StateValidityChecker for Clearance2dChecker {
     }
 
     fn segment_valid(&self, a: &Pose2, b: &Pose2) -> Option<bool> {
-        self.segment_checks.fetch_add(1, Relaxed);
+        self.segment_checks.increment();
         Some(self.segment_clear(a, b))
     }
 
@@ -205,12 +205,9 @@ impl StateValidityChecker for Clearance2dChecker {
 
     fn counters(&self) -> Counters {
         Counters::from([
-            ("checks".to_string(), self.checks.load(Relaxed)),
-            ("exact_checks".to_string(), self.exact_checks.load(Relaxed)),
-            (
-                "segment_checks".to_string(),
-                self.segment_checks.load(Relaxed),
-            ),
+            ("checks".to_string(), self.checks.total()),
+            ("exact_checks".to_string(), self.exact_checks.total()),
+            ("segment_checks".to_string(), self.segment_checks.total()),
         ])
     }
 }

@@ -1,7 +1,7 @@
 //! A wrapper that counts state checks and the time they take.
 
+use smug_core::Counter;
 use smug_core::{Counters, Pose2, StateValidityChecker};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -9,9 +9,9 @@ use std::time::Instant;
 /// counters also include the wrapped checker's own (e.g. `esdf_queries`).
 pub struct CountingChecker {
     inner: Arc<dyn StateValidityChecker>,
-    checks: AtomicU64,
-    valid: AtomicU64,
-    nanos: AtomicU64,
+    checks: Counter,
+    valid: Counter,
+    nanos: Counter,
 }
 
 impl CountingChecker {
@@ -19,15 +19,15 @@ impl CountingChecker {
     pub fn new(inner: Arc<dyn StateValidityChecker>) -> Self {
         Self {
             inner,
-            checks: AtomicU64::new(0),
-            valid: AtomicU64::new(0),
-            nanos: AtomicU64::new(0),
+            checks: Counter::new(),
+            valid: Counter::new(),
+            nanos: Counter::new(),
         }
     }
 
     /// Seconds spent checking so far.
     pub fn seconds(&self) -> f64 {
-        self.nanos.load(Relaxed) as f64 * 1e-9
+        self.nanos.total() as f64 * 1e-9
     }
 }
 
@@ -35,10 +35,9 @@ impl StateValidityChecker for CountingChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
         let started = Instant::now();
         let valid = self.inner.is_valid(state);
-        self.nanos
-            .fetch_add(started.elapsed().as_nanos() as u64, Relaxed);
-        self.checks.fetch_add(1, Relaxed);
-        self.valid.fetch_add(valid as u64, Relaxed);
+        self.nanos.add(started.elapsed().as_nanos() as u64);
+        self.checks.increment();
+        self.valid.add(valid as u64);
         valid
     }
 
@@ -58,9 +57,9 @@ impl StateValidityChecker for CountingChecker {
                 counters.insert(key.to_string(), v);
             }
         }
-        counters.insert("checks".into(), self.checks.load(Relaxed));
-        counters.insert("valid".into(), self.valid.load(Relaxed));
-        counters.insert("time_ns".into(), self.nanos.load(Relaxed));
+        counters.insert("checks".into(), self.checks.total());
+        counters.insert("valid".into(), self.valid.total());
+        counters.insert("time_ns".into(), self.nanos.total());
         counters
     }
 }

@@ -5,8 +5,8 @@
 use crate::robot_box::RobotBox;
 use crate::volumetric::{shared_volumes, VolumetricChecker, VolumetricParams};
 use serde::{Deserialize, Serialize};
+use smug_core::Counter;
 use smug_core::{BuildContext, Counters, Error, GridLayer, Pose2, StateValidityChecker};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// Parameters of the hierarchical checker.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -40,8 +40,8 @@ pub struct HierarchicalChecker {
     volumetric: VolumetricChecker,
     t_low: f64,
     t_high: f64,
-    checks: AtomicU64,
-    decided_by_traversability: AtomicU64,
+    checks: Counter,
+    decided_by_traversability: Counter,
 }
 
 impl HierarchicalChecker {
@@ -63,8 +63,8 @@ impl HierarchicalChecker {
             volumetric,
             t_low,
             t_high,
-            checks: AtomicU64::new(0),
-            decided_by_traversability: AtomicU64::new(0),
+            checks: Counter::new(),
+            decided_by_traversability: Counter::new(),
         })
     }
 
@@ -81,10 +81,10 @@ impl HierarchicalChecker {
 
 impl StateValidityChecker for HierarchicalChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
-        self.checks.fetch_add(1, Relaxed);
+        self.checks.increment();
         match self.traversability_verdict(state) {
             Some(verdict) => {
-                self.decided_by_traversability.fetch_add(1, Relaxed);
+                self.decided_by_traversability.increment();
                 verdict
             }
             None => self.volumetric.is_valid(state),
@@ -97,10 +97,10 @@ impl StateValidityChecker for HierarchicalChecker {
             "volumetric_checks".into(),
             counters.get("checks").copied().unwrap_or(0),
         );
-        counters.insert("checks".into(), self.checks.load(Relaxed));
+        counters.insert("checks".into(), self.checks.total());
         counters.insert(
             "traversability_decided".into(),
-            self.decided_by_traversability.load(Relaxed),
+            self.decided_by_traversability.total(),
         );
         counters
     }

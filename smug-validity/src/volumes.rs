@@ -11,8 +11,8 @@ use crate::edt::squared_edt_3d;
 use crate::volumes_update::{update_distances, update_occupancy};
 use crate::ValidityError;
 use smug_core::mission::DiscObstacle;
+use smug_core::Counter;
 use smug_core::{MemoryLimit, VoxelGeometry, VoxelGrid, World};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError, Weak};
 
 /// Largest voxel count derived automatically (≈ 1.6 GB of distances).
@@ -26,7 +26,7 @@ pub struct Volumes {
     /// Signed distance (metres) from each voxel centre to the nearest occupied voxel
     /// centre (positive), or minus the distance to the nearest free one (inside).
     pub esdf: VoxelGrid<f32>,
-    queries: AtomicU64,
+    queries: Counter,
 }
 
 impl Volumes {
@@ -56,7 +56,7 @@ impl Volumes {
         Self {
             occupancy,
             esdf,
-            queries: AtomicU64::new(0),
+            queries: Counter::new(),
         }
     }
 
@@ -68,7 +68,7 @@ impl Volumes {
     /// A lower bound of the distance from `p` to the occupied voxel cubes (≤ 0 when
     /// `p` may be inside); `None` outside the grid (unknown space). Counts one query.
     pub fn distance_lower_bound(&self, p: [f64; 3]) -> Option<f64> {
-        self.queries.fetch_add(1, Relaxed);
+        self.queries.increment();
         let g = &self.occupancy.geometry;
         let v = g.voxel_of(p)?;
         let c = g.center_of(v);
@@ -81,7 +81,7 @@ impl Volumes {
 
     /// Distance-field queries so far.
     pub fn queries(&self) -> u64 {
-        self.queries.load(Relaxed)
+        self.queries.total()
     }
 
     /// True when the axis-aligned box `[min, max]` lies inside the grid.

@@ -9,8 +9,8 @@
 use crate::robot_box::{PlacedBox, RobotBox};
 use crate::volumes::{SharedVolumes, Volumes};
 use serde::{Deserialize, Serialize};
+use smug_core::Counter;
 use smug_core::{BuildContext, Counters, Error, Pose2, StateValidityChecker, World};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 
 /// Parameters of the volumetric checker.
@@ -39,9 +39,9 @@ pub struct VolumetricChecker {
     volumes: SharedVolumes,
     robot: RobotBox,
     params: VolumetricParams,
-    checks: AtomicU64,
+    checks: Counter,
     /// Distance-field queries of this checker (the volumes may be shared).
-    esdf_queries: AtomicU64,
+    esdf_queries: Counter,
 }
 
 impl VolumetricChecker {
@@ -75,8 +75,8 @@ impl VolumetricChecker {
             volumes,
             robot,
             params,
-            checks: AtomicU64::new(0),
-            esdf_queries: AtomicU64::new(0),
+            checks: Counter::new(),
+            esdf_queries: Counter::new(),
         })
     }
 
@@ -95,7 +95,7 @@ impl VolumetricChecker {
         depth: u32,
     ) -> bool {
         let center = placed.to_world(offset);
-        self.esdf_queries.fetch_add(1, Relaxed);
+        self.esdf_queries.increment();
         let Some(distance) = volumes.distance_lower_bound(center) else {
             return false;
         };
@@ -127,7 +127,7 @@ fn longest_axis(half: [f64; 3]) -> usize {
 
 impl StateValidityChecker for VolumetricChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
-        self.checks.fetch_add(1, Relaxed);
+        self.checks.increment();
         let Some(placed) = self.robot.place(&self.world, state) else {
             return false;
         };
@@ -139,8 +139,8 @@ impl StateValidityChecker for VolumetricChecker {
 
     fn counters(&self) -> Counters {
         Counters::from([
-            ("checks".to_string(), self.checks.load(Relaxed)),
-            ("esdf_queries".to_string(), self.esdf_queries.load(Relaxed)),
+            ("checks".to_string(), self.checks.total()),
+            ("esdf_queries".to_string(), self.esdf_queries.total()),
         ])
     }
 }

@@ -3,6 +3,7 @@
 //! N seeds (issue 17's comparison): cost, paths planned, planning time, failures, and
 //! joint minus sequential per seed.
 
+mod cpu;
 pub mod polygons;
 mod report;
 pub mod runs;
@@ -87,11 +88,16 @@ pub fn run(args: BenchModesArgs) -> crate::Result<()> {
                     eprintln!("{} / {} / seed {seed}", mission.name, mode.name);
                     let plan =
                         || plan_once(mission, mode, seed, &args.report.set, args.data.as_deref());
+                    let before = cpu::CpuTimes::now();
                     let mut run = match pool {
                         Some(pool) => pool.install(plan)?,
                         None => plan()?,
                     };
                     run.threads = *threads;
+                    if let (Some(before), Some(after)) = (before, cpu::CpuTimes::now()) {
+                        let spent = after.since(before);
+                        (run.cpu_s, run.waited_s) = (Some(spent.run_s), Some(spent.waited_s));
+                    }
                     runs.push(run);
                 }
             }
@@ -246,6 +252,8 @@ fn plan_once(
         error: None,
         total_s: None,
         threads: None,
+        cpu_s: None,
+        waited_s: None,
     };
     match planned {
         Ok(plan) => {

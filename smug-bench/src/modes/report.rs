@@ -327,6 +327,8 @@ mod tests {
             error: cost.is_none().then(|| "no safe path".into()),
             total_s: cost.map(|_| 0.6),
             threads: None,
+            cpu_s: None,
+            waited_s: None,
         }
     }
 

@@ -213,6 +213,14 @@ pub struct Run {
     /// The threads of the pool the run ran on (`None`: rayon's default).
     #[serde(default)]
     pub threads: Option<usize>,
+    /// CPU time of the process's threads during the run (config loading, building and
+    /// planning), seconds (`None` where the system does not say).
+    #[serde(default)]
+    pub cpu_s: Option<f64>,
+    /// Time the process's threads were ready to run but waited for a core during the
+    /// run (other jobs on the machine), seconds.
+    #[serde(default)]
+    pub waited_s: Option<f64>,
     /// The plan's target order (`sequence`).
     #[serde(default)]
     pub order: Vec<String>,

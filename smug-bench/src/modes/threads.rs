@@ -21,6 +21,10 @@ pub struct ThreadRow {
     pub mean_total_s: f64,
     /// Mean planning time, seconds.
     pub mean_planning_s: f64,
+    /// Mean CPU time of the process's threads per run, seconds.
+    pub mean_cpu_s: f64,
+    /// Mean time the threads waited for a core per run (the machine shared), seconds.
+    pub mean_waited_s: f64,
     /// The first count's mean whole time over this one's.
     pub speed_up: f64,
     /// Seeds whose plan (order and cost bits) equals the first count's.
@@ -68,6 +72,8 @@ pub fn rows(
                     planned: these.iter().filter(|r| r.cost.is_some()).count(),
                     mean_total_s: total,
                     mean_planning_s: mean(these.iter().filter_map(|r| r.planning_s)),
+                    mean_cpu_s: mean(these.iter().filter_map(|r| r.cpu_s)),
+                    mean_waited_s: mean(these.iter().filter_map(|r| r.waited_s)),
                     speed_up: base / total,
                     same_plan,
                     seeds: these.len(),
@@ -84,25 +90,40 @@ pub fn section(rows: &[ThreadRow], labels: impl Fn(&str, &str) -> (String, Strin
         "\n## Threads\n\nEach run again on a pool of each thread count (`--threads`), one after another \
          in one process. Whole: the plan's `total` time (building the pipeline included: \
          the traversability and terrain grids are filled side by side too); speed-up: the \
-         first count's mean whole time over this one's; same plan: seeds whose order and \
-         cost (bit for bit) are the first count's.\n\n\
-         | mission | mode | threads | planned | whole (s) | planning (s) | speed-up | same plan |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|\n",
+         first count's mean whole time over this one's; CPU: the time the process's \
+         threads ran during the run, all threads summed (more than whole: the threads ran \
+         side by side); waited: the time they were ready to run while every core was busy \
+         with other jobs on the machine (Linux; `–` elsewhere): a speed-up is the cores' \
+         only where it is small; same plan: seeds whose order and cost (bit for bit) are \
+         the first count's.\n\n\
+         | mission | mode | threads | planned | whole (s) | planning (s) | CPU (s) | waited (s) | speed-up | same plan |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for row in rows {
         let (mission, mode) = labels(&row.mission, &row.mode);
         out.push_str(&format!(
-            "| {mission} | {mode} | {} | {} | {:.3} | {:.3} | {:.2}× | {}/{} |\n",
+            "| {mission} | {mode} | {} | {} | {:.3} | {:.3} | {} | {} | {:.2}× | {}/{} |\n",
             row.threads,
             row.planned,
             row.mean_total_s,
             row.mean_planning_s,
+            seconds_or_dash(row.mean_cpu_s),
+            seconds_or_dash(row.mean_waited_s),
             row.speed_up,
             row.same_plan,
             row.seeds
         ));
     }
     out
+}
+
+/// Seconds to 3 decimals, `–` when unknown (NaN).
+fn seconds_or_dash(s: f64) -> String {
+    if s.is_nan() {
+        "–".into()
+    } else {
+        format!("{s:.3}")
+    }
 }
 
 /// The mean (NaN for none).

@@ -2,9 +2,8 @@
 
 use crate::roadmap::memo::{CheckMemo, MemoEvaluator};
 use crate::roadmap::{Evaluator, Roadmap, Validity};
-use smug_core::TimeBreakdown;
+use smug_core::{Counter, TimeBreakdown};
 use smug_core::{MotionCheck, MotionValidator, Pose2, StateValidityChecker};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::time::Instant;
 
 /// Counters kept across queries.
@@ -42,21 +41,21 @@ pub(super) fn timed_state_check(
 /// path post-processing, booked as edge checks).
 pub(super) struct CountedMotions<'a> {
     pub(super) inner: &'a dyn MotionValidator,
-    pub(super) checks: AtomicU64,
-    pub(super) nanoseconds: AtomicU64,
+    pub(super) checks: Counter,
+    pub(super) nanoseconds: Counter,
 }
 
 impl<'a> CountedMotions<'a> {
     pub(super) fn new(inner: &'a dyn MotionValidator) -> Self {
         Self {
             inner,
-            checks: AtomicU64::new(0),
-            nanoseconds: AtomicU64::new(0),
+            checks: Counter::new(),
+            nanoseconds: Counter::new(),
         }
     }
 
     fn timed<T>(&self, check: impl FnOnce() -> T) -> T {
-        self.checks.fetch_add(1, Relaxed);
+        self.checks.increment();
         timed_into(&self.nanoseconds, check)
     }
 }
@@ -121,19 +120,19 @@ impl Evaluator for Checks<'_> {
 /// Checks and their time, added up by searches side by side.
 #[derive(Default)]
 pub(super) struct Tally {
-    vertex_checks: AtomicU64,
-    edge_checks: AtomicU64,
-    vertex_nanoseconds: AtomicU64,
-    edge_nanoseconds: AtomicU64,
+    vertex_checks: Counter,
+    edge_checks: Counter,
+    vertex_nanoseconds: Counter,
+    edge_nanoseconds: Counter,
 }
 
 impl Tally {
     /// Adds the counts and times to `counts`; returns the checking time in seconds.
     pub(super) fn book(&self, counts: &mut Counts) -> f64 {
-        counts.vertex_checks += self.vertex_checks.load(Relaxed);
-        counts.edge_checks += self.edge_checks.load(Relaxed);
-        let vertex_s = self.vertex_nanoseconds.load(Relaxed) as f64 * 1e-9;
-        let edge_s = self.edge_nanoseconds.load(Relaxed) as f64 * 1e-9;
+        counts.vertex_checks += self.vertex_checks.total();
+        counts.edge_checks += self.edge_checks.total();
+        let vertex_s = self.vertex_nanoseconds.total() as f64 * 1e-9;
+        let edge_s = self.edge_nanoseconds.total() as f64 * 1e-9;
         counts.breakdown.vertex_checking_s += vertex_s;
         counts.breakdown.edge_checking_s += edge_s;
         vertex_s + edge_s
@@ -141,11 +140,11 @@ impl Tally {
 }
 
 /// Runs `check`, adding its time to `nanoseconds`.
-fn timed_into<T>(nanoseconds: &AtomicU64, check: impl FnOnce() -> T) -> T {
+fn timed_into<T>(nanoseconds: &Counter, check: impl FnOnce() -> T) -> T {
     let started = Instant::now();
     let result = check();
     let elapsed = started.elapsed().as_nanos().min(u128::from(u64::MAX)) as u64;
-    nanoseconds.fetch_add(elapsed, Relaxed);
+    nanoseconds.add(elapsed);
     result
 }
 
@@ -170,7 +169,7 @@ impl MemoEvaluator for MemoChecks<'_> {
                 })
             },
             || {
-                tally.vertex_checks.fetch_add(1, Relaxed);
+                tally.vertex_checks.increment();
             },
         )
     }
@@ -188,7 +187,7 @@ impl MemoEvaluator for MemoChecks<'_> {
                 })
             },
             || {
-                tally.edge_checks.fetch_add(1, Relaxed);
+                tally.edge_checks.increment();
             },
         )
     }

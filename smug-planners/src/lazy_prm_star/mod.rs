@@ -45,7 +45,6 @@ use smug_core::{
     Result, RunContext, Sampler, StateSpace, StateValidityChecker, Termination,
 };
 use std::collections::{BTreeMap, BTreeSet};
-use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 use std::time::Instant;
 

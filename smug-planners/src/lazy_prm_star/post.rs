@@ -8,10 +8,7 @@ impl LazyPrmStar {
     pub(super) fn post_processed(&mut self, graph_path: &GraphPath) -> Path {
         let motions = CountedMotions::new(self.motions.as_ref());
         let path = self.post_process(graph_path, &motions);
-        let (checks, nanoseconds) = (
-            motions.checks.load(Relaxed),
-            motions.nanoseconds.load(Relaxed),
-        );
+        let (checks, nanoseconds) = (motions.checks.total(), motions.nanoseconds.total());
         self.count_post_processing(checks, nanoseconds);
         path
     }
@@ -27,10 +24,7 @@ impl LazyPrmStar {
             .par_iter()
             .map(|graph_path| this.post_process(graph_path, &motions))
             .collect();
-        let (checks, nanoseconds) = (
-            motions.checks.load(Relaxed),
-            motions.nanoseconds.load(Relaxed),
-        );
+        let (checks, nanoseconds) = (motions.checks.total(), motions.nanoseconds.total());
         self.count_post_processing(checks, nanoseconds);
         paths
     }

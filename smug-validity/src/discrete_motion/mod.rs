@@ -4,12 +4,12 @@
 //! `check_motion` scans in order from the start to report the last valid state.
 
 use serde::{Deserialize, Serialize};
+use smug_core::Counter;
 use smug_core::{
     BuildContext, Counters, Error, MotionCheck, MotionValidator, Pose2, StateSpace,
     StateValidityChecker, World,
 };
 use std::collections::VecDeque;
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::Arc;
 
 /// Parameters of the discrete motion validator.
@@ -56,8 +56,8 @@ pub struct DiscreteMotionValidator {
     space: Arc<dyn StateSpace>,
     terrain: Option<(Arc<World>, f64)>,
     resolution: f64,
-    motions_checked: AtomicU64,
-    states_checked: AtomicU64,
+    motions_checked: Counter,
+    states_checked: Counter,
 }
 
 impl DiscreteMotionValidator {
@@ -88,8 +88,8 @@ impl DiscreteMotionValidator {
             space,
             terrain,
             resolution,
-            motions_checked: AtomicU64::new(0),
-            states_checked: AtomicU64::new(0),
+            motions_checked: Counter::new(),
+            states_checked: Counter::new(),
         })
     }
 
@@ -108,7 +108,7 @@ impl DiscreteMotionValidator {
     }
 
     fn is_valid_state(&self, s: &Pose2) -> bool {
-        self.states_checked.fetch_add(1, Relaxed);
+        self.states_checked.increment();
         self.states.is_valid(s)
     }
 
@@ -169,7 +169,7 @@ impl DiscreteMotionValidator {
             } else {
                 self.space.interpolate(a, b, t)
             };
-            self.states_checked.fetch_add(1, Relaxed);
+            self.states_checked.increment();
             let clearance = self.states.clearance(&point)?;
             if clearance.is_nan() || clearance < min_step {
                 return Some(Swept::Contact { last_clear });
@@ -231,7 +231,7 @@ impl DiscreteMotionValidator {
     /// [`MotionValidator::is_valid_motion`], with the ends' checks skipped when
     /// `ends_known_valid`.
     fn motion_valid(&self, a: &Pose2, b: &Pose2, ends_known_valid: bool) -> bool {
-        self.motions_checked.fetch_add(1, Relaxed);
+        self.motions_checked.increment();
         let mut along = Along::new(self.segment_count(a, b));
         // The states first: a blocked motion usually ends within a few of them, where
         // the slopes look up every state's height.
@@ -318,7 +318,7 @@ impl MotionValidator for DiscreteMotionValidator {
     }
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
-        self.motions_checked.fetch_add(1, Relaxed);
+        self.motions_checked.increment();
         let clear = self.exact_segment(a, b) == Some(true);
         if clear && self.terrain.is_none() {
             return MotionCheck::Valid;
@@ -376,13 +376,10 @@ impl MotionValidator for DiscreteMotionValidator {
 
     fn counters(&self) -> Counters {
         Counters::from([
-            (
-                "motion_checks".to_string(),
-                self.motions_checked.load(Relaxed),
-            ),
+            ("motion_checks".to_string(), self.motions_checked.total()),
             (
                 "motion_state_checks".to_string(),
-                self.states_checked.load(Relaxed),
+                self.states_checked.total(),
             ),
         ])
     }
