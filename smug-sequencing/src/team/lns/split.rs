@@ -140,11 +140,12 @@ fn best_cuts(setting: &Setting, order: &[usize]) -> Option<Vec<Vec<Visit>>> {
         let a = along(setting, r, order);
         let mut next = vec![f64::INFINITY; k + 1];
         for (j, best) in next.iter_mut().enumerate() {
-            for i in j.saturating_sub(most)..=j {
-                if j - i < least || !value[i].is_finite() {
+            let first = j.saturating_sub(most);
+            for (i, &before) in value.iter().enumerate().take(j + 1).skip(first) {
+                if j - i < least || !before.is_finite() {
                     continue;
                 }
-                let v = combine(value[i], stretch_cost(setting, r, order, &a, i, j));
+                let v = combine(before, stretch_cost(setting, r, order, &a, i, j));
                 if v < *best {
                     *best = v;
                     cuts[j] = i;
