@@ -50,6 +50,23 @@ fn node_at(route: &[Visit], start: usize, end: usize, i: usize) -> usize {
     }
 }
 
+/// The change of replacing edges `i` and `j` (sequence positions `i, i+1` and `j, j+1`)
+/// by `i, j` and `i+1, j+1`, reversing the stretch between.
+fn two_opt_delta(
+    c: &CostMatrix,
+    start: usize,
+    end: usize,
+    route: &[Visit],
+    i: usize,
+    j: usize,
+) -> f64 {
+    let a = node_at(route, start, end, i);
+    let b = node_at(route, start, end, i + 1);
+    let x = node_at(route, start, end, j);
+    let y = node_at(route, start, end, j + 1);
+    leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y))
+}
+
 /// One pass of first-improvement 2-opt; true if it moved.
 fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> bool {
     let len = route.len();
@@ -57,12 +74,7 @@ fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> boo
     // Positions 0..=len+1 in the sequence start, route…, end; edge i joins i and i+1.
     for i in 0..len {
         for j in i + 2..=len {
-            let a = node_at(route, start, end, i);
-            let b = node_at(route, start, end, i + 1);
-            let x = node_at(route, start, end, j);
-            let y = node_at(route, start, end, j + 1);
-            let delta = leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y));
-            if delta < -EPSILON {
+            if two_opt_delta(c, start, end, route, i, j) < -EPSILON {
                 route[i..j].reverse();
                 moved = true;
             }
@@ -108,12 +120,7 @@ fn near_two_opt(
                 if j < i + 2 {
                     continue;
                 }
-                let a = node_at(route, start, end, i);
-                let b = node_at(route, start, end, i + 1);
-                let x = node_at(route, start, end, j);
-                let y = node_at(route, start, end, j + 1);
-                let delta = leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y));
-                if delta < -EPSILON {
+                if two_opt_delta(c, start, end, route, i, j) < -EPSILON {
                     route[i..j].reverse();
                     for (k, v) in route[i..j].iter().enumerate() {
                         at[v.target] = i + k;

@@ -187,19 +187,14 @@ mod tests {
         objective: TeamObjective,
         size: Option<RouteSize>,
     ) -> TeamProblem {
-        let point = |i: usize| {
-            if i == 0 {
-                (0.0, 0.0)
-            } else {
-                let a = std::f64::consts::TAU * (i - 1) as f64 / k as f64;
+        let xy: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
+            .chain((0..k).map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / k as f64;
                 (10.0 * a.cos(), 10.0 * a.sin())
-            }
-        };
-        let costs = CostMatrix::from_fn(k + 1, |i, j| {
-            let (a, b) = (point(i), point(j));
-            (a.0 - b.0).hypot(a.1 - b.1)
-        })
-        .unwrap();
+            }))
+            .collect();
+        let costs = CostMatrix::from_fn(k + 1, |i, j| (xy[i].0 - xy[j].0).hypot(xy[i].1 - xy[j].1))
+            .unwrap();
         mtsp_problem(costs, m, objective, size).unwrap()
     }
 
