@@ -265,3 +265,35 @@ fn unservable_targets_and_empty_teams_are_named() {
     let err = TeamProblem::new(vec![robot], restricted, TeamObjective::Sum, None).unwrap_err();
     assert!(err.to_string().contains("robot 3"), "{err}");
 }
+
+/// A depot at the centre of `k` targets evenly spaced on a circle of radius 10.
+fn circle(k: usize) -> CostMatrix {
+    let point = |i: usize| {
+        if i == 0 {
+            (0.0, 0.0)
+        } else {
+            let a = std::f64::consts::TAU * (i - 1) as f64 / k as f64;
+            (10.0 * a.cos(), 10.0 * a.sin())
+        }
+    };
+    CostMatrix::from_fn(k + 1, |i, j| {
+        let (a, b) = (point(i), point(j));
+        (a.0 - b.0).hypot(a.1 - b.1)
+    })
+    .unwrap()
+}
+
+#[test]
+fn long_routes_start_from_a_cut_tsp_tour_reproducibly() {
+    // 2 salesmen, 450 targets on a circle: the routes average above `split_above`, so the
+    // search starts from the better of insertion and the best cut of a TSP tour; the
+    // optimum is two half circles, each with two radii (≈ 10π + 20).
+    let problem = mtsp(circle(450), 2, TeamObjective::Makespan);
+    let solve = || lns(40, 3).solve(&problem).unwrap();
+    let (a, b) = (solve(), solve());
+    assert_eq!(a.routes, b.routes);
+    problem.validate(&a).unwrap();
+    let makespan = problem.score(&a).0;
+    let optimum = 10.0 * std::f64::consts::PI + 20.0;
+    assert!(makespan < optimum * 1.01, "{makespan} vs ≈ {optimum}");
+}

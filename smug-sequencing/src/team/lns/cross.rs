@@ -1,7 +1,9 @@
 //! 2-opt* between two routes: route `a` keeps its head up to a cut and takes `b`'s tail
 //! after a cut, and the other way round. Heads and tails keep their direction, so
 //! asymmetric and per-robot costs are exact: prefix costs for the heads, each tail's
-//! cost under both robots' matrices for the tails, O(1) per pair of cuts.
+//! cost under both robots' matrices for the tails, O(1) per pair of cuts. Every pair of
+//! cuts is tried when the two routes hold at most the setting's `near_above` targets
+//! together, else only the cuts joining near targets.
 
 use super::state::{Setting, State};
 use smug_core::Visit;
@@ -71,28 +73,33 @@ pub(super) fn two_opt_star(setting: &Setting, state: &mut State, a: usize, b: us
     let others = other_routes(state, a, b);
     let before = pair_value(setting, state.costs[a], state.costs[b], others);
     let mut best: Option<(f64, usize, usize)> = None;
-    for i in 0..=ra.len() {
-        if !ok_a_for_b[i] {
-            continue;
+    let mut consider = |i: usize, j: usize| {
+        if !ok_a_for_b[i] || !ok_b_for_a[j] || (i == ra.len() && j == rb.len()) {
+            return;
         }
-        let a_last = head_end(setting, a, ra, i);
-        let b_first_for_a = |j: usize| joined(setting, a, rb, j);
-        for j in 0..=rb.len() {
-            if !ok_b_for_a[j] || (i == ra.len() && j == rb.len()) {
-                continue;
-            }
-            let (len_a, len_b) = (i + rb.len() - j, j + ra.len() - i);
-            if setting.size_violation(len_a) + setting.size_violation(len_b)
-                > setting.size_violation(ra.len()) + setting.size_violation(rb.len())
-            {
-                continue;
-            }
-            let new_a = ha[i] + ca.get(a_last, b_first_for_a(j)) + tb_a[j];
-            let b_last = head_end(setting, b, rb, j);
-            let new_b = hb[j] + cb.get(b_last, joined(setting, b, ra, i)) + ta_b[i];
-            let value = pair_value(setting, new_a, new_b, others);
-            if value < before - EPSILON && best.is_none_or(|x| value < x.0) {
-                best = Some((value, i, j));
+        let (len_a, len_b) = (i + rb.len() - j, j + ra.len() - i);
+        if setting.size_violation(len_a) + setting.size_violation(len_b)
+            > setting.size_violation(ra.len()) + setting.size_violation(rb.len())
+        {
+            return;
+        }
+        let new_a =
+            ha[i] + ca.get(head_end(setting, a, ra, i), joined(setting, a, rb, j)) + tb_a[j];
+        let new_b =
+            hb[j] + cb.get(head_end(setting, b, rb, j), joined(setting, b, ra, i)) + ta_b[i];
+        let value = pair_value(setting, new_a, new_b, others);
+        if value < before - EPSILON && best.is_none_or(|x| value < x.0) {
+            best = Some((value, i, j));
+        }
+    };
+    if ra.len() + rb.len() > setting.near_above {
+        for (i, j) in near_cuts(setting, ra, rb) {
+            consider(i, j);
+        }
+    } else {
+        for i in 0..=ra.len() {
+            for j in 0..=rb.len() {
+                consider(i, j);
             }
         }
     }
@@ -106,6 +113,40 @@ pub(super) fn two_opt_star(setting: &Setting, state: &mut State, a: usize, b: us
     state.refresh(setting, a);
     state.refresh(setting, b);
     true
+}
+
+/// Nearest targets a cut of long routes joins.
+const NEAR: usize = 10;
+
+/// The cuts `(i, j)` of long routes `ra`, `rb` worth trying: those whose new legs join a
+/// target to one of its nearest targets, and those that hand over a whole route or
+/// nothing (a cut at either end of one of them).
+fn near_cuts(setting: &Setting, ra: &[Visit], rb: &[Visit]) -> Vec<(usize, usize)> {
+    let mut in_b = vec![usize::MAX; setting.problem.targets().len()];
+    for (q, v) in rb.iter().enumerate() {
+        in_b[v.target] = q;
+    }
+    let mut cuts = Vec::new();
+    for (p, v) in ra.iter().enumerate() {
+        for &u in setting.neighbours[v.target].iter().take(NEAR) {
+            let q = in_b[u];
+            if q != usize::MAX {
+                // a's head ending at v joins b's tail from u; b's head ending at u joins
+                // a's tail from v.
+                cuts.push((p + 1, q));
+                cuts.push((p, q + 1));
+            }
+        }
+    }
+    for j in 0..=rb.len() {
+        cuts.push((0, j));
+        cuts.push((ra.len(), j));
+    }
+    for i in 0..=ra.len() {
+        cuts.push((i, 0));
+        cuts.push((i, rb.len()));
+    }
+    cuts
 }
 
 /// `(largest, sum)` of the routes other than `a` and `b`.

@@ -1,26 +1,34 @@
 //! Route-internal improvement: Or-opt (segments of 1–3 targets moved, reversed too on
 //! symmetric costs), 2-opt (symmetric costs only: a reversal's cost on asymmetric ones
 //! is a recomputation, which this search skips) and the PoI choice re-optimised for the
-//! route's order (a layered shortest path, as the joint GTSP mode does).
+//! route's order (a layered shortest path, as the joint GTSP mode does). Routes longer
+//! than the setting's `near_above` try only moves that join a target to one of its
+//! nearest targets (O(len·K) per pass instead of O(len²)).
 
 use super::state::{leg_delta, Setting, State};
 use smug_core::{CostMatrix, Visit};
 
 /// Improvements smaller than this are ignored (floating-point noise).
 const EPSILON: f64 = 1e-9;
+/// Nearest targets a long route's moves join a target to.
+const NEAR: usize = 10;
 
 /// Improves route `r` of `state` in place until no move helps.
 pub(super) fn improve_route(setting: &Setting, state: &mut State, r: usize) {
     let robot = &setting.problem.robots()[r];
     let c: &CostMatrix = &robot.costs;
     let route = &mut state.routes[r];
+    let near = (route.len() > setting.near_above).then_some(setting);
     if route.len() >= 2 {
         loop {
             let mut moved = false;
             if setting.symmetric {
-                moved |= two_opt(c, robot.start, robot.end, route);
+                moved |= match near {
+                    Some(setting) => near_two_opt(setting, c, robot.start, robot.end, route),
+                    None => two_opt(c, robot.start, robot.end, route),
+                };
             }
-            moved |= or_opt(c, robot.start, robot.end, route, setting.symmetric);
+            moved |= or_opt(c, robot.start, robot.end, route, setting.symmetric, near);
             if !moved {
                 break;
             }
@@ -42,6 +50,23 @@ fn node_at(route: &[Visit], start: usize, end: usize, i: usize) -> usize {
     }
 }
 
+/// The change of replacing edges `i` and `j` (sequence positions `i, i+1` and `j, j+1`)
+/// by `i, j` and `i+1, j+1`, reversing the stretch between.
+fn two_opt_delta(
+    c: &CostMatrix,
+    start: usize,
+    end: usize,
+    route: &[Visit],
+    i: usize,
+    j: usize,
+) -> f64 {
+    let a = node_at(route, start, end, i);
+    let b = node_at(route, start, end, i + 1);
+    let x = node_at(route, start, end, j);
+    let y = node_at(route, start, end, j + 1);
+    leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y))
+}
+
 /// One pass of first-improvement 2-opt; true if it moved.
 fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> bool {
     let len = route.len();
@@ -49,12 +74,7 @@ fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> boo
     // Positions 0..=len+1 in the sequence start, route…, end; edge i joins i and i+1.
     for i in 0..len {
         for j in i + 2..=len {
-            let a = node_at(route, start, end, i);
-            let b = node_at(route, start, end, i + 1);
-            let x = node_at(route, start, end, j);
-            let y = node_at(route, start, end, j + 1);
-            let delta = leg_delta(c.get(a, x) + c.get(b, y), c.get(a, b) + c.get(x, y));
-            if delta < -EPSILON {
+            if two_opt_delta(c, start, end, route, i, j) < -EPSILON {
                 route[i..j].reverse();
                 moved = true;
             }
@@ -63,20 +83,92 @@ fn two_opt(c: &CostMatrix, start: usize, end: usize, route: &mut [Visit]) -> boo
     moved
 }
 
-/// One pass of first-improvement Or-opt; true if it moved.
-fn or_opt(c: &CostMatrix, start: usize, end: usize, route: &mut Vec<Visit>, reverse: bool) -> bool {
+/// Per target, its index in `route` (`usize::MAX` when elsewhere).
+fn indices(setting: &Setting, route: &[Visit]) -> Vec<usize> {
+    let mut at = vec![usize::MAX; setting.problem.targets().len()];
+    for (i, v) in route.iter().enumerate() {
+        at[v.target] = i;
+    }
+    at
+}
+
+/// One pass of first-improvement 2-opt over the moves that join a target to one of its
+/// nearest targets on the route (either side); true if it moved.
+fn near_two_opt(
+    setting: &Setting,
+    c: &CostMatrix,
+    start: usize,
+    end: usize,
+    route: &mut [Visit],
+) -> bool {
+    let len = route.len();
+    let mut at = indices(setting, route);
     let mut moved = false;
+    for idx in 0..len {
+        let target = route[idx].target;
+        for &u in setting.neighbours[target].iter().take(NEAR) {
+            let q = at[u];
+            if q == usize::MAX {
+                continue;
+            }
+            // Sequence positions (0 = start): the target at idx + 1, u at q + 1. Joining
+            // them after each (edges p,p+1 and q,q+1) or before each (edges p-1,p and q-1,q).
+            let (p, q) = (idx + 1, q + 1);
+            let (lo, hi) = (p.min(q), p.max(q));
+            let mut done = false;
+            for (i, j) in [(lo, hi), (lo - 1, hi - 1)] {
+                if j < i + 2 {
+                    continue;
+                }
+                if two_opt_delta(c, start, end, route, i, j) < -EPSILON {
+                    route[i..j].reverse();
+                    for (k, v) in route[i..j].iter().enumerate() {
+                        at[v.target] = i + k;
+                    }
+                    done = true;
+                    break;
+                }
+            }
+            if done {
+                moved = true;
+                break;
+            }
+        }
+    }
+    moved
+}
+
+/// One pass of first-improvement Or-opt; true if it moved. With `near`, a segment
+/// goes only beside one of its ends' nearest targets or at the route's ends.
+fn or_opt(
+    c: &CostMatrix,
+    start: usize,
+    end: usize,
+    route: &mut Vec<Visit>,
+    reverse: bool,
+    near: Option<&Setting>,
+) -> bool {
+    let mut moved = false;
+    let mut at = near.map(|setting| indices(setting, route));
     for seg in 1..=3usize {
         let mut i = 1;
         while i + seg <= route.len() + 1 && route.len() > seg {
-            if let Some((to, reversed)) = best_move(c, start, end, route, i, seg, reverse) {
+            let places = match (near, &at) {
+                (Some(setting), Some(at)) => near_places(setting, route, at, i, seg),
+                _ => (0..=route.len()).collect(),
+            };
+            if let Some((to, reversed)) = best_move(c, start, end, route, i, seg, reverse, &places)
+            {
                 let mut piece: Vec<Visit> = route.drain(i - 1..i - 1 + seg).collect();
                 if reversed {
                     piece.reverse();
                 }
-                let at = if to > i - 1 { to - seg } else { to };
-                route.splice(at..at, piece);
+                let to = if to > i - 1 { to - seg } else { to };
+                route.splice(to..to, piece);
                 moved = true;
+                if let Some(setting) = near {
+                    at = Some(indices(setting, route));
+                }
             }
             i += 1;
         }
@@ -84,9 +176,33 @@ fn or_opt(c: &CostMatrix, start: usize, end: usize, route: &mut Vec<Visit>, reve
     moved
 }
 
-/// The best place to move the segment at sequence positions `i..i+seg` (position 0 is the
-/// start): the route index it goes before (numbered before its removal) and whether
-/// reversed, if that helps.
+/// The places (sequence positions `k`: between `k` and `k + 1`) beside the nearest
+/// targets of the segment at sequence positions `i..i+seg`, and the route's two ends.
+fn near_places(
+    setting: &Setting,
+    route: &[Visit],
+    at: &[usize],
+    i: usize,
+    seg: usize,
+) -> Vec<usize> {
+    let mut places = vec![0, route.len()];
+    for end in [route[i - 1].target, route[i + seg - 2].target] {
+        for &u in setting.neighbours[end].iter().take(NEAR) {
+            if at[u] != usize::MAX {
+                // u sits at sequence position at[u] + 1: before it and after it.
+                places.push(at[u]);
+                places.push(at[u] + 1);
+            }
+        }
+    }
+    places
+}
+
+/// The best place among `places` (sequence positions `k`: between `k` and `k + 1`) to
+/// move the segment at sequence positions `i..i+seg` (position 0 is the start): the
+/// route index it goes before (numbered before its removal) and whether reversed, if
+/// that helps.
+#[allow(clippy::too_many_arguments)]
 fn best_move(
     c: &CostMatrix,
     start: usize,
@@ -95,6 +211,7 @@ fn best_move(
     i: usize,
     seg: usize,
     reverse: bool,
+    places: &[usize],
 ) -> Option<(usize, bool)> {
     let at = |k: usize| node_at(route, start, end, k);
     let (p, s0, s1, n) = (at(i - 1), at(i), at(i + seg - 1), at(i + seg));
@@ -102,7 +219,7 @@ fn best_move(
     let gain = leg_delta(c.get(p, s0) + c.get(s1, n), c.get(p, n));
     let mut best: Option<(f64, usize, bool)> = None;
     // Insert between sequence positions k and k+1, outside the segment.
-    for k in 0..=route.len() {
+    for &k in places {
         if k + 1 >= i && k < i + seg {
             continue;
         }

@@ -3,12 +3,15 @@
 //! 1. First solution: every target at its cheapest (robot, position, PoI) in a random
 //!    order — for the makespan, the cheapest is what raises the largest route least plus
 //!    a small weight on the total, so idle robots take targets whenever that lowers the
-//!    makespan — or the warm start.
+//!    makespan — or, when the robots average more than `split_above` targets, the best
+//!    cut of one TSP tour into a route per robot (route-first, cluster-second; see
+//!    `split`), whichever is better; or the warm start.
 //! 2. Each iteration removes targets (SISR strings around a seed's neighbours, random,
 //!    costliest, or a route's stretch; for the makespan half of them start on the
 //!    longest route), reinserts each at its cheapest place (skipping positions with a
 //!    small "blink" probability), and on promising candidates improves the changed
-//!    routes (Or-opt, 2-opt on symmetric costs, PoI re-choice). Annealing decides.
+//!    routes (Or-opt, 2-opt on symmetric costs, PoI re-choice; on long routes only the
+//!    moves between near targets). Annealing decides.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
@@ -20,6 +23,7 @@ mod improve;
 mod params;
 mod ruin;
 mod search;
+mod split;
 mod state;
 
 use crate::local_search::{LocalSearch, LocalSearchParams};
@@ -29,7 +33,9 @@ use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
     CostMatrix, Deadline, Sequencer, TeamProblem, TeamSequencer, TeamSolution, TourKind, Visit,
 };
+use split::{split_tour, TourBudget};
 use state::{Setting, State};
+use std::time::Instant;
 
 pub use params::TeamLnsParams;
 
@@ -75,19 +81,31 @@ impl TeamLns {
         if let Some(initial) = initial {
             problem.validate(initial)?;
         }
+        let started = Instant::now();
         let mut rng = self.rng.clone();
-        let setting = Setting::new(problem, self.params.sum_weight);
+        let setting = Setting::new(
+            problem,
+            self.params.sum_weight,
+            self.params.near_moves_above,
+        );
         if is_single_tsp(&setting) {
             let state = self.solve_single_tsp(&setting, initial, &mut rng)?;
             return Ok((state.solution(&setting), 0));
         }
         let start = match initial {
             Some(solution) => State::of(&setting, solution),
-            None => construct(&setting, &mut rng),
+            None => self.first_state(&setting, &mut rng),
         };
         let polish = self.params.polish_fraction;
+        let time_limit_s = self.params.time_limit_s;
         let budget = Budget {
-            time_limit_s: self.params.time_limit_s * (1.0 - polish),
+            // What the construction used is taken from the search (at least a moment
+            // left: a zero would mean no time limit).
+            time_limit_s: if time_limit_s > 0.0 {
+                (time_limit_s * (1.0 - polish) - started.elapsed().as_secs_f64()).max(1e-3)
+            } else {
+                0.0
+            },
             max_iterations: self.params.max_iterations,
             deadline: &self.deadline,
         };
@@ -101,6 +119,34 @@ impl TeamLns {
             best
         };
         Ok((best.solution(&setting), iterations))
+    }
+
+    /// The better of insertion and the route-first construction (when it has a budget
+    /// and the routes are long).
+    fn first_state(&self, setting: &Setting, rng: &mut StageRng) -> State {
+        let inserted = construct(setting, rng);
+        let fraction = self.params.split_fraction;
+        let targets = setting.problem.targets().len();
+        let per_robot = targets / setting.problem.robots().len();
+        if fraction <= 0.0 || targets < 3 || per_robot <= self.params.split_above {
+            return inserted;
+        }
+        let seed: u64 = rng.random();
+        let budget = if self.params.time_limit_s > 0.0 {
+            TourBudget {
+                time_limit_s: self.params.time_limit_s * fraction,
+                max_iterations: 0,
+            }
+        } else {
+            TourBudget {
+                time_limit_s: 0.0,
+                max_iterations: (self.params.max_iterations / 20).clamp(1, 1000),
+            }
+        };
+        match split_tour(setting, &budget, seed, &self.deadline) {
+            Some(split) if better(setting, &split, &inserted) => split,
+            _ => inserted,
+        }
     }
 
     /// Each route reordered by the TSP local search (PoIs fixed), kept where cheaper.

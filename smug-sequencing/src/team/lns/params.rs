@@ -30,6 +30,19 @@ pub struct TeamLnsParams {
     /// Fraction of the time budget left for reordering the best routes with the TSP
     /// local search (iteration budgets: 200 rounds per route).
     pub polish_fraction: f64,
+    /// Fraction of the time budget for the route-first construction's TSP tour through
+    /// every target (iteration budgets: `max_iterations / 20` rounds, at most 1000); the
+    /// search starts from its best cut or from insertion, whichever is better
+    /// (0 = insertion only).
+    pub split_fraction: f64,
+    /// The route-first construction is tried only when the robots average more than
+    /// this many targets (on shorter routes insertion and the search do as well: measured
+    /// on He & Hao's Set I, `docs/bench-mtsp.md`).
+    pub split_above: usize,
+    /// Routes longer than this are improved with moves between near targets only
+    /// (Or-opt and 2-opt in O(len·K) instead of O(len²)), and so are pairs of routes
+    /// holding more together (2-opt*).
+    pub near_moves_above: usize,
 }
 
 impl Default for TeamLnsParams {
@@ -45,6 +58,9 @@ impl Default for TeamLnsParams {
             sum_weight: 0.02,
             improve_within: 0.02,
             polish_fraction: 0.05,
+            split_fraction: 0.1,
+            split_above: 200,
+            near_moves_above: 100,
         }
     }
 }
@@ -58,6 +74,7 @@ impl TeamLnsParams {
             ("sum_weight", self.sum_weight, 1.0),
             ("improve_within", self.improve_within, 10.0),
             ("polish_fraction", self.polish_fraction, 0.9),
+            ("split_fraction", self.split_fraction, 0.5),
             ("temp_start", self.temp_start, 1e6),
             ("temp_end", self.temp_end, self.temp_start.max(0.0)),
         ] {

@@ -22,13 +22,16 @@ pub(super) struct Setting<'a> {
     pub neighbours: Vec<Vec<usize>>,
     /// Per target, the robots allowed to serve it.
     pub allowed: Vec<Vec<usize>>,
+    /// Routes longer than this are improved with moves between near targets only.
+    pub near_above: usize,
 }
 
 /// Neighbours kept per target.
 const NEIGHBOURS: usize = 48;
 
 impl<'a> Setting<'a> {
-    pub fn new(problem: &'a TeamProblem, sum_weight: f64) -> Self {
+    /// The setting of `problem`; `sum_weight` and `near_above` as in [`super::TeamLnsParams`].
+    pub fn new(problem: &'a TeamProblem, sum_weight: f64, near_above: usize) -> Self {
         let k = problem.targets().len();
         let m = problem.robots().len();
         let allowed: Vec<Vec<usize>> = (0..k)
@@ -50,6 +53,7 @@ impl<'a> Setting<'a> {
             penalty: penalty_per_target(problem),
             neighbours,
             allowed,
+            near_above,
         }
     }
 
