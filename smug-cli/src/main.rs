@@ -15,6 +15,7 @@ mod mtsp;
 mod p2p;
 mod plan;
 mod plugins;
+mod progress;
 mod replan;
 mod sweep;
 mod team;

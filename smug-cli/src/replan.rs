@@ -1,7 +1,8 @@
 //! `smug replan`: the rest of a mission from a mission state, to plan.json, plan.csv
 //! and plan.svg like `smug plan`, the plan marked as a replan.
 
-use crate::plan::{print_summary, Progress};
+use crate::plan::print_summary;
+use crate::progress::Progress;
 use crate::Outcome;
 use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
 use smug_app::plan_mcap::WriteMode;

@@ -1,7 +1,7 @@
 //! `smug plan` and `smug replan` on a team config: one plan per robot, a per-robot
 //! summary.
 
-use crate::plan::Progress;
+use crate::progress::Progress;
 use crate::Outcome;
 use smug_app::outputs::config_run_info;
 use smug_app::plan_mcap::WriteMode;
