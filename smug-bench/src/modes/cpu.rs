@@ -22,10 +22,9 @@ impl CpuTimes {
         let mut total = Self::default();
         for task in fs::read_dir("/proc/self/task").ok()?.flatten() {
             // A thread that ended since the listing has no file left: it is not counted.
-            if let Ok(text) = fs::read_to_string(task.path().join("schedstat")) {
-                let (run, waited) = parse_schedstat(&text)?;
-                total.run_s += run;
-                total.waited_s += waited;
+            if let Some(times) = task_times(&task.path()) {
+                total.run_s += times.run_s;
+                total.waited_s += times.waited_s;
             }
         }
         Some(total)
@@ -38,6 +37,14 @@ impl CpuTimes {
             waited_s: self.waited_s - earlier.waited_s,
         }
     }
+}
+
+/// The times of the thread whose `/proc` directory is `task` (`None`: no schedstat,
+/// or the thread has ended).
+fn task_times(task: &std::path::Path) -> Option<CpuTimes> {
+    let text = fs::read_to_string(task.join("schedstat")).ok()?;
+    let (run_s, waited_s) = parse_schedstat(&text)?;
+    Some(CpuTimes { run_s, waited_s })
 }
 
 /// The run and wait times of one `schedstat` line (`run_ns wait_ns timeslices`), seconds.
@@ -67,13 +74,16 @@ mod tests {
             // Other systems may keep no schedstat: the report shows `–` there.
             return;
         }
-        let before = CpuTimes::now().expect("Linux keeps schedstat");
+        // This thread alone: the process's sum drops when another test's thread ends.
+        let this = std::path::Path::new("/proc/thread-self");
+        let before = task_times(this).expect("Linux keeps schedstat");
         let mut x = 0u64;
         let started = std::time::Instant::now();
         while started.elapsed().as_millis() < 30 {
             x = std::hint::black_box(x.wrapping_mul(31).wrapping_add(7));
         }
-        let spent = CpuTimes::now().unwrap().since(before);
+        let spent = task_times(this).unwrap().since(before);
         assert!(spent.run_s > 0.0 && spent.waited_s >= 0.0, "{spent:?}");
+        assert!(CpuTimes::now().is_some_and(|t| t.run_s >= spent.run_s));
     }
 }
