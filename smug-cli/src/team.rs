@@ -54,12 +54,6 @@ pub fn replan(
     let text = std::fs::read_to_string(state)
         .map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", state.display()))?;
     let name = state.display().to_string();
-    if !TeamState::is_team_toml(&text) {
-        anyhow::bail!(
-            "{name}: a team config needs a team state: `[[robots]]` entries with each robot's \
-             `name` and `pose` (or `lost = true`), see docs/teams.md"
-        );
-    }
     let state = TeamState::from_toml(&text, &name)?;
     let outcome = replan_team(loaded, &state, Some(&name))?;
     finish(outcome, loaded, out, (json, WriteMode::Append))

@@ -106,7 +106,7 @@ fn an_empty_state_writes_the_plan_of_smug_plan() {
 #[test]
 fn bad_states_exit_2_naming_the_key() {
     let dir = scratch("bad");
-    let cases: [(&str, &[&str]); 8] = [
+    let cases: [(&str, &[&str]); 9] = [
         ("pose = [50.0, 1.0, 0.0]", &["`pose`", "off the map"]),
         (
             "pose = [1.0, 1.0, 0.0]\n[[obstacles]]\ncenter = [1.2, 1.0]\nradius = 0.5\nheight = 1.0",
@@ -123,6 +123,10 @@ fn bad_states_exit_2_naming_the_key() {
         (
             "pose = [1.0, 1.0, 0.0]\n[[obstacles]]\ncenter = [5.0, 5.0]\nradius = -1.0\nheight = 1.0",
             &["`obstacles[0]`", "radius"],
+        ),
+        (
+            "[[robots]]\nname = \"a\"\npose = [1.0, 1.0, 0.0]",
+            &["`robots`", "this is a team state"],
         ),
     ];
     for (text, needles) in cases {

@@ -716,3 +716,7 @@ def test_a_team_replans_without_a_lost_robot(tmp_path: Path) -> None:
     with pytest.raises(smug.InputError, match=r"`robots\[1\]\.name`: the team has no robot `three`"):
         session.replan({"robots": [{"name": "one", "lost": True}, {"name": "three", "pose": (1, 1, 0)}]})
     assert session.replan(state).robots[0]["sequence"] == ["gauge-b"], "usable after an error"
+    one_robot = tmp_path / "one.toml"
+    one_robot.write_text(smug._state_toml({"pose": (3.0, 4.0, 0.0)}))
+    with pytest.raises(smug.InputError, match=r"`pose`: this is one robot's state, but the config plans for a team"):
+        smug.replan(config, one_robot)

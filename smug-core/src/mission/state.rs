@@ -72,14 +72,25 @@ impl MissionState {
         Pose2::new(self.pose[0], self.pose[1], self.pose[2])
     }
 
-    /// Parses a state from TOML text; `path` names it in errors.
+    /// Parses a state from TOML text; `path` names it in errors. A team state
+    /// (`[[robots]]`) is refused with a message saying what a robot's state is.
     pub fn from_toml(text: &str, path: &str) -> Result<Self, StateError> {
+        if has_top_key(text, "robots") {
+            return Err(StateError::Key {
+                path: path.into(),
+                key: "robots".into(),
+                message: "this is a team state, but the config plans for one robot: its \
+                          state has the robot's `pose = [x, y, yaw]` instead (see \
+                          docs/replanning.md)"
+                    .into(),
+            });
+        }
         parse_toml(text, path)
     }
 
     /// Reads and parses a state file.
     pub fn from_file(path: &Path) -> Result<Self, StateError> {
-        read_toml(path)
+        read_toml(path, Self::from_toml)
     }
 
     /// The state as TOML (what [`MissionState::from_toml`] reads back).
@@ -166,14 +177,22 @@ pub(super) fn parse_toml<T: serde::de::DeserializeOwned>(
     })
 }
 
-/// Reads and parses a state file of type `T`.
-pub(super) fn read_toml<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, StateError> {
+/// Whether a TOML text has the top-level key `key` (false when it does not parse).
+pub(super) fn has_top_key(text: &str, key: &str) -> bool {
+    toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key(key))
+}
+
+/// Reads a state file and parses it with `parse` (given the text and the file's name).
+pub(super) fn read_toml<T>(
+    path: &Path,
+    parse: impl FnOnce(&str, &str) -> Result<T, StateError>,
+) -> Result<T, StateError> {
     let name = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| StateError::Read {
         path: name.clone(),
         message: e.to_string(),
     })?;
-    parse_toml(&text, &name)
+    parse(&text, &name)
 }
 
 /// What is wrong with a pose or an obstacle of a mission state.

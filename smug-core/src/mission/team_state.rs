@@ -3,7 +3,7 @@
 //! is lost (its remaining targets go to the others).
 
 use super::obstacles::DiscObstacle;
-use super::state::{parse_toml, read_toml, MissionState, StateError};
+use super::state::{has_top_key, parse_toml, read_toml, MissionState, StateError};
 use super::Mission;
 use crate::pose::Bounds2;
 use serde::{Deserialize, Serialize};
@@ -44,25 +44,31 @@ pub struct RobotState {
 }
 
 impl TeamState {
-    /// Parses a team state from TOML text; `path` names it in errors.
+    /// Parses a team state from TOML text; `path` names it in errors. One robot's
+    /// state (`pose` and no `[[robots]]`) is refused with a message saying what a team
+    /// state is.
     pub fn from_toml(text: &str, path: &str) -> Result<Self, StateError> {
+        if !has_top_key(text, "robots") && has_top_key(text, "pose") {
+            return Err(StateError::Key {
+                path: path.into(),
+                key: "pose".into(),
+                message: "this is one robot's state, but the config plans for a team: a team \
+                          state has `[[robots]]` entries with each robot's `name` and `pose` \
+                          (or `lost = true`), see docs/teams.md"
+                    .into(),
+            });
+        }
         parse_toml(text, path)
     }
 
     /// Reads and parses a team state file.
     pub fn from_file(path: &Path) -> Result<Self, StateError> {
-        read_toml(path)
+        read_toml(path, Self::from_toml)
     }
 
     /// The state as TOML (what [`TeamState::from_toml`] reads back).
     pub fn to_toml(&self) -> String {
         toml::to_string(self).unwrap_or_default()
-    }
-
-    /// Whether a TOML text is a team state (it has `[[robots]]`) rather than one
-    /// robot's [`MissionState`] (which has `pose`).
-    pub fn is_team_toml(text: &str) -> bool {
-        toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("robots"))
     }
 
     /// The state of robot `name` (`None`: not listed).
@@ -213,8 +219,22 @@ mod tests {
         assert_eq!(state.robot_state(0).unwrap().pose, [2.0, 1.0, 0.5]);
         assert_eq!(state.robot_state(0).unwrap().visited, vec!["a".to_string()]);
         assert!(state.robot_state(1).is_none(), "a lost robot has no view");
-        assert!(TeamState::is_team_toml(STATE));
-        assert!(!TeamState::is_team_toml("pose = [1.0, 1.0, 0.0]"));
+    }
+
+    #[test]
+    fn each_kind_of_state_is_refused_for_the_other_naming_its_key() {
+        let one = TeamState::from_toml("pose = [1.0, 1.0, 0.0]", "s.toml").unwrap_err();
+        assert!(
+            matches!(&one, StateError::Key { key, .. } if key == "pose"),
+            "{one}"
+        );
+        assert!(one.to_string().contains("[[robots]]"), "{one}");
+        let team = MissionState::from_toml(STATE, "s.toml").unwrap_err();
+        assert!(
+            matches!(&team, StateError::Key { key, .. } if key == "robots"),
+            "{team}"
+        );
+        assert!(team.to_string().contains("team state"), "{team}");
     }
 
     #[test]
