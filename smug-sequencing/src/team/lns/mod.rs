@@ -19,6 +19,7 @@
 //! With `time_limit_s = 0` a seed and `max_iterations` give bit-identical solutions.
 
 mod cross;
+mod exchange;
 mod improve;
 mod params;
 mod ruin;

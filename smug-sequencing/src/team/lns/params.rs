@@ -43,6 +43,9 @@ pub struct TeamLnsParams {
     /// (Or-opt and 2-opt in O(len·K) instead of O(len²)), and so are pairs of routes
     /// holding more together (2-opt*).
     pub near_moves_above: usize,
+    /// Total objective: a ruin removes on average at most this fraction of a mean
+    /// route's targets (`mean_removed` caps it too).
+    pub sum_removed_per_route: f64,
 }
 
 impl Default for TeamLnsParams {
@@ -61,6 +64,7 @@ impl Default for TeamLnsParams {
             split_fraction: 0.1,
             split_above: 200,
             near_moves_above: 100,
+            sum_removed_per_route: 0.8,
         }
     }
 }
@@ -75,6 +79,7 @@ impl TeamLnsParams {
             ("improve_within", self.improve_within, 10.0),
             ("polish_fraction", self.polish_fraction, 0.9),
             ("split_fraction", self.split_fraction, 0.5),
+            ("sum_removed_per_route", self.sum_removed_per_route, 10.0),
             ("temp_start", self.temp_start, 1e6),
             ("temp_end", self.temp_end, self.temp_start.max(0.0)),
         ] {

@@ -3,12 +3,13 @@
 //! budget's progress.
 
 use super::cross::cross_routes;
+use super::exchange::exchange_routes;
 use super::improve::improve_route;
 use super::params::TeamLnsParams;
 use super::ruin::{recreate, ruin, RuinSize};
 use super::state::{Setting, State};
 use rand::Rng;
-use smug_core::Deadline;
+use smug_core::{Deadline, TeamObjective};
 use std::time::Instant;
 
 /// The budget of one search: time, iterations, the run's deadline.
@@ -42,7 +43,7 @@ pub(super) fn better(setting: &Setting, a: &State, b: &State) -> bool {
 }
 
 /// The first state: every target at its cheapest place, in a random order, routes
-/// improved.
+/// improved (for the total, exchanges between routes too).
 pub(super) fn construct(setting: &Setting, rng: &mut impl Rng) -> State {
     let mut state = State::empty(setting);
     let m = state.routes.len();
@@ -51,6 +52,9 @@ pub(super) fn construct(setting: &Setting, rng: &mut impl Rng) -> State {
     recreate(setting, &mut state, all, 0.0, rng, &mut dirty);
     for r in 0..m {
         improve_route(setting, &mut state, r);
+    }
+    if m > 1 && setting.problem.objective() == TeamObjective::Sum {
+        exchange_and_improve(setting, &mut state, &mut dirty);
     }
     state
 }
@@ -69,7 +73,7 @@ pub(super) fn search(
         return (start, 0);
     }
     let size = RuinSize {
-        mean_removed: params.mean_removed.min(k as f64 / 2.0).max(1.0),
+        mean_removed: mean_removed(setting, params),
         max_string: params.max_string,
     };
     let unit = mean_leg(setting, &start);
@@ -106,6 +110,9 @@ pub(super) fn search(
             for r in (0..m).filter(|&r| dirty[r]) {
                 improve_route(setting, &mut candidate, r);
             }
+            if m > 1 && setting.problem.objective() == TeamObjective::Sum {
+                exchange_and_improve(setting, &mut candidate, &mut dirty);
+            }
             scalar = candidate.scalar(setting);
         }
         if better(setting, &candidate, &best) {
@@ -120,6 +127,36 @@ pub(super) fn search(
     }
     (best, iterations)
 }
+
+/// Mean number of targets a ruin removes: `mean_removed`, at most half the targets, for
+/// the total at most `sum_removed_per_route` of a mean route; at least one.
+fn mean_removed(setting: &Setting, params: &TeamLnsParams) -> f64 {
+    let k = setting.problem.targets().len() as f64;
+    let mut mean = params.mean_removed.min(k / 2.0);
+    if setting.problem.objective() == TeamObjective::Sum && params.sum_removed_per_route > 0.0 {
+        let per_route = k / setting.problem.robots().len() as f64;
+        mean = mean.min(params.sum_removed_per_route * per_route);
+    }
+    mean.max(1.0)
+}
+
+/// Inter-route exchanges and route improvement in turn until the exchanges find nothing
+/// (a few rounds at most).
+fn exchange_and_improve(setting: &Setting, state: &mut State, dirty: &mut [bool]) {
+    for _round in 0..EXCHANGE_ROUNDS {
+        let mut changed = vec![false; dirty.len()];
+        if !exchange_routes(setting, state, &mut changed) {
+            break;
+        }
+        for r in (0..changed.len()).filter(|&r| changed[r]) {
+            improve_route(setting, state, r);
+            dirty[r] = true;
+        }
+    }
+}
+
+/// Rounds of exchanges and route improvement per candidate at most.
+const EXCHANGE_ROUNDS: usize = 4;
 
 /// The mean finite leg of a state (the temperature's unit): its total over its legs.
 fn mean_leg(setting: &Setting, state: &State) -> f64 {
