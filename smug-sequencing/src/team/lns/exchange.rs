@@ -28,20 +28,27 @@ struct Move {
 }
 
 /// Relocate, swap and SWAP* between routes until none lowers the total (first
-/// improvement, near pairs only); marks the routes it changes in `dirty` and returns
-/// whether anything moved.
-pub(super) fn exchange_routes(setting: &Setting, state: &mut State, dirty: &mut [bool]) -> bool {
+/// improvement, near pairs only), moving the targets of the routes marked in `active`
+/// or in `changed`; marks the routes it changes in `changed` and returns whether
+/// anything moved.
+pub(super) fn exchange_routes(
+    setting: &Setting,
+    state: &mut State,
+    active: &[bool],
+    changed: &mut [bool],
+) -> bool {
     let k = setting.problem.targets().len();
     let mut moved_any = false;
     for _pass in 0..MAX_PASSES {
         let mut moved = false;
         let mut at = state.positions(k);
         for u in 0..k {
-            if at[u].0 == usize::MAX {
+            let ru = at[u].0;
+            if ru == usize::MAX || !(active[ru] || changed[ru]) {
                 continue;
             }
             if let Some(best) = best_move_for(setting, state, &at, u) {
-                if apply(setting, state, best, dirty) {
+                if apply(setting, state, best, changed) {
                     moved = true;
                     at = state.positions(k);
                 }
@@ -182,26 +189,49 @@ fn relocate(
     })
 }
 
-/// Cost change of putting `node` between `nodes[k]` and `nodes[k + 1]`.
-fn gap_delta(c: &CostMatrix, nodes: &[usize], k: usize, node: usize) -> f64 {
-    let (x, y) = (nodes[k], nodes[k + 1]);
-    leg_delta(c.get(x, node) + c.get(node, y), c.get(x, y))
+/// The nodes robot `r` drives through with `route`'s visit at index `skip` taken out:
+/// start, the other visits, end (a view, no copy).
+struct Without<'a> {
+    route: &'a [Visit],
+    skip: usize,
+    start: usize,
+    end: usize,
 }
 
-/// The nodes robot `r` drives through: start, `route` without index `skip`, end.
-fn sequence(setting: &Setting, r: usize, route: &[Visit], skip: usize) -> Vec<usize> {
-    let robot = &setting.problem.robots()[r];
-    let mut nodes = Vec::with_capacity(route.len() + 1);
-    nodes.push(robot.start);
-    nodes.extend(
-        route
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| i != skip)
-            .map(|(_, v)| v.node),
-    );
-    nodes.push(robot.end);
-    nodes
+impl<'a> Without<'a> {
+    fn new(setting: &Setting, r: usize, route: &'a [Visit], skip: usize) -> Self {
+        let robot = &setting.problem.robots()[r];
+        Self {
+            route,
+            skip,
+            start: robot.start,
+            end: robot.end,
+        }
+    }
+
+    /// Number of nodes (start and end included).
+    fn len(&self) -> usize {
+        self.route.len() + 1
+    }
+
+    /// The `k`-th node.
+    fn node(&self, k: usize) -> usize {
+        if k == 0 {
+            self.start
+        } else if k >= self.route.len() {
+            self.end
+        } else if k <= self.skip {
+            self.route[k - 1].node
+        } else {
+            self.route[k].node
+        }
+    }
+
+    /// Cost change of putting `node` between the `k`-th and the next node.
+    fn gap_delta(&self, c: &CostMatrix, k: usize, node: usize) -> f64 {
+        let (x, y) = (self.node(k), self.node(k + 1));
+        leg_delta(c.get(x, node) + c.get(node, y), c.get(x, y))
+    }
 }
 
 /// The two targets trade slots (each at the best of its nodes).
@@ -213,8 +243,8 @@ fn swap(setting: &Setting, state: &State, a: (usize, usize), b: (usize, usize)) 
         return None;
     }
     let (seq_a, seq_b) = (
-        sequence(setting, ra, route_a, ia),
-        sequence(setting, rb, route_b, ib),
+        Without::new(setting, ra, route_a, ia),
+        Without::new(setting, rb, route_b, ib),
     );
     let (ca, cb) = (
         &setting.problem.robots()[ra].costs,
@@ -246,18 +276,18 @@ fn swap(setting: &Setting, state: &State, a: (usize, usize), b: (usize, usize)) 
     })
 }
 
-/// The cheapest of `target`'s nodes in gap `k` of `nodes`: its cost change and node.
+/// The cheapest of `target`'s nodes in gap `k` of `nodes` (after its `k`-th node): its cost change and node.
 fn cheapest_node(
     setting: &Setting,
     c: &CostMatrix,
-    nodes: &[usize],
+    nodes: &Without,
     k: usize,
     target: usize,
 ) -> (f64, usize) {
     setting.problem.targets()[target]
         .nodes
         .iter()
-        .map(|&node| (gap_delta(c, nodes, k, node), node))
+        .map(|&node| (nodes.gap_delta(c, k, node), node))
         .min_by(|x, y| x.0.total_cmp(&y.0))
         .expect("a target has a node")
 }
@@ -266,7 +296,7 @@ fn cheapest_node(
 fn cheapest_gap(
     setting: &Setting,
     c: &CostMatrix,
-    nodes: &[usize],
+    nodes: &Without,
     target: usize,
 ) -> (f64, usize, usize) {
     let mut best = (f64::INFINITY, 0, setting.problem.targets()[target].nodes[0]);
@@ -294,8 +324,8 @@ fn swap_star(
         return None;
     }
     let (seq_a, seq_b) = (
-        sequence(setting, ra, route_a, ia),
-        sequence(setting, rb, route_b, ib),
+        Without::new(setting, ra, route_a, ia),
+        Without::new(setting, rb, route_b, ib),
     );
     let (ca, cb) = (
         &setting.problem.robots()[ra].costs,
@@ -457,7 +487,7 @@ mod tests {
             let mut state = State::of(&setting, &problem.solution(routes));
             let before = state.total();
             let mut dirty = vec![false; m];
-            let moved = exchange_routes(&setting, &mut state, &mut dirty);
+            let moved = exchange_routes(&setting, &mut state, &vec![true; m], &mut dirty);
             check_routes(&problem, &state.routes);
             let recomputed = problem.solution(state.routes.clone()).total;
             assert!((recomputed - state.total()).abs() < 1e-9);

@@ -46,6 +46,9 @@ pub struct TeamLnsParams {
     /// Total objective: a ruin removes on average at most this fraction of a mean
     /// route's targets (`mean_removed` caps it too).
     pub sum_removed_per_route: f64,
+    /// Total objective: the annealing cools this many times over the budget, each
+    /// cycle starting hot again from the best state seen (1 = one cooling).
+    pub sum_cycles: u64,
 }
 
 impl Default for TeamLnsParams {
@@ -65,6 +68,7 @@ impl Default for TeamLnsParams {
             split_above: 200,
             near_moves_above: 100,
             sum_removed_per_route: 0.8,
+            sum_cycles: 1,
         }
     }
 }

@@ -34,7 +34,6 @@ pub(super) fn ruin(
         16..=17 => worst(setting, state, size, rng),
         _ => route(setting, state, size, rng),
     };
-    let removed = above_min_sizes(setting, state, removed);
     let mut removed_flags = vec![false; k];
     for &t in &removed {
         removed_flags[t] = true;
@@ -52,28 +51,6 @@ pub(super) fn ruin(
         }
     }
     removed
-}
-
-/// For the total, `removed` without the targets whose removal would leave their route
-/// below its minimum size (the first ones of each route are kept in the list): recreate
-/// then never has to refill a route whatever it costs. (The makespan keeps ruins that
-/// empty routes: its search relies on them, measured on He & Hao's Set I.)
-fn above_min_sizes(setting: &Setting, state: &State, removed: Vec<usize>) -> Vec<usize> {
-    let min = setting.problem.route_size().map_or(0, |b| b.min);
-    if min == 0 || setting.problem.objective() != TeamObjective::Sum {
-        return removed;
-    }
-    let at = state.positions(setting.problem.targets().len());
-    let mut left: Vec<usize> = state.routes.iter().map(Vec::len).collect();
-    let mut kept = Vec::with_capacity(removed.len());
-    for t in removed {
-        let r = at[t].0;
-        if r != usize::MAX && left[r] > min {
-            left[r] -= 1;
-            kept.push(t);
-        }
-    }
-    kept
 }
 
 /// A robot to start a ruin from: for the makespan, the longest route half the time.
@@ -203,8 +180,9 @@ pub(super) fn recreate(
         4..=5 => removed.sort_by(|&a, &b| depot_cost(b).total_cmp(&depot_cost(a))),
         _ => removed.sort_by(|&a, &b| depot_cost(a).total_cmp(&depot_cost(b))),
     }
-    for t in removed {
-        let place = state.best_insertion(setting, t, blink, rng);
+    let count = removed.len();
+    for (i, t) in removed.into_iter().enumerate() {
+        let place = state.best_insertion(setting, t, count - i, blink, rng);
         dirty[place.robot] = true;
         state.insert(setting, t, place);
     }

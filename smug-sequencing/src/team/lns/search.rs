@@ -1,6 +1,7 @@
 //! The ruin-and-recreate loop with simulated-annealing acceptance (SISR-style: accept a
 //! candidate below `current − T·ln U`), the temperature cooling geometrically with the
-//! budget's progress.
+//! budget's progress (for the total, in `sum_cycles` cycles, each restarting hot from the
+//! best state seen).
 
 use super::cross::cross_routes;
 use super::exchange::exchange_routes;
@@ -84,13 +85,25 @@ pub(super) fn search(
     let mut best_scalar = current_scalar;
     let mut iterations = 0u64;
     let m = current.routes.len();
+    let cycles = match setting.problem.objective() {
+        TeamObjective::Sum => params.sum_cycles.max(1),
+        TeamObjective::Makespan => 1,
+    };
+    let mut cycle = 0u64;
     loop {
         let progress = budget.progress(started, iterations);
         if progress >= 1.0 {
             break;
         }
         iterations += 1;
-        let temperature = hot * (cold / hot).powf(progress);
+        let scaled = progress * cycles as f64;
+        if scaled.floor() as u64 > cycle {
+            // A new cycle: hot again, from the best state seen.
+            cycle = scaled.floor() as u64;
+            current = best.clone();
+            current_scalar = current.scalar(setting);
+        }
+        let temperature = hot * (cold / hot).powf(scaled - scaled.floor());
         let mut candidate = current.clone();
         let mut dirty = vec![false; m];
         let removed = ruin(setting, &mut candidate, size, rng, &mut dirty);
@@ -110,10 +123,12 @@ pub(super) fn search(
             for r in (0..m).filter(|&r| dirty[r]) {
                 improve_route(setting, &mut candidate, r);
             }
-            if m > 1 && setting.problem.objective() == TeamObjective::Sum {
-                exchange_and_improve(setting, &mut candidate, &mut dirty);
-            }
             scalar = candidate.scalar(setting);
+            let close = best_scalar * (1.0 + params.improve_within * EXCHANGE_WITHIN);
+            if m > 1 && setting.problem.objective() == TeamObjective::Sum && scalar < close {
+                exchange_and_improve(setting, &mut candidate, &mut dirty);
+                scalar = candidate.scalar(setting);
+            }
         }
         if better(setting, &candidate, &best) {
             best = candidate.clone();
@@ -143,17 +158,23 @@ fn mean_removed(setting: &Setting, params: &TeamLnsParams) -> f64 {
 /// Inter-route exchanges and route improvement in turn until the exchanges find nothing
 /// (a few rounds at most).
 fn exchange_and_improve(setting: &Setting, state: &mut State, dirty: &mut [bool]) {
+    let mut active = dirty.to_vec();
     for _round in 0..EXCHANGE_ROUNDS {
-        let mut changed = vec![false; dirty.len()];
-        if !exchange_routes(setting, state, &mut changed) {
+        let mut changed = vec![false; active.len()];
+        if !exchange_routes(setting, state, &active, &mut changed) {
             break;
         }
         for r in (0..changed.len()).filter(|&r| changed[r]) {
             improve_route(setting, state, r);
             dirty[r] = true;
         }
+        active = changed;
     }
 }
+
+/// Candidates within this fraction of `improve_within` of the best get the exchanges
+/// between routes too (for the total).
+const EXCHANGE_WITHIN: f64 = 0.25;
 
 /// Rounds of exchanges and route improvement per candidate at most.
 const EXCHANGE_ROUNDS: usize = 4;

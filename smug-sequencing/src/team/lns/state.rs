@@ -133,6 +133,15 @@ pub(super) struct Insertion {
     pub increase: f64,
 }
 
+/// What an insertion scan of one route needs besides the route: the makespan, the
+/// size bonus of the route, the blink rate.
+#[derive(Clone, Copy)]
+struct Scan {
+    makespan: f64,
+    bonus: f64,
+    blink: f64,
+}
+
 impl State {
     /// Every robot idle.
     pub fn empty(setting: &Setting) -> Self {
@@ -207,15 +216,21 @@ impl State {
     }
 
     /// The cheapest place for `target` (skipping each position with probability
-    /// `blink`); full routes only when no other robot may take it.
+    /// `blink`); full routes only when no other robot may take it. `left` targets are
+    /// still to insert, this one included: for the total, routes below their minimum
+    /// size are preferred only when the targets left are no more than they lack (else
+    /// the cheapest place wins); for the makespan, always.
     pub fn best_insertion(
         &self,
         setting: &Setting,
         target: usize,
+        left: usize,
         blink: f64,
         rng: &mut impl Rng,
     ) -> Insertion {
         let makespan = self.makespan();
+        let fill =
+            setting.problem.objective() == TeamObjective::Makespan || left <= self.deficit(setting);
         let mut best: Option<Insertion> = None;
         for pass in 0..2 {
             for &r in &setting.allowed[target] {
@@ -223,7 +238,17 @@ impl State {
                 if full != (pass == 1) {
                     continue;
                 }
-                self.scan_route(setting, r, target, makespan, blink, rng, &mut best);
+                let bonus = if fill {
+                    self.size_bonus(setting, r)
+                } else {
+                    0.0
+                };
+                let scan = Scan {
+                    makespan,
+                    bonus,
+                    blink,
+                };
+                self.scan_route(setting, r, target, scan, rng, &mut best);
             }
             if best.is_some() {
                 break;
@@ -232,21 +257,32 @@ impl State {
         best.expect("every target has an allowed robot (TeamProblem checks it)")
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Targets the routes below their minimum size lack together.
+    fn deficit(&self, setting: &Setting) -> usize {
+        let min = setting.problem.route_size().map_or(0, |b| b.min);
+        self.routes
+            .iter()
+            .map(|r| min.saturating_sub(r.len()))
+            .sum()
+    }
+
     fn scan_route(
         &self,
         setting: &Setting,
         r: usize,
         target: usize,
-        makespan: f64,
-        blink: f64,
+        scan: Scan,
         rng: &mut impl Rng,
         best: &mut Option<Insertion>,
     ) {
+        let Scan {
+            makespan,
+            bonus,
+            blink,
+        } = scan;
         let robot = &setting.problem.robots()[r];
         let c = &robot.costs;
         let route = &self.routes[r];
-        let bonus = self.size_bonus(setting, r);
         for at in 0..=route.len() {
             if blink > 0.0 && best.is_some() && rng.random::<f64>() < blink {
                 continue;
