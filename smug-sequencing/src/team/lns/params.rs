@@ -67,7 +67,7 @@ impl Default for TeamLnsParams {
             split_fraction: 0.1,
             split_above: 200,
             near_moves_above: 100,
-            sum_removed_per_route: 0.8,
+            sum_removed_per_route: 0.5,
             sum_cycles: 1,
         }
     }
