@@ -11,7 +11,10 @@
 //!    longest route), reinserts each at its cheapest place (skipping positions with a
 //!    small "blink" probability), and on promising candidates improves the changed
 //!    routes (Or-opt, 2-opt on symmetric costs, PoI re-choice; on long routes only the
-//!    moves between near targets). Annealing decides.
+//!    moves between near targets; for the total, the closest ones also get granular
+//!    relocate / swap / SWAP* between routes, see `exchange`). Annealing decides. For
+//!    the total, a ruin removes at most `sum_removed_per_route` of a mean route, and
+//!    recreate fills routes below their minimum size only when it must.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
