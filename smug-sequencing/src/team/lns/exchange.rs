@@ -17,6 +17,11 @@ const GRANULAR: usize = 20;
 /// Passes over every target at most (each pass ends when none moved).
 const MAX_PASSES: usize = 50;
 
+/// Whether a change of the total is an improvement (not noise, not NaN).
+fn improves(delta: f64) -> bool {
+    delta < -EPSILON
+}
+
 /// A move between two routes: the routes' new visit lists.
 struct Move {
     /// Route of the target moved or swapped first, its new visits.
@@ -97,7 +102,7 @@ fn apply(setting: &Setting, state: &mut State, m: Move, dirty: &mut [bool]) -> b
     let before = state.costs[a] + state.costs[b];
     let new_a = setting.problem.route_cost(a, &m.a.1);
     let new_b = setting.problem.route_cost(b, &m.b.1);
-    if !(new_a + new_b < before - EPSILON) {
+    if !improves(new_a + new_b - before) {
         return false;
     }
     state.routes[a] = m.a.1;
@@ -175,7 +180,7 @@ fn relocate(
         }
     }
     let (added, k, node) = best?;
-    if !(removed + added < -EPSILON) {
+    if !improves(removed + added) {
         return None;
     }
     let mut new_a = route_a.clone();
@@ -256,7 +261,7 @@ fn swap(setting: &Setting, state: &State, a: (usize, usize), b: (usize, usize)) 
         + removal_delta(setting, rb, route_b, ib)
         + into_a
         + into_b;
-    if !(delta < -EPSILON) {
+    if !improves(delta) {
         return None;
     }
     let mut new_a = route_a.clone();
@@ -337,7 +342,7 @@ fn swap_star(
         + removal_delta(setting, rb, route_b, ib)
         + into_a
         + into_b;
-    if !(delta < -EPSILON) {
+    if !improves(delta) {
         return None;
     }
     let mut new_a = route_a.clone();
