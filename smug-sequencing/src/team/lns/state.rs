@@ -364,3 +364,33 @@ pub(super) fn leg_delta(added: f64, removed: f64) -> f64 {
         (false, false) => f64::MAX / 8.0,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::team::mtsp::mtsp_problem;
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+    use smug_core::{CostMatrix, RouteSize};
+
+    #[test]
+    fn size_aware_insertion_fills_short_routes_only_when_it_must() {
+        // Targets on a line away from the depot: the total wants one route; bounds 3..=6.
+        let costs = CostMatrix::from_fn(11, |i, j| (i as f64 - j as f64).abs()).unwrap();
+        let bounds = RouteSize { min: 3, max: 6 };
+        let problem = mtsp_problem(costs, 3, TeamObjective::Sum, Some(bounds)).unwrap();
+        let setting = Setting::new(&problem, 0.02, 100);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let mut state = State::empty(&setting);
+        // With 10 targets left and 9 lacking, the cheapest place wins (any route)…
+        let first = state.best_insertion(&setting, 0, 10, 0.0, &mut rng);
+        state.insert(&setting, 0, first);
+        // …and once the targets left are what the short routes lack, they get them.
+        for t in 1..10 {
+            let place = state.best_insertion(&setting, t, 10 - t, 0.0, &mut rng);
+            state.insert(&setting, t, place);
+        }
+        assert_eq!(state.violation(&setting), 0, "{:?}", state.routes);
+        assert!(state.routes.iter().all(|r| (3..=6).contains(&r.len())));
+    }
+}
