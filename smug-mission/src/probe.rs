@@ -101,22 +101,23 @@ pub(super) fn probe_start_and_end(
         pois: pois.len(),
         reason,
     };
+    // The end first: its searches stop at the first PoI that proves nothing, while
+    // the start's runs its whole budget when the start is free. (A symmetric model
+    // enters a pose wherever it can leave it: the start's probe decides for both.)
+    if !(closed && oracle.is_symmetric()) {
+        let into_end = oracle.prove_unenterable(layout.end, &pois, PROBE_EFFORT)?;
+        if let Some(reason) = all_proved(&into_end) {
+            return Err(Error::stage(
+                "plan",
+                cut(Side::End, layout.end, reason, oracle),
+            ));
+        }
+    }
     let from_start = oracle.prove_unreachable_from(layout.start, &pois, PROBE_EFFORT)?;
     if let Some(reason) = all_proved(&from_start) {
         return Err(Error::stage(
             "plan",
             cut(Side::Start, layout.start, reason, oracle),
-        ));
-    }
-    // A symmetric model enters a pose wherever it can leave it.
-    if closed && oracle.is_symmetric() {
-        return Ok(());
-    }
-    let into_end = oracle.prove_unenterable(layout.end, &pois, PROBE_EFFORT)?;
-    if let Some(reason) = all_proved(&into_end) {
-        return Err(Error::stage(
-            "plan",
-            cut(Side::End, layout.end, reason, oracle),
         ));
     }
     Ok(())
