@@ -1,7 +1,7 @@
 //! One outcome for every planning command: solved, or no solution and why; errors are
 //! [`AppError`](crate::AppError)s beside it.
 
-use smug_mission::{NoTargetLeft, Unreachable};
+use smug_mission::{CutOff, NoTargetLeft, Unreachable};
 
 /// What a planning command found.
 #[derive(Debug)]
@@ -62,7 +62,9 @@ impl NoSolution {
     /// The no-solution reading of a library error, if it is one.
     pub fn of(err: &smug_core::Error) -> Option<Self> {
         match err {
-            smug_core::Error::Stage { source, .. } if source.is::<Unreachable>() => {
+            smug_core::Error::Stage { source, .. }
+                if source.is::<Unreachable>() || source.is::<CutOff>() =>
+            {
                 Some(Self::Unreachable(source.to_string()))
             }
             smug_core::Error::Stage { source, .. } if source.is::<NoTargetLeft>() => {

@@ -19,6 +19,7 @@ mod lazy;
 mod matrix;
 pub mod oracle;
 pub mod post_process;
+mod probe;
 mod replan;
 mod run;
 mod sequential;
@@ -29,6 +30,7 @@ mod test_support;
 
 pub use fingerprint::{fingerprint, traversability_files};
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
+pub use probe::{CutOff, Side};
 pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,

@@ -11,6 +11,7 @@ use crate::joint::{joint_tour, JointProblem};
 use crate::layout::{register_poses, Layout};
 use crate::oracle::{KnownAnswers, PathOracle};
 use crate::post_process::{concatenate, waypoints};
+use crate::probe::{end_not_entered, probe_start_and_end};
 use crate::sequential::sequence;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
@@ -264,6 +265,7 @@ fn plan_on_oracle(
     let mut times = std::collections::BTreeMap::new();
     let t = Instant::now();
     pipeline.run().progress.enter("dead ends");
+    probe_start_and_end(oracle, &layout, &targets)?;
     let dead_ends = drop_dead_ends(oracle, mission, given, &mut layout, &targets)?;
     if !dead_ends.is_empty() {
         times.insert("dead-ends".to_string(), t.elapsed().as_secs_f64());
@@ -322,6 +324,9 @@ fn plan_on_oracle(
             other => {
                 let unreachable = unreachable_targets(oracle, &layout, &targets)?;
                 if unreachable.is_empty() {
+                    if let Some(cut) = end_not_entered(oracle, &layout, &targets)? {
+                        return Err(Error::stage("plan", cut));
+                    }
                     if let Some(target) = unroutable_target(&other, &order) {
                         return Err(Error::stage(
                             "plan",

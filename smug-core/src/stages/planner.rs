@@ -236,6 +236,33 @@ pub trait PointToPointPlanner: Send + Sync {
         Ok(None)
     }
 
+    /// Tries, within `effort` units of work, to prove for each of `goals` that no path
+    /// leads from `start` to it (one search for all: a boxed-in start exhausts its few
+    /// reachable poses at once, whatever the goals). One entry per goal, as
+    /// [`prove_unreachable`](Self::prove_unreachable). The default proves nothing.
+    fn prove_unreachable_from(
+        &mut self,
+        start: &Pose2,
+        goals: &[Pose2],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let _ = (start, effort);
+        Ok(vec![None; goals.len()])
+    }
+
+    /// Tries, within `effort` units of work, to prove for each of `starts` that no path
+    /// leads from it to `goal` (an end pose that cannot be entered, its only ways in
+    /// blocked, say). One entry per start. The default proves nothing.
+    fn prove_unenterable(
+        &mut self,
+        goal: &Pose2,
+        starts: &[Pose2],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let _ = (goal, effort);
+        Ok(vec![None; starts.len()])
+    }
+
     /// The planner's roadmap and answered queries, to save after a mission: bytes in
     /// the planner's own format, opaque to the caller, who stores them with a
     /// [`Fingerprint`](crate::stages::Fingerprint) of what they were built for

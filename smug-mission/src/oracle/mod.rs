@@ -412,6 +412,34 @@ impl PathOracle {
         self.planner.prove_unreachable(&a, &b, effort)
     }
 
+    /// Asks the planner to prove, within `effort`, for each pose of `js` that no path
+    /// leads from pose `i` to it, with one search
+    /// ([`PointToPointPlanner::prove_unreachable_from`]); nothing is cached.
+    pub fn prove_unreachable_from(
+        &mut self,
+        i: usize,
+        js: &[usize],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let goals: Vec<Pose2> = js.iter().map(|&j| self.poses[j]).collect();
+        let start = self.poses[i];
+        self.planner.prove_unreachable_from(&start, &goals, effort)
+    }
+
+    /// Asks the planner to prove, within `effort`, for each pose of `is` that no path
+    /// leads from it to pose `j`, with one backward search
+    /// ([`PointToPointPlanner::prove_unenterable`]); nothing is cached.
+    pub fn prove_unenterable(
+        &mut self,
+        j: usize,
+        is: &[usize],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let starts: Vec<Pose2> = is.iter().map(|&i| self.poses[i]).collect();
+        let goal = self.poses[j];
+        self.planner.prove_unenterable(&goal, &starts, effort)
+    }
+
     fn plan_pair(&mut self, i: usize, j: usize) -> Result<PlannedPath> {
         refuse_after_deadline(&self.run.deadline)?;
         self.stats.paths_planned += 1;

@@ -27,6 +27,7 @@ mod edges;
 mod focus;
 mod heuristic;
 mod primitives;
+mod prove;
 mod search;
 mod shots;
 #[cfg(test)]
@@ -297,6 +298,24 @@ impl LatticePlanner {
         self.record(answered)
     }
 
+    /// One proving search on this thread ([`search::Worker::prove`]); its counts are
+    /// added to the planner's.
+    fn prove(&mut self, start: &Pose2, goals: &[Pose2], effort: u64) -> Vec<Option<NoPathReason>> {
+        let pool = &self.searchers;
+        let idle = pool.lock().expect("searcher pool").pop();
+        let shared = &self.shared;
+        let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
+        let proofs = search::Worker {
+            sh: shared,
+            me: &mut searcher,
+        }
+        .prove(start, goals, effort);
+        let counts = std::mem::take(&mut searcher.counts);
+        pool.lock().expect("searcher pool").push(searcher);
+        self.counts.add(&counts);
+        proofs
+    }
+
     /// Adds a search's counts to the planner's and keeps its path costs as
     /// [`Self::last_costs`]; returns its outcomes.
     fn record(&mut self, (answers, counts): (search::Answers, Counts)) -> Vec<PlannerOutcome> {
@@ -445,6 +464,40 @@ impl PointToPointPlanner for LatticePlanner {
     ) -> Result<Option<NoPathReason>> {
         let outcome = self.search(start, std::slice::from_ref(goal), effort.max(1));
         Ok(outcome[0].no_path_reason().filter(NoPathReason::is_proved))
+    }
+
+    fn prove_unreachable_from(
+        &mut self,
+        start: &Pose2,
+        goals: &[Pose2],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        Ok(self.prove(start, goals, effort.max(1)))
+    }
+
+    /// One small forward search from each start to `goal`, stopping at the first
+    /// that proves nothing (the rest then prove nothing either). Each is cheap when
+    /// the goal cannot be entered: the 2D heuristic, seeded only where a final shot
+    /// into the goal can start, is infinite almost everywhere, and an exhausted search
+    /// keeps its proof for the starts whose joins it closed. (A search backwards from
+    /// the goal turned half round would be one search, but it is not a proof: the
+    /// search joins its start to the lattice only nearby, while shots into a goal come
+    /// from up to `shot_radius` away.)
+    fn prove_unenterable(
+        &mut self,
+        goal: &Pose2,
+        starts: &[Pose2],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let mut proofs = vec![None; starts.len()];
+        for (k, start) in starts.iter().enumerate() {
+            let proof = self.prove(start, std::slice::from_ref(goal), effort.max(1));
+            if proof[0].is_none() {
+                break;
+            }
+            proofs[k] = proof[0];
+        }
+        Ok(proofs)
     }
 
     fn stats(&self) -> PlannerStats {

@@ -97,7 +97,7 @@ pub(super) struct Goal {
 }
 
 /// How a search ended.
-enum End {
+pub(super) enum End {
     AllReached,
     Exhausted,
     Budget(Budget),
@@ -155,29 +155,17 @@ impl Worker<'_> {
             };
         }
         let mut outcomes: Vec<Option<PlannerOutcome>> = vec![None; goals.len()];
-        let mut asked = Vec::new();
-        let mut index = Vec::new();
-        for (k, goal) in goals.iter().enumerate() {
-            if !self.sh.states.is_valid(goal) {
-                outcomes[k] = Some(PlannerOutcome::InvalidGoal);
-            } else if goal.xy_distance(start) < 1e-12 && goal.yaw == start.yaw {
+        let (asked, index) = self.asked_goals(start, goals, |k, at_start| {
+            outcomes[k] = Some(if at_start {
                 costs[k] = Some(0.0);
-                outcomes[k] = Some(PlannerOutcome::Exact(Path {
+                PlannerOutcome::Exact(Path {
                     states: vec![*start],
                     cost: 0.0,
-                }));
+                })
             } else {
-                index.push(k);
-                asked.push(Goal {
-                    pose: *goal,
-                    reached: None,
-                    proved_out: false,
-                    shots: self.sh.caches.shot_table(goal, || {
-                        ShotTable::new(&self.sh.lattice, goal, self.sh.shot_radius)
-                    }),
-                });
-            }
-        }
+                PlannerOutcome::InvalidGoal
+            });
+        });
         if !asked.is_empty() {
             let (reached, end) = self.run(start, asked, max_expansions);
             for (goal, k) in reached.into_iter().zip(index) {
@@ -193,6 +181,36 @@ impl Worker<'_> {
                 .collect(),
             costs,
         }
+    }
+
+    /// The goals to search for, with their indices in `goals`; the others are passed
+    /// to `answered` with whether they are the start itself (else they are invalid).
+    pub(super) fn asked_goals(
+        &self,
+        start: &Pose2,
+        goals: &[Pose2],
+        mut answered: impl FnMut(usize, bool),
+    ) -> (Vec<Goal>, Vec<usize>) {
+        let mut asked = Vec::new();
+        let mut index = Vec::new();
+        for (k, goal) in goals.iter().enumerate() {
+            if !self.sh.states.is_valid(goal) {
+                answered(k, false);
+            } else if goal.xy_distance(start) < 1e-12 && goal.yaw == start.yaw {
+                answered(k, true);
+            } else {
+                index.push(k);
+                asked.push(Goal {
+                    pose: *goal,
+                    reached: None,
+                    proved_out: false,
+                    shots: self.sh.caches.shot_table(goal, || {
+                        ShotTable::new(&self.sh.lattice, goal, self.sh.shot_radius)
+                    }),
+                });
+            }
+        }
+        (asked, index)
     }
 
     /// The outcome for one goal once the search ended.
@@ -237,7 +255,12 @@ impl Worker<'_> {
 
     /// The A* loop: settles the goals it reaches, ends when all are, when nothing is
     /// left to expand, or when a budget runs out.
-    fn run(&mut self, start: &Pose2, goals: Vec<Goal>, max_expansions: u64) -> (Vec<Goal>, End) {
+    pub(super) fn run(
+        &mut self,
+        start: &Pose2,
+        goals: Vec<Goal>,
+        max_expansions: u64,
+    ) -> (Vec<Goal>, End) {
         self.me.buffers.next_generation();
         let open_goals = goals.len();
         let joins = self.start_successors(start);
