@@ -27,12 +27,14 @@ impl Counter {
     }
 
     /// Adds `n`.
+    #[inline]
     pub fn add(&self, n: u64) {
         let slot = rayon::current_thread_index().map_or(0, |i| (i + 1) % SLOTS);
         self.slots[slot].fetch_add(n, Relaxed);
     }
 
     /// Adds one.
+    #[inline]
     pub fn increment(&self) {
         self.add(1);
     }

@@ -109,6 +109,7 @@ impl GridGeometry {
     }
 
     /// The cell containing `(x, y)`, if inside the grid.
+    #[inline]
     pub fn cell_of(&self, x: f64, y: f64) -> Option<[usize; 2]> {
         let fx = (x - self.origin[0]) / self.resolution;
         let fy = (y - self.origin[1]) / self.resolution;
@@ -128,6 +129,7 @@ impl GridGeometry {
     }
 
     /// Row-major index of cell `(i, j)`.
+    #[inline]
     pub fn index(&self, i: usize, j: usize) -> usize {
         j * self.size[0] + i
     }
@@ -191,6 +193,7 @@ impl GridLayer {
     }
 
     /// Value of cell `(i, j)`; panics when out of range.
+    #[inline]
     pub fn get(&self, i: usize, j: usize) -> f32 {
         self.data[self.geometry.index(i, j)]
     }
@@ -202,6 +205,7 @@ impl GridLayer {
     }
 
     /// Value of the cell containing `(x, y)`: `None` outside the grid or where NaN.
+    #[inline]
     pub fn nearest(&self, x: f64, y: f64) -> Option<f64> {
         let [i, j] = self.geometry.cell_of(x, y)?;
         let v = self.get(i, j);
@@ -210,6 +214,7 @@ impl GridLayer {
 
     /// Bilinear interpolation between cell centres (clamped at the border):
     /// `None` outside the grid or when a contributing cell is NaN.
+    #[inline]
     pub fn bilinear(&self, x: f64, y: f64) -> Option<f64> {
         self.geometry.cell_of(x, y)?;
         let g = &self.geometry;
@@ -225,6 +230,7 @@ impl GridLayer {
 }
 
 /// The two cell indices around `coordinate` along one axis and the weight of the upper one.
+#[inline]
 fn interpolation_axis(
     coordinate: f64,
     origin: f64,

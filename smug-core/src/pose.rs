@@ -73,6 +73,7 @@ impl Pose2 {
     }
 
     /// Euclidean distance between the positions of two poses.
+    #[inline]
     pub fn xy_distance(&self, other: &Pose2) -> f64 {
         let (dx, dy) = (self.x - other.x, self.y - other.y);
         // `hypot` guards against overflow of huge coordinates, at 5× the cost.

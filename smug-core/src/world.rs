@@ -60,6 +60,7 @@ impl World {
     }
 
     /// Terrain height at `(x, y)`, bilinear; `None` outside or where unknown.
+    #[inline]
     pub fn height_at(&self, x: f64, y: f64) -> Option<f64> {
         self.elevation.bilinear(x, y)
     }

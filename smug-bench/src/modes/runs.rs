@@ -131,9 +131,12 @@ const fn polygon_mission(name: &'static str, label: &'static str, polygons: Poly
 }
 
 /// The pipeline of the polygon missions: `configs/p2p-grid.toml` (a disc on the
-/// grid, LazyPRM* with its corner vertices) with the `auto` sequencer and the `idp`
-/// selector, these overrides on top.
-pub const POLYGON_SET: [&str; 5] = [
+/// grid) with the `auto` sequencer and the `idp` selector, these overrides on top. The
+/// planner is the missions' default `auto`, which plans with the exact `visibility`
+/// planner here (a disc on a grid, straight motions, path length): what a mission
+/// config on such a map gets (`--set planner.type=lazy-prm-star` for LazyPRM*).
+pub const POLYGON_SET: [&str; 6] = [
+    "planner.type=auto",
     "space.type=se2",
     "space.params.rotation_weight=0",
     "objective.type=path-length",
