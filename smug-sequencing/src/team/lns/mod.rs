@@ -14,7 +14,10 @@
 //!    moves between near targets; for the total, the closest ones also get granular
 //!    relocate / swap / SWAP* between routes, see `exchange`). Annealing decides. For
 //!    the total, a ruin removes at most `sum_removed_per_route` of a mean route, and
-//!    recreate fills routes below their minimum size only when it must.
+//!    recreate fills routes below their minimum size only when it must. For the total
+//!    (routes of at most `split_above` targets on average) the budget is shared by a
+//!    small population (see `population`): `sum_elite` searches from their own first
+//!    solutions, then `sum_offspring` searches from crossovers of two of the best.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
@@ -25,17 +28,20 @@ mod cross;
 mod exchange;
 mod improve;
 mod params;
+mod population;
 mod ruin;
 mod search;
 mod split;
 mod state;
 
 use crate::local_search::{LocalSearch, LocalSearchParams};
+use population::evolve;
 use rand::Rng;
 use search::{better, construct, search, Budget};
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    CostMatrix, Deadline, Sequencer, TeamProblem, TeamSequencer, TeamSolution, TourKind, Visit,
+    CostMatrix, Deadline, Sequencer, TeamObjective, TeamProblem, TeamSequencer, TeamSolution,
+    TourKind, Visit,
 };
 use split::{split_tour, TourBudget};
 use state::{Setting, State};
@@ -113,7 +119,12 @@ impl TeamLns {
             max_iterations: self.params.max_iterations,
             deadline: &self.deadline,
         };
-        let (best, iterations) = search(&setting, start, &self.params, &budget, &mut rng);
+        let pooled = self.pooled(&setting);
+        let (best, iterations) = if pooled {
+            evolve(&setting, start, &self.params, &budget, &mut rng)
+        } else {
+            search(&setting, start, &self.params, &budget, &mut rng)
+        };
         let routes = best.routes.iter().filter(|r| r.len() > 2).count().max(1);
         let per_route = self.params.time_limit_s * polish / routes as f64;
         let polished = self.polish(&setting, &best, per_route, &mut rng)?;
@@ -123,6 +134,15 @@ impl TeamLns {
             best
         };
         Ok((best.solution(&setting), iterations))
+    }
+
+    /// Whether the search keeps a population: for the total, with a pool, on routes
+    /// short enough for insertion to start well (no route-first construction).
+    fn pooled(&self, setting: &Setting) -> bool {
+        let per_robot = setting.problem.targets().len() / setting.problem.robots().len();
+        self.params.sum_elite > 0
+            && setting.problem.objective() == TeamObjective::Sum
+            && per_robot <= self.params.split_above
     }
 
     /// The better of insertion and the route-first construction (when it has a budget

@@ -49,6 +49,12 @@ pub struct TeamLnsParams {
     /// Total objective: the annealing cools this many times over the budget, each
     /// cycle starting hot again from the best state seen (1 = one cooling).
     pub sum_cycles: u64,
+    /// Total objective: members of the elite pool (0 = no pool: one search). With a
+    /// pool, that many independent searches fill it, then `sum_offspring` children of
+    /// two members (order crossover and split) are searched in turn.
+    pub sum_elite: usize,
+    /// Total objective, with a pool: children searched after the pool is filled.
+    pub sum_offspring: usize,
 }
 
 impl Default for TeamLnsParams {
@@ -69,6 +75,8 @@ impl Default for TeamLnsParams {
             near_moves_above: 100,
             sum_removed_per_route: 0.5,
             sum_cycles: 1,
+            sum_elite: 4,
+            sum_offspring: 8,
         }
     }
 }

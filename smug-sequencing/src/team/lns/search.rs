@@ -157,7 +157,7 @@ fn mean_removed(setting: &Setting, params: &TeamLnsParams) -> f64 {
 
 /// Inter-route exchanges and route improvement in turn until the exchanges find nothing
 /// (a few rounds at most).
-fn exchange_and_improve(setting: &Setting, state: &mut State, dirty: &mut [bool]) {
+pub(super) fn exchange_and_improve(setting: &Setting, state: &mut State, dirty: &mut [bool]) {
     let mut active = dirty.to_vec();
     for _round in 0..EXCHANGE_ROUNDS {
         let mut changed = vec![false; active.len()];

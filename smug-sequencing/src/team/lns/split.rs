@@ -120,7 +120,7 @@ fn stretch_cost(
 
 /// The cut of `order` into one stretch per robot (in robot order) with the least
 /// makespan or total, every stretch within the size bounds; `None` if none is finite.
-fn best_cuts(setting: &Setting, order: &[usize]) -> Option<Vec<Vec<Visit>>> {
+pub(super) fn best_cuts(setting: &Setting, order: &[usize]) -> Option<Vec<Vec<Visit>>> {
     let k = order.len();
     let m = setting.problem.robots().len();
     let (least, most) = setting
