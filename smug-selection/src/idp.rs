@@ -3,6 +3,7 @@
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
 use smug_core::{PathCosts, PoiSelector, Result, Selection, SelectionProblem};
+use std::collections::HashSet;
 
 /// Parameters of the iterative DP selector (none).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -37,14 +38,10 @@ impl PoiSelector for IdpSelector {
 /// last plans at least one new leg between consecutive layers, and there are finitely many.
 pub(crate) fn idp(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
     let mut best: Option<Selection> = None;
+    let mut searched = HashSet::new();
     loop {
         let (chosen, _) = problem.solve_layers(|i, j| Ok(oracle.cost_or_bound(i, j)))?;
-        let unplanned: Vec<(usize, usize)> = problem
-            .route(&chosen)
-            .windows(2)
-            .filter(|leg| !oracle.is_planned(leg[0], leg[1]))
-            .map(|leg| (leg[0], leg[1]))
-            .collect();
+        let unplanned = legs_to_plan(oracle, problem, &chosen, &mut searched);
         let planned_new = !unplanned.is_empty();
         oracle.plan_pairs(&unplanned)?;
         // Every leg is planned now: this is the route's true cost.
@@ -61,6 +58,38 @@ pub(crate) fn idp(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Res
         Some(s) if s.cost.is_finite() => Ok(s),
         _ => Err(unreachable_error(oracle, problem)),
     }
+}
+
+/// The legs of the route through `chosen` not planned yet. A leg from a pose already
+/// searched from towards the same layer (in `searched`: leg position and pose) asks,
+/// when the oracle answers many goals with one search, for every PoI of that layer
+/// from the pose: a pose IDP comes back to once tends to come back again (on lunar
+/// with the rover, 55 of 77 poses searched from were searched from 3–7 times, each
+/// time for one or two PoIs of the same target).
+fn legs_to_plan(
+    oracle: &dyn PathCosts,
+    problem: &SelectionProblem,
+    chosen: &[usize],
+    searched: &mut HashSet<(usize, usize)>,
+) -> Vec<(usize, usize)> {
+    let mut legs = Vec::new();
+    for (w, leg) in problem.route(chosen).windows(2).enumerate() {
+        let (from, to) = (leg[0], leg[1]);
+        if oracle.is_planned(from, to) {
+            continue;
+        }
+        let again = !searched.insert((w, from));
+        match problem.groups.get(w) {
+            Some(layer) if again && oracle.answers_many() => legs.extend(
+                layer
+                    .iter()
+                    .filter(|&&j| !oracle.is_planned(from, j))
+                    .map(|&j| (from, j)),
+            ),
+            _ => legs.push((from, to)),
+        }
+    }
+    legs
 }
 
 smug_core::register_plugin!(
