@@ -213,6 +213,26 @@ impl Worker<'_> {
         if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
         }
+        let values = match goals {
+            [_] => self.distances_to(goals),
+            [first, rest @ ..] => {
+                // The least of each goal's distances (kept for later sets): the set's
+                // own bit for bit, as `heuristic::least` says.
+                let mut least = (*self.goal_heuristic(std::slice::from_ref(first))).clone();
+                for goal in rest {
+                    let one = self.goal_heuristic(std::slice::from_ref(goal));
+                    heuristic::least(&mut least, &one);
+                }
+                Arc::new(least)
+            }
+            [] => self.distances_to(goals),
+        };
+        self.sh.caches.keep_heuristic(key, values.clone());
+        values
+    }
+
+    /// The obstacle-aware distances to a goal set, computed.
+    fn distances_to(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
         let sh = self.sh;
         let (w_t, _) = sh.objective.bound_weights();
         let mut seeds = Vec::new();
@@ -228,10 +248,8 @@ impl Worker<'_> {
             .map(|&(di, dj, len)| (di, dj, w_t * len))
             .collect();
         let (nx, ny) = (sh.lattice.nx, sh.lattice.ny);
-        let values = Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
+        Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
             self.point_open(ix, iy)
-        }));
-        sh.caches.keep_heuristic(key, values.clone());
-        values
+        }))
     }
 }
