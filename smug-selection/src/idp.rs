@@ -133,6 +133,85 @@ mod tests {
         assert!(o_idp.stats().paths_planned < o_dp.stats().paths_planned);
     }
 
+    /// Costs from a table (bounds a tenth of them), planned in calls that are logged.
+    struct Logged {
+        costs: Vec<Vec<f64>>,
+        planned: std::collections::HashSet<(usize, usize)>,
+        calls: Vec<Vec<(usize, usize)>>,
+    }
+
+    impl PathCosts for Logged {
+        fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
+            self.plan_pairs(&[(i, j)])?;
+            Ok(self.costs[i][j])
+        }
+        fn lower_bound(&self, i: usize, j: usize) -> f64 {
+            0.1 * self.costs[i][j]
+        }
+        fn is_planned(&self, i: usize, j: usize) -> bool {
+            self.planned.contains(&(i, j))
+        }
+        fn planned_cost(&self, i: usize, j: usize) -> Option<f64> {
+            self.is_planned(i, j).then(|| self.costs[i][j])
+        }
+        fn answers_many(&self) -> bool {
+            true
+        }
+        fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+            let pairs: Vec<(usize, usize)> = rows
+                .iter()
+                .flat_map(|(i, js)| js.iter().map(move |&j| (*i, j)))
+                .collect();
+            self.plan_pairs(&pairs)
+        }
+        fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+            let new: Vec<(usize, usize)> = pairs
+                .iter()
+                .copied()
+                .filter(|p| !self.planned.contains(p))
+                .collect();
+            if !new.is_empty() {
+                self.planned.extend(new.iter().copied());
+                self.calls.push(new);
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_pose_searched_from_again_towards_a_layer_asks_for_the_whole_layer() {
+        // Start 0, one layer {1, 2, 3}, end 0; bounds favour 1 then 2, but both are
+        // dear, so IDP comes back to the start for the layer three times.
+        let mut costs = vec![vec![1.0; 4]; 4];
+        costs[0][1] = 10.0;
+        costs[0][2] = 9.0;
+        costs[0][3] = 8.0;
+        let mut oracle = Logged {
+            costs,
+            planned: Default::default(),
+            calls: Vec::new(),
+        };
+        let problem = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1, 2, 3]],
+            end: 0,
+        };
+        let s = IdpSelector::default()
+            .select(&mut oracle, &problem)
+            .unwrap();
+        assert_eq!(s.chosen, vec![3]);
+        let from_start: Vec<Vec<usize>> = oracle
+            .calls
+            .iter()
+            .map(|c| c.iter().filter(|p| p.0 == 0).map(|p| p.1).collect())
+            .filter(|js: &Vec<usize>| !js.is_empty())
+            .collect();
+        // First the chosen PoI alone, then (asked again) every PoI of the layer left.
+        assert_eq!(from_start.len(), 2, "{:?}", oracle.calls);
+        assert_eq!(from_start[0].len(), 1);
+        assert_eq!(from_start[0].len() + from_start[1].len(), 3);
+    }
+
     #[test]
     fn avoids_detours_and_reports_unreachable_groups() {
         let mut o = detour_oracle(&[(0.0, 0.0), (7.0, 0.0), (0.0, 8.0)]);
