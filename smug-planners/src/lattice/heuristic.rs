@@ -88,7 +88,7 @@ mod tests {
             .iter()
             .map(|&(a, b)| (a, b, 0.1 * f64::from(a * a + b * b).sqrt() + 0.013))
             .collect();
-        let open = |x: usize, y: usize| (x * 7 + y * 3) % 11 != 0;
+        let open = |x: usize, y: usize| !(x * 7 + y * 3).is_multiple_of(11);
         let seeds = [
             ((1, 1), 0.37),
             ((20, 3), 0.011),
