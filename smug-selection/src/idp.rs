@@ -3,6 +3,7 @@
 use crate::error::{check_groups, unreachable_error};
 use serde::{Deserialize, Serialize};
 use smug_core::{PathCosts, PoiSelector, Result, Selection, SelectionProblem};
+use std::collections::HashSet;
 
 /// Parameters of the iterative DP selector (none).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -37,14 +38,10 @@ impl PoiSelector for IdpSelector {
 /// last plans at least one new leg between consecutive layers, and there are finitely many.
 pub(crate) fn idp(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
     let mut best: Option<Selection> = None;
+    let mut searched = HashSet::new();
     loop {
         let (chosen, _) = problem.solve_layers(|i, j| Ok(oracle.cost_or_bound(i, j)))?;
-        let unplanned: Vec<(usize, usize)> = problem
-            .route(&chosen)
-            .windows(2)
-            .filter(|leg| !oracle.is_planned(leg[0], leg[1]))
-            .map(|leg| (leg[0], leg[1]))
-            .collect();
+        let unplanned = legs_to_plan(oracle, problem, &chosen, &mut searched);
         let planned_new = !unplanned.is_empty();
         oracle.plan_pairs(&unplanned)?;
         // Every leg is planned now: this is the route's true cost.
@@ -61,6 +58,38 @@ pub(crate) fn idp(oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Res
         Some(s) if s.cost.is_finite() => Ok(s),
         _ => Err(unreachable_error(oracle, problem)),
     }
+}
+
+/// The legs of the route through `chosen` not planned yet. A leg from a pose already
+/// searched from towards the same layer (in `searched`: leg position and pose) asks,
+/// when the oracle answers many goals with one search, for every PoI of that layer
+/// from the pose: a pose IDP comes back to once tends to come back again (on lunar
+/// with the rover, 55 of 77 poses searched from were searched from 3–7 times, each
+/// time for one or two PoIs of the same target).
+fn legs_to_plan(
+    oracle: &dyn PathCosts,
+    problem: &SelectionProblem,
+    chosen: &[usize],
+    searched: &mut HashSet<(usize, usize)>,
+) -> Vec<(usize, usize)> {
+    let mut legs = Vec::new();
+    for (w, leg) in problem.route(chosen).windows(2).enumerate() {
+        let (from, to) = (leg[0], leg[1]);
+        if oracle.is_planned(from, to) {
+            continue;
+        }
+        let again = !searched.insert((w, from));
+        match problem.groups.get(w) {
+            Some(layer) if again && oracle.answers_many() => legs.extend(
+                layer
+                    .iter()
+                    .filter(|&&j| !oracle.is_planned(from, j))
+                    .map(|&j| (from, j)),
+            ),
+            _ => legs.push((from, to)),
+        }
+    }
+    legs
 }
 
 smug_core::register_plugin!(
@@ -102,6 +131,85 @@ mod tests {
         assert!((dp.cost - idp.cost).abs() < 1e-9, "{dp:?} vs {idp:?}");
         assert_eq!(o_dp.stats().paths_planned, 3 + 9 + 6 + 2);
         assert!(o_idp.stats().paths_planned < o_dp.stats().paths_planned);
+    }
+
+    /// Costs from a table (bounds a tenth of them), planned in calls that are logged.
+    struct Logged {
+        costs: Vec<Vec<f64>>,
+        planned: std::collections::HashSet<(usize, usize)>,
+        calls: Vec<Vec<(usize, usize)>>,
+    }
+
+    impl PathCosts for Logged {
+        fn cost(&mut self, i: usize, j: usize) -> Result<f64> {
+            self.plan_pairs(&[(i, j)])?;
+            Ok(self.costs[i][j])
+        }
+        fn lower_bound(&self, i: usize, j: usize) -> f64 {
+            0.1 * self.costs[i][j]
+        }
+        fn is_planned(&self, i: usize, j: usize) -> bool {
+            self.planned.contains(&(i, j))
+        }
+        fn planned_cost(&self, i: usize, j: usize) -> Option<f64> {
+            self.is_planned(i, j).then(|| self.costs[i][j])
+        }
+        fn answers_many(&self) -> bool {
+            true
+        }
+        fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+            let pairs: Vec<(usize, usize)> = rows
+                .iter()
+                .flat_map(|(i, js)| js.iter().map(move |&j| (*i, j)))
+                .collect();
+            self.plan_pairs(&pairs)
+        }
+        fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+            let new: Vec<(usize, usize)> = pairs
+                .iter()
+                .copied()
+                .filter(|p| !self.planned.contains(p))
+                .collect();
+            if !new.is_empty() {
+                self.planned.extend(new.iter().copied());
+                self.calls.push(new);
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn a_pose_searched_from_again_towards_a_layer_asks_for_the_whole_layer() {
+        // Start 0, one layer {1, 2, 3}, end 0; bounds favour 1 then 2, but both are
+        // dear, so IDP comes back to the start for the layer three times.
+        let mut costs = vec![vec![1.0; 4]; 4];
+        costs[0][1] = 10.0;
+        costs[0][2] = 9.0;
+        costs[0][3] = 8.0;
+        let mut oracle = Logged {
+            costs,
+            planned: Default::default(),
+            calls: Vec::new(),
+        };
+        let problem = SelectionProblem {
+            start: 0,
+            groups: vec![vec![1, 2, 3]],
+            end: 0,
+        };
+        let s = IdpSelector::default()
+            .select(&mut oracle, &problem)
+            .unwrap();
+        assert_eq!(s.chosen, vec![3]);
+        let from_start: Vec<Vec<usize>> = oracle
+            .calls
+            .iter()
+            .map(|c| c.iter().filter(|p| p.0 == 0).map(|p| p.1).collect())
+            .filter(|js: &Vec<usize>| !js.is_empty())
+            .collect();
+        // First the chosen PoI alone, then (asked again) every PoI of the layer left.
+        assert_eq!(from_start.len(), 2, "{:?}", oracle.calls);
+        assert_eq!(from_start[0].len(), 1);
+        assert_eq!(from_start[0].len() + from_start[1].len(), 3);
     }
 
     #[test]

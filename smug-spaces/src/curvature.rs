@@ -125,6 +125,11 @@ impl<S: Solver> StateSpace for CurvatureSpace<S> {
         // The symmetric solver is Reeds–Shepp's (both gears); Dubins' is forward only.
         S::SYMMETRIC
     }
+
+    fn is_translation_invariant(&self) -> bool {
+        // Curves are solved for the goal relative to the start.
+        true
+    }
 }
 
 /// Offsets (in turning radii) beyond which the solvers' squares and sums would overflow.

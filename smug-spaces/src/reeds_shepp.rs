@@ -70,6 +70,32 @@ mod tests {
     }
 
     #[test]
+    fn curves_moved_by_a_whole_number_of_lattice_steps_cost_the_same_bit_for_bit() {
+        // What lets the lattice cost each primitive once (`is_translation_invariant`).
+        let rs = ReedsSheppSpace::new(1.5).unwrap();
+        let dubins = crate::DubinsSpace::new(1.5).unwrap();
+        let spaces: [&dyn StateSpace; 2] = [&rs, &dubins];
+        for space in spaces {
+            assert!(space.is_translation_invariant());
+            for k in 0..64 {
+                let yaw = k as f64 * PI / 32.0;
+                let (dx, dy) = (0.25 * (k % 7) as f64, -0.25 * (k % 5) as f64);
+                let a = Pose2::new(0.0, 0.0, yaw);
+                let b = Pose2::new(dx, dy, yaw + 0.3);
+                let length = space.motion_extent(&a, &b).length;
+                for (tx, ty) in [(0.125, 0.0), (17.5, 3.25), (29.875, 28.75)] {
+                    let a2 = Pose2::new(tx, ty, yaw);
+                    let b2 = Pose2::new(tx + dx, ty + dy, yaw + 0.3);
+                    assert_eq!(
+                        space.motion_extent(&a2, &b2).length.to_bits(),
+                        length.to_bits()
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn a_quarter_turn_in_place_is_cheaper_than_dubins() {
         let r = 1.0;
         let rs = ReedsSheppSpace::new(r).unwrap();

@@ -48,6 +48,13 @@ pub trait Objective: Send + Sync + Debug {
         None
     }
 
+    /// True when `motion_cost(a, b)` depends only on where `b` lies relative to `a`
+    /// (the same motion costs the same anywhere on the map: a planner may cost its
+    /// motion primitives once); false (the default) for costs that look at the terrain.
+    fn is_translation_invariant(&self) -> bool {
+        false
+    }
+
     /// The cost of the path through `states`: the sum of its motions' costs.
     fn path_cost(&self, states: &[Pose2]) -> f64 {
         states

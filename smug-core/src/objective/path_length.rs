@@ -97,6 +97,12 @@ impl Objective for PathLength {
             .is_none_or(|space| space.is_symmetric())
     }
 
+    fn is_translation_invariant(&self) -> bool {
+        self.curved
+            .as_ref()
+            .is_none_or(|space| space.is_translation_invariant())
+    }
+
     fn bound_weights(&self) -> (f64, f64) {
         (self.w_t, self.w_r)
     }

@@ -91,6 +91,13 @@ pub trait StateSpace: Send + Sync + Debug {
     fn has_reverse_gear(&self) -> bool {
         false
     }
+
+    /// True when a motion's curve, length and turning depend only on where `b` lies
+    /// relative to `a` (the motion moved anywhere in the plane is the same motion):
+    /// the free-space models; false (the default) for any space that looks at the map.
+    fn is_translation_invariant(&self) -> bool {
+        false
+    }
 }
 
 /// How long a local motion is in the plane, and how far its heading turns.
@@ -167,6 +174,10 @@ impl Se2Space {
 }
 
 impl StateSpace for Se2Space {
+    fn is_translation_invariant(&self) -> bool {
+        true
+    }
+
     fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
         self.w_t * a.xy_distance(b) + self.w_r * angle_distance(a.yaw, b.yaw)
     }

@@ -4,10 +4,39 @@
 //! of a goal set).
 
 use super::heuristic;
-use super::primitives::{Layout, StateId};
+use super::primitives::{Lattice, Layout, Primitives, StateId};
 use super::search::Worker;
-use smug_core::Pose2;
+use smug_core::{Objective, Pose2};
 use std::sync::Arc;
+
+/// The objective's cost of every primitive (`k · stride + p`: primitive `p` of heading
+/// `k`), as [`Worker::edge_cost`] gives it, for an objective whose costs do not depend on
+/// where a motion is: computed once from the origin, not once per lattice pose.
+pub(super) fn primitive_costs(
+    lattice: &Lattice,
+    primitives: &Primitives,
+    objective: &dyn Objective,
+) -> Vec<f32> {
+    let mut costs = vec![0.0; lattice.headings * primitives.stride];
+    for (k, prims) in primitives.by_heading.iter().enumerate() {
+        let from = Pose2::new(0.0, 0.0, lattice.heading(k));
+        for (p, prim) in prims.iter().enumerate() {
+            let to = Pose2::new(
+                prim.di as f64 * lattice.cell,
+                prim.dj as f64 * lattice.cell,
+                lattice.heading(prim.to_heading),
+            );
+            costs[k * primitives.stride + p] = motion_cost_f32(objective, &from, &to);
+        }
+    }
+    costs
+}
+
+/// A motion's cost as the edge cache keeps it: an `f32`, never 0 (0 marks an unknown
+/// edge).
+fn motion_cost_f32(objective: &dyn Objective, a: &Pose2, b: &Pose2) -> f32 {
+    (objective.motion_cost(a, b) as f32).max(f32::MIN_POSITIVE)
+}
 
 impl Worker<'_> {
     /// The objective's bound as its contract gives it without solving for a curve:
@@ -143,7 +172,7 @@ impl Worker<'_> {
     /// an unknown edge).
     pub(super) fn edge_cost(&self, from: StateId, to: StateId) -> f32 {
         let (a, b) = (self.sh.lattice.pose(from), self.sh.lattice.pose(to));
-        (self.sh.objective.motion_cost(&a, &b) as f32).max(f32::MIN_POSITIVE)
+        motion_cost_f32(self.sh.objective.as_ref(), &a, &b)
     }
 
     /// Whether the motion between two lattice poses is valid (its end state cached).
@@ -184,6 +213,26 @@ impl Worker<'_> {
         if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
         }
+        let values = match goals {
+            [_] => self.distances_to(goals),
+            [first, rest @ ..] => {
+                // The least of each goal's distances (kept for later sets): the set's
+                // own bit for bit, as `heuristic::least` says.
+                let mut least = (*self.goal_heuristic(std::slice::from_ref(first))).clone();
+                for goal in rest {
+                    let one = self.goal_heuristic(std::slice::from_ref(goal));
+                    heuristic::least(&mut least, &one);
+                }
+                Arc::new(least)
+            }
+            [] => self.distances_to(goals),
+        };
+        self.sh.caches.keep_heuristic(key, values.clone());
+        values
+    }
+
+    /// The obstacle-aware distances to a goal set, computed.
+    fn distances_to(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
         let sh = self.sh;
         let (w_t, _) = sh.objective.bound_weights();
         let mut seeds = Vec::new();
@@ -199,10 +248,8 @@ impl Worker<'_> {
             .map(|&(di, dj, len)| (di, dj, w_t * len))
             .collect();
         let (nx, ny) = (sh.lattice.nx, sh.lattice.ny);
-        let values = Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
+        Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
             self.point_open(ix, iy)
-        }));
-        sh.caches.keep_heuristic(key, values.clone());
-        values
+        }))
     }
 }

@@ -136,6 +136,9 @@ pub(crate) struct Shared {
     radius: f64,
     shot_radius: f64,
     caches: caches::Caches,
+    /// Every primitive's cost (`k · stride + p`) when the objective's costs do not
+    /// depend on where a motion is; `None`: each is costed where it is used.
+    primitive_costs: Option<Vec<f32>>,
     /// The run's deadline: searches stop at it.
     deadline: smug_core::Deadline,
     /// The run's progress: rows searched side by side count their legs as they end.
@@ -233,6 +236,9 @@ impl LatticePlanner {
             ));
         }
         let displacements = distinct_displacements(&primitives, cell);
+        let primitive_costs = objective
+            .is_translation_invariant()
+            .then(|| edges::primitive_costs(&lattice, &primitives, objective.as_ref()));
         Ok(Self {
             shared: Shared {
                 caches: caches::Caches::new(&lattice, primitives.stride, shot_radius),
@@ -240,6 +246,7 @@ impl LatticePlanner {
                 lattice,
                 primitives,
                 displacements,
+                primitive_costs,
                 space,
                 objective,
                 states,

@@ -477,7 +477,11 @@ impl Worker<'_> {
                 continue;
             }
             if cached == 0.0 {
-                cached = sh.caches.set_edge_cost(slot, -self.edge_cost(id, to));
+                let cost = match &sh.primitive_costs {
+                    Some(costs) => costs[k * stride + p],
+                    None => self.edge_cost(id, to),
+                };
+                cached = sh.caches.set_edge_cost(slot, -cost);
             }
             // Negative: the cost is known, the validity not yet (checked when popped).
             let (cost, verified) = (cached.abs() as f64, cached > 0.0);

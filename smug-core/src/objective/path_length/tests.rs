@@ -29,3 +29,31 @@ fn rejects_bad_weights() {
     assert!(bad(f64::NAN, 0.5).contains("translation_weight"));
     assert!(bad(1.0, f64::INFINITY).contains("rotation_weight"));
 }
+
+#[test]
+fn translation_invariant_only_on_spaces_that_are() {
+    // The SE(2) space is; a space that looks at the map (the trait's default) is not.
+    #[derive(Debug)]
+    struct OnTheMap;
+    impl StateSpace for OnTheMap {
+        fn distance(&self, a: &Pose2, b: &Pose2) -> f64 {
+            a.xy_distance(b) * (1.0 + a.x.abs())
+        }
+        fn interpolate(&self, a: &Pose2, b: &Pose2, t: f64) -> Pose2 {
+            Se2Space::default().interpolate(a, b, t)
+        }
+        fn lower_bound_weights(&self) -> (f64, f64) {
+            (1.0, 0.0)
+        }
+        fn is_holonomic(&self) -> bool {
+            false
+        }
+    }
+    assert!(PathLength::default().is_translation_invariant());
+    assert!(PathLength::default()
+        .on(Arc::new(Se2Space::default()))
+        .is_translation_invariant());
+    assert!(!PathLength::default()
+        .on(Arc::new(OnTheMap))
+        .is_translation_invariant());
+}
