@@ -17,7 +17,8 @@ use std::time::Instant;
 const SAME: f64 = 1e-9;
 
 /// Searches with a pool of `params.sum_elite` members and `params.sum_offspring`
-/// children; returns the best state and the iterations of every search together.
+/// children; returns the best state and the iterations of every search together
+/// (`start` itself, after no iteration, when the deadline has already passed).
 pub(super) fn evolve(
     setting: &Setting,
     start: State,
@@ -47,10 +48,12 @@ pub(super) fn evolve(
         iterations += done;
         admit(setting, &mut pool, found, elite);
     }
+    // No search ran (the deadline had passed): the start is the answer.
     let best = pool
         .into_iter()
         .reduce(|a, b| if better(setting, &b, &a) { b } else { a })
-        .expect("the first search always runs");
+        .or(first)
+        .expect("the start is kept when no search runs");
     (best, iterations)
 }
 
@@ -251,6 +254,28 @@ mod tests {
         // Six searches share the 600 iterations (each rounded up).
         assert!((600..=606).contains(&iterations), "{iterations}");
         assert_eq!(evolved(&problem, 3), (state, iterations));
+    }
+
+    #[test]
+    fn a_passed_deadline_returns_the_start_untouched() {
+        let problem = problem(12, 2);
+        let setting = Setting::new(&problem, 0.02, 100);
+        let deadline = Deadline::after(0.0);
+        let budget = Budget {
+            time_limit_s: 10.0,
+            max_iterations: 0,
+            deadline: &deadline,
+        };
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let start = construct(&setting, &mut rng);
+        let (state, iterations) = evolve(
+            &setting,
+            start.clone(),
+            &TeamLnsParams::default(),
+            &budget,
+            &mut rng,
+        );
+        assert_eq!((state, iterations), (start, 0));
     }
 
     #[test]
