@@ -214,8 +214,7 @@ impl Worker<'_> {
             return values;
         }
         let values = match goals {
-            [_] => self.distances_to(goals),
-            [first, rest @ ..] => {
+            [first, rest @ ..] if !rest.is_empty() => {
                 // The least of each goal's distances (kept for later sets): the set's
                 // own bit for bit, as `heuristic::least` says.
                 let mut least = (*self.goal_heuristic(std::slice::from_ref(first))).clone();
@@ -225,7 +224,7 @@ impl Worker<'_> {
                 }
                 Arc::new(least)
             }
-            [] => self.distances_to(goals),
+            _ => self.distances_to(goals),
         };
         self.sh.caches.keep_heuristic(key, values.clone());
         values

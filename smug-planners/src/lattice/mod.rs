@@ -272,8 +272,27 @@ impl LatticePlanner {
         &self.shared.primitives
     }
 
-    /// Searches from `start` to `goals` with an idle searcher (a new one when none
-    /// is idle), whose counts are then added to the planner's.
+    /// Runs `work` on a worker with an idle searcher of `pool` (a new one when none is
+    /// idle), then returns the searcher to the pool; gives `work`'s result and the
+    /// searcher's counts of it.
+    fn with_searcher<R>(
+        shared: &Shared,
+        pool: &Mutex<Vec<buffers::Searcher>>,
+        work: impl FnOnce(&mut search::Worker<'_>) -> R,
+    ) -> (R, Counts) {
+        let idle = pool.lock().expect("searcher pool").pop();
+        let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
+        let result = work(&mut search::Worker {
+            sh: shared,
+            me: &mut searcher,
+        });
+        let counts = std::mem::take(&mut searcher.counts);
+        pool.lock().expect("searcher pool").push(searcher);
+        (result, counts)
+    }
+
+    /// Searches from `start` to `goals` with an idle searcher; gives the answers and
+    /// the search's counts.
     fn search_with_pool(
         shared: &Shared,
         pool: &Mutex<Vec<buffers::Searcher>>,
@@ -281,16 +300,9 @@ impl LatticePlanner {
         goals: &[Pose2],
         max_expansions: u64,
     ) -> (search::Answers, Counts) {
-        let idle = pool.lock().expect("searcher pool").pop();
-        let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
-        let answers = search::Worker {
-            sh: shared,
-            me: &mut searcher,
-        }
-        .search(start, goals, max_expansions);
-        let counts = std::mem::take(&mut searcher.counts);
-        pool.lock().expect("searcher pool").push(searcher);
-        (answers, counts)
+        Self::with_searcher(shared, pool, |worker| {
+            worker.search(start, goals, max_expansions)
+        })
     }
 
     /// One search on this thread; its path costs become [`Self::last_costs`].
@@ -308,17 +320,9 @@ impl LatticePlanner {
     /// One proving search on this thread ([`search::Worker::prove`]); its counts are
     /// added to the planner's.
     fn prove(&mut self, start: &Pose2, goals: &[Pose2], effort: u64) -> Vec<Option<NoPathReason>> {
-        let pool = &self.searchers;
-        let idle = pool.lock().expect("searcher pool").pop();
-        let shared = &self.shared;
-        let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
-        let proofs = search::Worker {
-            sh: shared,
-            me: &mut searcher,
-        }
-        .prove(start, goals, effort);
-        let counts = std::mem::take(&mut searcher.counts);
-        pool.lock().expect("searcher pool").push(searcher);
+        let (proofs, counts) = Self::with_searcher(&self.shared, &self.searchers, |worker| {
+            worker.prove(start, goals, effort)
+        });
         self.counts.add(&counts);
         proofs
     }

@@ -49,12 +49,22 @@ pub(super) fn evolve(
         admit(setting, &mut pool, found, elite);
     }
     // No search ran (the deadline had passed): the start is the answer.
-    let best = pool
-        .into_iter()
-        .reduce(|a, b| if better(setting, &b, &a) { b } else { a })
-        .or(first)
-        .expect("the start is kept when no search runs");
+    let best = match best_member(setting, &pool) {
+        Some(k) => pool.swap_remove(k),
+        None => first.expect("the start is kept when no search runs"),
+    };
     (best, iterations)
+}
+
+/// The index of the pool's best member (the first of equals); `None` for an empty pool.
+fn best_member(setting: &Setting, pool: &[State]) -> Option<usize> {
+    (0..pool.len()).reduce(|a, b| {
+        if better(setting, &pool[b], &pool[a]) {
+            b
+        } else {
+            a
+        }
+    })
 }
 
 /// An equal share of what is left of `budget` for one of `left` searches (a negative
@@ -115,15 +125,7 @@ fn admit(setting: &Setting, pool: &mut Vec<State>, found: State, elite: usize) {
 /// A child of the pool's best member and another one drawn at random: OX of their
 /// giant tours, cut by the split, improved; the best member itself when the cut fails.
 fn child(setting: &Setting, pool: &[State], rng: &mut impl Rng) -> State {
-    let best = (0..pool.len())
-        .reduce(|a, b| {
-            if better(setting, &pool[b], &pool[a]) {
-                b
-            } else {
-                a
-            }
-        })
-        .expect("the pool is not empty");
+    let best = best_member(setting, pool).expect("the pool is not empty");
     if pool.len() < 2 {
         return pool[best].clone();
     }
