@@ -180,14 +180,22 @@ impl GridLayer {
     /// threads: the same layer as [`from_fn`](Self::from_fn) with the same `f`, for
     /// any number of threads (each cell's value is `f`'s alone).
     pub fn from_fn_par(geometry: GridGeometry, f: impl Fn(usize, usize) -> f32 + Sync) -> Self {
+        Self::from_rows_par(geometry, |j, row| {
+            for (i, cell) in row.iter_mut().enumerate() {
+                *cell = f(i, j);
+            }
+        })
+    }
+
+    /// A layer whose row `j` is filled by `fill(j, row)`, rows side by side on rayon's
+    /// threads: the same layer for any number of threads (each row is `fill`'s alone).
+    pub fn from_rows_par(geometry: GridGeometry, fill: impl Fn(usize, &mut [f32]) + Sync) -> Self {
         let nx = geometry.size[0];
         let mut data = vec![0.0f32; geometry.len()];
         if nx > 0 {
-            data.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-                for (i, cell) in row.iter_mut().enumerate() {
-                    *cell = f(i, j);
-                }
-            });
+            data.par_chunks_mut(nx)
+                .enumerate()
+                .for_each(|(j, row)| fill(j, row));
         }
         Self { geometry, data }
     }

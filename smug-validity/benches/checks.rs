@@ -8,7 +8,10 @@
 //!   inclination limit, over hierarchical 0.3/0.3) on 256 fixed, seeded straight edges
 //!   of 1–3 m whose endpoints are valid states (as LazyPRM*'s edges are).
 //!
-//! Throughputs are per state or per edge.
+//! - `traversability`: the `geometric` estimator's layer of the lunar world (ANYmal
+//!   window), on one thread.
+//!
+//! Throughputs are per state, per edge or per cell.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rand::{Rng, SeedableRng};
@@ -140,8 +143,29 @@ fn edge_checks(c: &mut Criterion, pipeline: &Pipeline) {
     group.finish();
 }
 
+/// The geometric traversability layer of the lunar world, estimated on one thread.
+fn traversability(c: &mut Criterion, pipeline: &Pipeline) {
+    use smug_core::TraversabilityEstimator;
+    use smug_validity::geometric::GeometricParams;
+    let world = &*pipeline.context().world().expect("world");
+    let radius = 0.5 * 1.07f64.hypot(0.55); // the ANYmal window
+    let estimator = smug_validity::GeometricEstimator::new(GeometricParams::default(), radius)
+        .expect("estimator");
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let mut group = c.benchmark_group("traversability");
+    group.throughput(Throughput::Elements(world.elevation.data.len() as u64));
+    group.bench_function("geometric/lunar", |b| {
+        b.iter(|| one_thread.install(|| black_box(estimator.estimate(world).expect("layer"))))
+    });
+    group.finish();
+}
+
 fn checks(c: &mut Criterion) {
     let pipeline = lunar_pipeline();
+    traversability(c, &pipeline);
     state_checks(c, &pipeline);
     edge_checks(c, &pipeline);
 }

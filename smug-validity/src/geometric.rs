@@ -306,10 +306,14 @@ mod tests {
             });
             let window = Window::new(radius, resolution);
             for j in 0..ny {
+                let mut row = Vec::new();
+                window.row_features(&elevation, j, |i, f| row.push((i, feature_bits(f))));
+                prop_assert_eq!(row.iter().map(|&(i, _)| i).collect::<Vec<_>>(), (0..nx).collect::<Vec<_>>());
                 for i in 0..nx {
                     let fast = feature_bits(window.features(&elevation, i, j));
                     let slow = feature_bits(reference_features(radius, &elevation, i, j));
                     prop_assert_eq!(fast, slow, "cell ({}, {})", i, j);
+                    prop_assert_eq!(row[i].1, slow, "row cell ({}, {})", i, j);
                 }
             }
         }

@@ -1,15 +1,18 @@
 //! The geometric estimator's layer: estimated as a whole, or updated where the
 //! elevation changed (the cells whose fitting window holds a changed cell).
 
-use super::{GeometricEstimator, Window};
+use super::{GeometricEstimator, TerrainFeatures, Window};
 use smug_core::{CellRect, Error, GridLayer, TraversabilityEstimator, World};
 
 impl GeometricEstimator {
     /// The layer's value at cell `(i, j)`.
     fn value(&self, window: &Window, elevation: &GridLayer, i: usize, j: usize) -> f32 {
-        window
-            .features(elevation, i, j)
-            .map_or(f32::NAN, |f| self.score(&f) as f32)
+        self.layer_value(window.features(elevation, i, j))
+    }
+
+    /// The layer's value of a cell with these features (NaN without).
+    fn layer_value(&self, features: Option<TerrainFeatures>) -> f32 {
+        features.map_or(f32::NAN, |f| self.score(&f) as f32)
     }
 }
 
@@ -17,8 +20,10 @@ impl TraversabilityEstimator for GeometricEstimator {
     fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
         let elevation = &world.elevation;
         let window = Window::new(self.window_radius, elevation.geometry.resolution);
-        Ok(GridLayer::from_fn_par(elevation.geometry, |i, j| {
-            self.value(&window, elevation, i, j)
+        Ok(GridLayer::from_rows_par(elevation.geometry, |j, row| {
+            window.row_features(elevation, j, |i, features| {
+                row[i] = self.layer_value(features);
+            });
         }))
     }
 

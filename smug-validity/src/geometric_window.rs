@@ -4,6 +4,9 @@
 use super::TerrainFeatures;
 use smug_core::GridLayer;
 
+/// Cells fitted side by side by [`Window::row_features`].
+const LANES: usize = 2;
+
 /// The fitting window: the cell offsets within the radius, as runs of consecutive
 /// offsets along x, row by row — the cells (and the order) of the plain double loop
 /// over the bounding square, with the distance test done once instead of per cell.
@@ -102,6 +105,82 @@ impl Window {
             }
         }
         fit.features()
+    }
+
+    /// The features of every cell of row `j`, in order of `i`: the same values as
+    /// [`Window::features`] cell by cell. Cells whose windows lie inside the grid are
+    /// fitted [`LANES`] at a time ([`Window::inner_fits`]), each lane's sums in the
+    /// order of one cell alone, so that the processor overlaps the lanes' additions.
+    pub(super) fn row_features(
+        &self,
+        elevation: &GridLayer,
+        j: usize,
+        mut emit: impl FnMut(usize, Option<TerrainFeatures>),
+    ) {
+        let [nx, ny] = elevation.geometry.size;
+        let r = self.reach.max(0) as usize;
+        let rows_inside = j >= r && j + r < ny;
+        let mut i = 0;
+        while i < nx {
+            let lanes_inside = rows_inside && i >= r && i + LANES - 1 + r < nx;
+            match lanes_inside
+                .then(|| self.inner_fits(elevation, i, j))
+                .flatten()
+            {
+                Some(fits) => {
+                    for (lane, fit) in fits.iter().enumerate() {
+                        emit(i + lane, fit.features());
+                    }
+                    i += LANES;
+                }
+                None => {
+                    emit(i, self.features(elevation, i, j));
+                    i += 1;
+                }
+            }
+        }
+    }
+
+    /// The fits of cells `i .. i + LANES` of row `j`, whose windows lie inside the
+    /// grid, as [`Window::inner_fit`] gives each; `None` when a lane's sums are not
+    /// numbers (a missing height, say: the caller fits those cells one by one).
+    fn inner_fits(&self, elevation: &GridLayer, i: usize, j: usize) -> Option<[PlaneFit; LANES]> {
+        let nx = elevation.geometry.size[0];
+        let r = self.reach;
+        let z0: [f32; LANES] = std::array::from_fn(|lane| elevation.data[j * nx + i + lane]);
+        let (mut sz, mut sxz, mut syz, mut szz) =
+            ([0.0f64; LANES], [0.0; LANES], [0.0; LANES], [0.0; LANES]);
+        let (mut low, mut high) = ([f64::INFINITY; LANES], [f64::NEG_INFINITY; LANES]);
+        for run in &self.runs {
+            let row = &elevation.data[(j as isize + run.dj) as usize * nx..][..nx];
+            let lo = (i as isize + run.di_lo) as usize;
+            let len = (run.di_hi - run.di_lo + 1) as usize;
+            let cells = &row[lo..lo + len + LANES - 1];
+            let xs = &self.x[(run.di_lo + r) as usize..][..len];
+            for (k, &x) in xs.iter().enumerate() {
+                for lane in 0..LANES {
+                    let z = (cells[k + lane] - z0[lane]) as f64;
+                    sz[lane] += z;
+                    sxz[lane] += x * z;
+                    syz[lane] += run.y * z;
+                    szz[lane] += z * z;
+                    low[lane] = low[lane].min(z);
+                    high[lane] = high[lane].max(z);
+                }
+            }
+        }
+        if sz.iter().chain(&szz).any(|s| s.is_nan()) {
+            return None;
+        }
+        Some(std::array::from_fn(|lane| PlaneFit {
+            sz: sz[lane],
+            sxz: sxz[lane],
+            syz: syz[lane],
+            szz: szz[lane],
+            low: low[lane],
+            high: high[lane],
+            ..self.shape
+        }))
     }
 
     /// The fit around `(i, j)` (height `z0`) when the window lies inside the grid and
