@@ -94,7 +94,9 @@ fn fills_lazily(oracle: &PathOracle, costs: SequencingCosts) -> bool {
 /// The tour over `nodes` on planned costs where known and lower bounds elsewhere,
 /// re-solved after planning its unplanned legs until it uses planned legs only (or a
 /// planned leg has no path: then the selection finds out which target is unreachable);
-/// with `settle`, until refining the early legs cannot change the order either.
+/// with `settle`, until refining the early legs cannot change the order either. Each
+/// round starts from the previous round's tour ([`Sequencer::solve_from`]); a round that
+/// ends on planned legs only is checked by one solve from scratch ([`lazy_solve`]).
 fn lazy_tour(
     sequencer: &dyn Sequencer,
     oracle: &mut PathOracle,
@@ -102,9 +104,17 @@ fn lazy_tour(
     kind: TourKind,
     settle: bool,
 ) -> Result<Tour> {
-    lazy_solve(oracle, nodes, kind, false, settle, |matrix, _| {
-        sequencer.solve(matrix, kind)
-    })
+    lazy_solve(
+        oracle,
+        nodes,
+        kind,
+        true,
+        settle,
+        |matrix, previous| match previous {
+            Some(tour) => sequencer.solve_from(matrix, kind, tour),
+            None => sequencer.solve(matrix, kind),
+        },
+    )
 }
 
 #[cfg(test)]

@@ -136,6 +136,19 @@ impl Sequencer for Auto {
         }
     }
 
+    fn solve_from(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: &Tour,
+    ) -> smug_core::Result<Tour> {
+        if costs.len() <= self.threshold {
+            self.exact.solve(costs, kind)
+        } else {
+            self.heuristic.solve_from(costs, kind, initial)
+        }
+    }
+
     fn solve_clusters(
         &self,
         costs: &CostMatrix,

@@ -120,6 +120,33 @@ proptest! {
         prop_assert!(tour.cost <= stats.first_optimum_cost);
         prop_assert!(stats.first_optimum_cost <= stats.construction_cost);
     }
+
+    /// A warm start from any tour of the nodes (as a lazy loop's previous round gives)
+    /// returns a valid tour no costlier than that tour, after a quarter of the rounds.
+    #[test]
+    fn a_warm_start_never_loses_to_its_initial_tour(
+        (costs, _) in matrix(60, true), open: bool, pick in 0usize..100, shuffle in any::<u64>(),
+    ) {
+        use rand::{seq::SliceRandom, SeedableRng};
+        let n = costs.len();
+        let kind = kind_for(n, open, pick);
+        let end = match kind {
+            TourKind::OpenTo(end) => Some(end),
+            TourKind::Closed => None,
+        };
+        let mut order: Vec<usize> = (1..n).filter(|&v| Some(v) != end).collect();
+        order.shuffle(&mut rand::rngs::StdRng::seed_from_u64(shuffle));
+        order.insert(0, 0);
+        order.extend(end);
+        let initial = Tour { cost: costs.tour_cost(&order, kind), order };
+        let solver = local_search(40);
+        let (tour, stats) = solver.solve_from_with_stats(&costs, kind, &initial).unwrap();
+        check_tour(&tour, &costs, kind)?;
+        prop_assert!(tour.cost <= initial.cost || same_cost(tour.cost, initial.cost),
+            "{} > initial {}", tour.cost, initial.cost);
+        prop_assert!(stats.iterations <= 10);
+        prop_assert_eq!(solver.solve_from(&costs, kind, &initial).unwrap(), tour);
+    }
 }
 
 #[test]

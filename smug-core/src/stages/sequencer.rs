@@ -106,6 +106,15 @@ pub trait Sequencer: Send + Sync {
     /// The best order it finds within its budget, starting at node 0.
     fn solve(&self, costs: &CostMatrix, kind: TourKind) -> Result<Tour>;
 
+    /// [`solve`](Self::solve) warm-started from `initial`, a tour of the same nodes
+    /// found on a matrix that differs in some costs (the previous round of a lazy
+    /// loop). A solver that can start from a tour does (with its warm budget); the
+    /// default solves from scratch.
+    fn solve_from(&self, costs: &CostMatrix, kind: TourKind, initial: &Tour) -> Result<Tour> {
+        let _ = initial;
+        self.solve(costs, kind)
+    }
+
     /// The generalized TSP (GTSP): the best tour it finds that visits one node of every
     /// cluster, starting in cluster 0 (and ending in cluster `c` for `OpenTo(c)`); the
     /// tour's `order` lists the visited nodes. Solvers that only order nodes refuse it.

@@ -39,6 +39,9 @@ const EXACT_BELOW: usize = 13;
 /// A perturbed tour is kept when it is within this fraction of an average leg of the
 /// best tour (measured on the TSPLIB suite: 0.2 beats both 0 and 0.5).
 const ACCEPT_WORSE_FRACTION: f64 = 0.2;
+/// A warm start ([`LocalSearch::solve_from_with_stats`]) spends this fraction (1/n)
+/// of the budget: its tour is a local optimum of a matrix that differs in a few legs.
+const WARM_SHARE: u64 = 4;
 /// Longest block a double bridge moves.
 const KICK_MAX_BLOCK: usize = 50;
 
@@ -184,7 +187,22 @@ impl LocalSearch {
     }
 
     fn iterated_local_search(&self, costs: &CostMatrix, kind: TourKind) -> (Tour, SearchStats) {
-        let rule = self.params.termination();
+        self.search_from(costs, kind, None)
+    }
+
+    /// The iterated local search from `initial`'s order with the warm budget (a
+    /// [`WARM_SHARE`]th of the budget), or from a constructed tour with the whole
+    /// budget; never a tour costlier than the one it started from.
+    fn search_from(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: Option<&Tour>,
+    ) -> (Tour, SearchStats) {
+        let rule = match initial {
+            Some(_) => self.warm_termination(),
+            None => self.params.termination(),
+        };
         let mut clock = rule.start_within(&self.deadline);
         let dist = Dist::new(costs);
         let neighbours = Neighbours::new(&dist, self.params.neighbours);
@@ -193,7 +211,10 @@ impl LocalSearch {
             TourKind::OpenTo(end) => Some(end),
         };
         let fixed = end.map(|end| (end, 0));
-        let first = construct::construct(self.params.construction, &dist, &neighbours, fixed);
+        let first = match initial {
+            Some(tour) => tour.order.clone(),
+            None => construct::construct(self.params.construction, &dist, &neighbours, fixed),
+        };
         let construction = tour_of(costs, rotate_to_start(&first, end), kind);
 
         let mut search = Search::new(&dist, &neighbours, &first, fixed);
@@ -220,6 +241,32 @@ impl LocalSearch {
         } else {
             (tour, stats)
         }
+    }
+
+    /// The stopping rule of a warm start: a [`WARM_SHARE`]th of each budget.
+    fn warm_termination(&self) -> Termination {
+        let p = &self.params;
+        search_termination(
+            p.time_limit_s / WARM_SHARE as f64,
+            p.max_iterations.div_ceil(WARM_SHARE),
+        )
+    }
+
+    /// Solves starting from `initial` (a tour of the same nodes found on a matrix that
+    /// differs in some legs: the previous round of a lazy loop) with the warm budget;
+    /// from scratch when `initial` is not a tour of `costs` of this kind or the
+    /// instance is solved exactly.
+    pub fn solve_from_with_stats(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: &Tour,
+    ) -> smug_core::Result<(Tour, SearchStats)> {
+        validate(costs.len(), kind)?;
+        if costs.len() < EXACT_BELOW || !initial.is_valid_for(costs.len(), kind) {
+            return self.solve_with_stats(costs, kind);
+        }
+        Ok(self.search_from(costs, kind, Some(initial)))
     }
 
     /// The iterated local search loop; leaves the best tour found in `search` and
@@ -273,6 +320,15 @@ fn rotate_to_start(order: &[usize], end: Option<usize>) -> Vec<usize> {
 impl Sequencer for LocalSearch {
     fn solve(&self, costs: &CostMatrix, kind: TourKind) -> smug_core::Result<Tour> {
         Ok(self.solve_with_stats(costs, kind)?.0)
+    }
+
+    fn solve_from(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: &Tour,
+    ) -> smug_core::Result<Tour> {
+        Ok(self.solve_from_with_stats(costs, kind, initial)?.0)
     }
 }
 
