@@ -55,6 +55,48 @@ pub(crate) fn trivial_tour(costs: &CostMatrix, kind: TourKind) -> Option<Tour> {
     (costs.len() <= 2).then(|| tour_of(costs, (0..costs.len()).collect(), kind))
 }
 
+/// Side of the square tiles in which [`symmetry`] and [`transposed`] walk an `n × n`
+/// matrix, so that the transposed reads stay in cache.
+const TILE: usize = 64;
+
+/// Calls `f(i, j)` on the pairs `i < j` of an `n × n` matrix, tile by tile; stops
+/// when `f` returns false.
+fn for_upper_pairs_by_tile(n: usize, mut f: impl FnMut(usize, usize) -> bool) {
+    for ti in (0..n).step_by(TILE) {
+        for tj in (ti..n).step_by(TILE) {
+            for i in ti..(ti + TILE).min(n) {
+                for j in (i + 1).max(tj)..(tj + TILE).min(n) {
+                    if !f(i, j) {
+                        return;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether the row-major `n × n` `data` is symmetric bit for bit, and within `eps`.
+fn symmetry(data: &[f64], n: usize, eps: f64) -> (bool, bool) {
+    let (mut exact, mut within) = (true, true);
+    for_upper_pairs_by_tile(n, |i, j| {
+        let (a, b) = (data[i * n + j], data[j * n + i]);
+        exact &= a.to_bits() == b.to_bits();
+        within &= (a - b).abs() <= eps;
+        within
+    });
+    (exact && within, within)
+}
+
+/// The row-major `n × n` `data` transposed.
+fn transposed(data: &[f64], n: usize) -> Vec<f64> {
+    let mut out = data.to_vec();
+    for_upper_pairs_by_tile(n, |i, j| {
+        out.swap(i * n + j, j * n + i);
+        true
+    });
+    out
+}
+
 /// A dense, finite copy of a cost matrix for the solvers' inner loops.
 ///
 /// `INFINITY` (no path) becomes a penalty larger than any tour made of finite legs, so a
@@ -75,45 +117,40 @@ impl Dist {
     /// The working copy of `costs`.
     pub(crate) fn new(costs: &CostMatrix) -> Self {
         let n = costs.len();
-        let max_finite = (0..n)
-            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| costs.get(i, j))
-            .filter(|c| c.is_finite())
-            .fold(0.0_f64, f64::max);
-        let penalty = missing_leg_penalty(n, max_finite);
-        let data: Vec<f64> = (0..n * n)
-            .map(|k| {
-                let (i, j) = (k / n, k % n);
-                let c = costs.get(i, j);
-                match (i == j, c.is_finite()) {
-                    (true, _) => 0.0,
-                    (false, true) => c,
-                    (false, false) => penalty,
+        let mut max_finite = 0.0_f64;
+        let mut missing = false;
+        let mut data = Vec::with_capacity(n * n);
+        for i in 0..n {
+            for j in 0..n {
+                let c = if i == j { 0.0 } else { costs.get(i, j) };
+                if c.is_finite() {
+                    max_finite = max_finite.max(c);
+                } else {
+                    missing = true;
                 }
-            })
-            .collect();
+                data.push(c);
+            }
+        }
+        if missing {
+            let penalty = missing_leg_penalty(n, max_finite);
+            for c in data.iter_mut().filter(|c| !c.is_finite()) {
+                *c = penalty;
+            }
+        }
         let eps = (max_finite * 1e-10).max(f64::MIN_POSITIVE);
-        let transposed = |k: usize| data[(k % n) * n + k / n];
-        let exactly_symmetric = (0..n * n).all(|k| data[k].to_bits() == transposed(k).to_bits());
+        let (exactly_symmetric, symmetric) = symmetry(&data, n, eps);
         let into = if exactly_symmetric {
             Vec::new()
         } else {
-            (0..n * n).map(transposed).collect()
+            transposed(&data, n)
         };
-        let mut dist = Self {
+        Self {
             n,
             data,
             into,
-            symmetric: false,
+            symmetric,
             eps,
-        };
-        dist.symmetric = dist.detect_symmetry();
-        dist
-    }
-
-    fn detect_symmetry(&self) -> bool {
-        (0..self.n)
-            .all(|i| (i + 1..self.n).all(|j| (self.d(i, j) - self.d(j, i)).abs() <= self.eps))
+        }
     }
 
     /// Number of nodes.
@@ -162,6 +199,39 @@ fn missing_leg_penalty(n: usize, max_finite: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tiles_cover_every_pair_once_and_transpose_like_the_plain_loop() {
+        for n in [0, 1, 2, 63, 64, 65, 130] {
+            let mut pairs: Vec<(usize, usize)> = Vec::new();
+            for_upper_pairs_by_tile(n, |i, j| {
+                pairs.push((i, j));
+                true
+            });
+            let mut sorted = pairs.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            let plain: Vec<(usize, usize)> = (0..n)
+                .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+                .collect();
+            assert_eq!(sorted, plain, "n = {n}");
+            assert_eq!(pairs.len(), plain.len());
+            let data: Vec<f64> = (0..n * n).map(|k| (k * 7919 % 1009) as f64).collect();
+            let t = transposed(&data, n);
+            assert!((0..n * n).all(|k| t[k] == data[(k % n) * n + k / n]));
+            let symmetric: Vec<f64> = (0..n * n)
+                .map(|k| data[k] + data[(k % n) * n + k / n])
+                .collect();
+            assert_eq!(symmetry(&symmetric, n, 0.0), (true, true));
+            let near: Vec<f64> = symmetric
+                .iter()
+                .enumerate()
+                .map(|(k, v)| if k % n > k / n { v + 1e-12 } else { *v })
+                .collect();
+            assert_eq!(symmetry(&near, n, 1e-9), (n < 2, true));
+            assert_eq!(symmetry(&near, n, 0.0).1, n < 2);
+        }
+    }
 
     #[test]
     fn costs_into_a_node_read_the_same_as_costs_from_it() {

@@ -23,17 +23,19 @@ impl Neighbours {
 
     fn cheapest(n: usize, k: usize, cost: impl Fn(usize, usize) -> f64) -> Vec<usize> {
         let mut lists = Vec::with_capacity(n * k);
-        let mut others: Vec<usize> = Vec::with_capacity(n);
+        // Each other node with its cost from `i`, looked up once.
+        let mut others: Vec<(f64, usize)> = Vec::with_capacity(n);
         for i in 0..n {
             others.clear();
-            others.extend((0..n).filter(|&j| j != i));
-            let by_cost = |a: &usize, b: &usize| cost(i, *a).total_cmp(&cost(i, *b)).then(a.cmp(b));
+            others.extend((0..n).filter(|&j| j != i).map(|j| (cost(i, j), j)));
+            let by_cost =
+                |a: &(f64, usize), b: &(f64, usize)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
             if k < others.len() {
                 others.select_nth_unstable_by(k, by_cost);
             }
             others.truncate(k);
             others.sort_unstable_by(by_cost);
-            lists.extend_from_slice(&others);
+            lists.extend(others.iter().map(|&(_, j)| j));
         }
         lists
     }
