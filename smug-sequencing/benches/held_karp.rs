@@ -5,25 +5,14 @@
 //! - `closed/14`: start + 13 ToIs, returning to the start;
 //! - `open/15`: start + 13 ToIs + a distinct end node (`TourKind::OpenTo(14)`).
 
+mod common;
+
+use common::random_matrix;
 use criterion::{criterion_group, criterion_main, Criterion};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use smug_core::{CostMatrix, Sequencer, TourKind};
+use smug_core::{Sequencer, TourKind};
 use smug_sequencing::{HeldKarp, HeldKarpParams};
 use std::hint::black_box;
 use std::time::Duration;
-
-/// Euclidean distances between `n` seeded random points in 30 × 29 m.
-fn random_matrix(n: usize, seed: u64) -> CostMatrix {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let points: Vec<(f64, f64)> = (0..n)
-        .map(|_| (rng.random_range(0.0..30.0), rng.random_range(0.0..29.0)))
-        .collect();
-    CostMatrix::from_fn(n, |i, j| {
-        (points[i].0 - points[j].0).hypot(points[i].1 - points[j].1)
-    })
-    .expect("finite costs")
-}
 
 fn held_karp(c: &mut Criterion) {
     let solver = HeldKarp::new(HeldKarpParams::default()).expect("default parameters");
@@ -34,7 +23,7 @@ fn held_karp(c: &mut Criterion) {
     ];
     let mut group = c.benchmark_group("held_karp");
     for (name, n, kind) in cases {
-        let costs = random_matrix(n, n as u64);
+        let costs = random_matrix(n, n as u64, [30.0, 29.0]);
         group.bench_function(name, |b| {
             b.iter(|| black_box(solver.solve(&costs, kind).expect("solves")))
         });

@@ -6,25 +6,14 @@
 //!   the working copy of the matrix, the candidate lists and the first descent;
 //! - `cold/1000`: a solve from scratch with 100 rounds.
 
+mod common;
+
+use common::random_matrix;
 use criterion::{criterion_group, criterion_main, Criterion};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use smug_core::{CostMatrix, Sequencer, TourKind};
+use smug_core::{Sequencer, TourKind};
 use smug_sequencing::{LocalSearch, LocalSearchParams};
 use std::hint::black_box;
 use std::time::Duration;
-
-/// Euclidean distances between `n` seeded random points in 200 × 200 m.
-fn random_matrix(n: usize, seed: u64) -> CostMatrix {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let points: Vec<(f64, f64)> = (0..n)
-        .map(|_| (rng.random_range(0.0..200.0), rng.random_range(0.0..200.0)))
-        .collect();
-    CostMatrix::from_fn(n, |i, j| {
-        (points[i].0 - points[j].0).hypot(points[i].1 - points[j].1)
-    })
-    .expect("finite costs")
-}
 
 fn solver(rounds: u64) -> LocalSearch {
     let params = LocalSearchParams {
@@ -36,7 +25,7 @@ fn solver(rounds: u64) -> LocalSearch {
 }
 
 fn local_search(c: &mut Criterion) {
-    let costs = random_matrix(1000, 1);
+    let costs = random_matrix(1000, 1, [200.0, 200.0]);
     let kind = TourKind::Closed;
     let initial = solver(100).solve(&costs, kind).expect("solves");
     let mut group = c.benchmark_group("local_search");
