@@ -9,6 +9,7 @@
 
 use super::caches::{known, record, ShotTable, UNKNOWN_COST};
 use super::search::{Worker, START};
+use smug_core::pose::angle_distance;
 use smug_core::Pose2;
 use std::sync::atomic::Ordering::Relaxed;
 
@@ -36,8 +37,8 @@ impl Worker<'_> {
     /// bound, and, for an objective that costs the model's curves by their length
     /// (`Objective::is_translation_invariant`: path length, `w_t` per metre and `w_r`
     /// per radian turned), `w_t` times the model's bound of the curve's length,
-    /// `max(‖Δxy‖, r·d(yaw))` (`StateSpace::distance_bound`: a curve turns at most
-    /// `1/r` per metre), plus `w_r·d(yaw)`. Shrunk by a millionth and rounded down to
+    /// `max(‖Δxy‖, r·d(yaw))` (a curve turns at most `1/r` per metre, as
+    /// `StateSpace::distance_bound` says), plus `w_r·d(yaw)`. Shrunk by a millionth and rounded down to
     /// an `f32`, it stays at or below the `f32` the shot is costed at
     /// ([`Self::shot_cost_below`]): a shot popped uncosted at its cost is checked at
     /// once, in the queue's order, where its costed entry would have been, so every
@@ -45,15 +46,16 @@ impl Worker<'_> {
     /// finds the same paths; a tighter bound only leaves more shots unsolved (on lunar
     /// with the rover, where most poses near a goal face away from it).
     pub(super) fn shot_bound(&self, pose: &Pose2, goal: &Pose2) -> f64 {
-        let cheap = self.cheap_bound(pose, goal);
-        if !self.sh.objective.is_translation_invariant() {
+        let (w_t, w_r) = self.sh.objective.bound_weights();
+        let (xy, yaw) = (pose.xy_distance(goal), angle_distance(pose.yaw, goal.yaw));
+        // The objective's contract bound, as `cheap_bound` computes it.
+        let cheap = w_t * xy + w_r * yaw;
+        // Primitives costed once per heading: the objective is translation invariant.
+        if self.sh.primitive_costs.is_none() {
             return cheap;
         }
-        let (w_t, w_r) = self.sh.objective.bound_weights();
-        let yaw = smug_core::pose::angle_distance(pose.yaw, goal.yaw);
-        let curve = w_t * self.sh.space.distance_bound(pose, goal) + w_r * yaw;
-        let curve = f64::from(f32_below(curve * (1.0 - 1e-6)));
-        cheap.max(curve)
+        let curve = w_t * xy.max(self.sh.radius * yaw) + w_r * yaw;
+        cheap.max(f64::from(f32_below(curve * (1.0 - 1e-6))))
     }
 
     /// A lower bound of the cost of the shot from `from` (at `pose`) to `goal`, within
