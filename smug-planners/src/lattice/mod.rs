@@ -105,6 +105,8 @@ pub(crate) struct Counts {
     state_checks: u64,
     edge_checks: u64,
     shot_checks: u64,
+    /// Shots solved for their cost (each once per goal's table).
+    shot_costs: u64,
     breakdown: TimeBreakdown,
 }
 
@@ -117,6 +119,7 @@ impl Counts {
         self.state_checks += other.state_checks;
         self.edge_checks += other.edge_checks;
         self.shot_checks += other.shot_checks;
+        self.shot_costs += other.shot_costs;
         self.breakdown.add(&other.breakdown);
     }
 }
@@ -529,6 +532,7 @@ impl PointToPointPlanner for LatticePlanner {
                 ("state_checks".to_string(), c.state_checks),
                 ("edge_checks".to_string(), c.edge_checks),
                 ("shot_checks".to_string(), c.shot_checks),
+                ("shot_costs".to_string(), c.shot_costs),
                 (
                     "primitives".to_string(),
                     self.shared

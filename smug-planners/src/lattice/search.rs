@@ -445,7 +445,7 @@ impl Worker<'_> {
             let goal = &run.goals[j];
             let near = id == START || pose.xy_distance(&goal.pose) <= self.sh.shot_radius;
             if goal.reached.is_none() && near {
-                let bound = self.cheap_bound(&pose, &goal.pose);
+                let bound = self.shot_bound(&pose, &goal.pose);
                 if bound.is_finite() {
                     let item = Item::Shot {
                         from: id,

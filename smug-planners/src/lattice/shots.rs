@@ -9,6 +9,7 @@
 
 use super::caches::{known, record, ShotTable, UNKNOWN_COST};
 use super::search::{Worker, START};
+use smug_core::pose::angle_distance;
 use smug_core::Pose2;
 use std::sync::atomic::Ordering::Relaxed;
 
@@ -31,10 +32,36 @@ impl Worker<'_> {
             .flatten()
     }
 
+    /// The key a shot from `pose` to `goal` is queued at before it is costed, less
+    /// the cost of reaching `pose`: a lower bound of its cost. The objective's contract
+    /// bound, and, for an objective that costs the model's curves by their length
+    /// (`Objective::is_translation_invariant`: path length, `w_t` per metre and `w_r`
+    /// per radian turned), `w_t` times the model's bound of the curve's length,
+    /// `max(‖Δxy‖, r·d(yaw))` (a curve turns at most `1/r` per metre, as
+    /// `StateSpace::distance_bound` says), plus `w_r·d(yaw)`. Shrunk by a millionth and rounded down to
+    /// an `f32`, it stays at or below the `f32` the shot is costed at
+    /// ([`Self::shot_cost_below`]): a shot popped uncosted at its cost is checked at
+    /// once, in the queue's order, where its costed entry would have been, so every
+    /// shot is checked where its cost puts it whichever bound queued it, and a search
+    /// finds the same paths; a tighter bound only leaves more shots unsolved (on lunar
+    /// with the rover, where most poses near a goal face away from it).
+    pub(super) fn shot_bound(&self, pose: &Pose2, goal: &Pose2) -> f64 {
+        let (w_t, w_r) = self.sh.objective.bound_weights();
+        let (xy, yaw) = (pose.xy_distance(goal), angle_distance(pose.yaw, goal.yaw));
+        // The objective's contract bound, as `cheap_bound` computes it.
+        let cheap = w_t * xy + w_r * yaw;
+        // Primitives costed once per heading: the objective is translation invariant.
+        if self.sh.primitive_costs.is_none() {
+            return cheap;
+        }
+        let curve = w_t * xy.max(self.sh.radius * yaw) + w_r * yaw;
+        cheap.max(f64::from(f32_below(curve * (1.0 - 1e-6))))
+    }
+
     /// A lower bound of the cost of the shot from `from` (at `pose`) to `goal`, within
     /// an `f32` step of it: kept in the goal's table `shots`.
     pub(super) fn shot_cost_below(
-        &self,
+        &mut self,
         from: u32,
         pose: &Pose2,
         goal: &Pose2,
@@ -47,6 +74,7 @@ impl Worker<'_> {
                 return f64::from(f32::from_bits(bits));
             }
         }
+        self.me.counts.shot_costs += 1;
         let below = f32_below(self.sh.objective.motion_cost(pose, goal));
         if let Some(slot) = slot {
             shots.costs[slot].store(below.to_bits(), Relaxed);
