@@ -18,7 +18,7 @@
 //!    (routes of at most `split_above` targets on average) the budget is shared by a
 //!    small population (see `population`): `sum_elite` searches from their own first
 //!    solutions, then `sum_offspring` (or more) searches from crossovers of two of the
-//!    best; a search that stalls (`sum_stall_per_target`) leaves its budget to more.
+//!    best; a child whose search stalls (`sum_stall_per_target`) leaves its budget to more.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.

@@ -56,9 +56,10 @@ pub struct TeamLnsParams {
     /// Total objective, with a pool: children searched after the pool is filled (at
     /// least; more when searches stall and leave budget).
     pub sum_offspring: usize,
-    /// Total objective, with a pool: a search ends once its best has not improved for
-    /// this many iterations per target and for as many as it took to reach it; what it
-    /// leaves of its share goes to further children (0 = every search runs its share).
+    /// Total objective, with a pool: a child's search ends once its best has not
+    /// improved for this many iterations per target and for as many as it took to reach
+    /// it; what it leaves of its share goes to further children (0 = every search runs
+    /// its share; the pool's first members always do).
     pub sum_stall_per_target: f64,
 }
 

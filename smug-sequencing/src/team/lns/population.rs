@@ -3,9 +3,11 @@
 //! crossover (OX) of their giant tours, cut by the size-bounded split, routes improved
 //! and exchanged — are searched in turn, each result replacing the pool's worst member
 //! when it is better and new. Every search gets an equal share of what is left of the
-//! budget, so the wall time is kept and iteration budgets stay reproducible. A search
-//! whose best has stalled (`sum_stall_per_target`) ends early and leaves the rest of its
-//! share to the next ones; children are searched until the budget is spent.
+//! budget, so the wall time is kept and iteration budgets stay reproducible. A child's
+//! search whose best has stalled (`sum_stall_per_target`) ends early and leaves the rest
+//! of its share to the next ones; children are searched until the budget is spent. The
+//! pool's first members search their whole shares (on rat99 m=7 they improve until late
+//! in their cooling).
 
 use super::improve::improve_route;
 use super::search::{better, construct, exchange_and_improve, search, Budget};
@@ -49,6 +51,8 @@ pub(super) fn evolve(
         } else {
             child(setting, &pool, rng)
         };
+        // The first members run their whole shares; children may stall.
+        let stall = if run < elite { 0 } else { stall };
         let (found, done) = search(setting, from, params, &share, stall, rng);
         iterations += done;
         admit(setting, &mut pool, found, elite);
