@@ -17,7 +17,8 @@
 //!    recreate fills routes below their minimum size only when it must. For the total
 //!    (routes of at most `split_above` targets on average) the budget is shared by a
 //!    small population (see `population`): `sum_elite` searches from their own first
-//!    solutions, then `sum_offspring` searches from crossovers of two of the best.
+//!    solutions, then `sum_offspring` (or more) searches from crossovers of two of the
+//!    best; a child whose search stalls (`sum_stall_per_target`) leaves its budget to more.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
@@ -123,7 +124,7 @@ impl TeamLns {
         let (best, iterations) = if pooled {
             evolve(&setting, start, &self.params, &budget, &mut rng)
         } else {
-            search(&setting, start, &self.params, &budget, &mut rng)
+            search(&setting, start, &self.params, &budget, 0, &mut rng)
         };
         let routes = best.routes.iter().filter(|r| r.len() > 2).count().max(1);
         let per_route = self.params.time_limit_s * polish / routes as f64;

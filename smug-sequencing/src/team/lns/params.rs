@@ -53,8 +53,14 @@ pub struct TeamLnsParams {
     /// pool, that many independent searches fill it, then `sum_offspring` children of
     /// two members (order crossover and split) are searched in turn.
     pub sum_elite: usize,
-    /// Total objective, with a pool: children searched after the pool is filled.
+    /// Total objective, with a pool: children searched after the pool is filled (at
+    /// least; more when searches stall and leave budget).
     pub sum_offspring: usize,
+    /// Total objective, with a pool: a child's search ends once its best has not
+    /// improved for this many iterations per target and for as many as it took to reach
+    /// it; what it leaves of its share goes to further children (0 = every search runs
+    /// its share; the pool's first members always do).
+    pub sum_stall_per_target: f64,
 }
 
 impl Default for TeamLnsParams {
@@ -77,6 +83,7 @@ impl Default for TeamLnsParams {
             sum_cycles: 1,
             sum_elite: 4,
             sum_offspring: 8,
+            sum_stall_per_target: 80.0,
         }
     }
 }
@@ -92,6 +99,7 @@ impl TeamLnsParams {
             ("polish_fraction", self.polish_fraction, 0.9),
             ("split_fraction", self.split_fraction, 0.5),
             ("sum_removed_per_route", self.sum_removed_per_route, 10.0),
+            ("sum_stall_per_target", self.sum_stall_per_target, 1e9),
             ("temp_start", self.temp_start, 1e6),
             ("temp_end", self.temp_end, self.temp_start.max(0.0)),
         ] {

@@ -3,7 +3,11 @@
 //! crossover (OX) of their giant tours, cut by the size-bounded split, routes improved
 //! and exchanged — are searched in turn, each result replacing the pool's worst member
 //! when it is better and new. Every search gets an equal share of what is left of the
-//! budget, so the wall time is kept and iteration budgets stay reproducible.
+//! budget, so the wall time is kept and iteration budgets stay reproducible. A child's
+//! search whose best has stalled (`sum_stall_per_target`) ends early and leaves the rest
+//! of its share to the next ones; children are searched until the budget is spent. The
+//! pool's first members search their whole shares (on rat99 m=7 they improve until late
+//! in their cooling).
 
 use super::improve::improve_route;
 use super::search::{better, construct, exchange_and_improve, search, Budget};
@@ -16,8 +20,8 @@ use std::time::Instant;
 /// Two totals closer than this (relative) count as the same solution in the pool.
 const SAME: f64 = 1e-9;
 
-/// Searches with a pool of `params.sum_elite` members and `params.sum_offspring`
-/// children; returns the best state and the iterations of every search together
+/// Searches with a pool of `params.sum_elite` members and at least
+/// `params.sum_offspring` children (more while stalled searches leave budget); returns the best state and the iterations of every search together
 /// (`start` itself, after no iteration, when the deadline has already passed).
 pub(super) fn evolve(
     setting: &Setting,
@@ -28,13 +32,16 @@ pub(super) fn evolve(
 ) -> (State, u64) {
     let started = Instant::now();
     let elite = params.sum_elite.max(1);
-    let runs = elite + params.sum_offspring;
+    let planned = elite + params.sum_offspring;
     let mut pool: Vec<State> = Vec::with_capacity(elite);
     let mut iterations = 0u64;
     let mut first = Some(start);
-    for run in 0..runs {
-        let share = share(budget, started, iterations, runs - run);
-        if share.time_limit_s < 0.0 || budget.deadline.passed() {
+    let stall =
+        (params.sum_stall_per_target * setting.problem.targets().len() as f64).ceil() as u64;
+    for run in 0.. {
+        let out_of_iterations = budget.max_iterations > 0 && iterations >= budget.max_iterations;
+        let share = share(budget, started, iterations, planned.saturating_sub(run));
+        if out_of_iterations || share.time_limit_s < 0.0 || budget.deadline.passed() {
             break;
         }
         let from = if let Some(state) = first.take() {
@@ -44,9 +51,15 @@ pub(super) fn evolve(
         } else {
             child(setting, &pool, rng)
         };
-        let (found, done) = search(setting, from, params, &share, rng);
+        // The first members run their whole shares; children may stall.
+        let stall = if run < elite { 0 } else { stall };
+        let (found, done) = search(setting, from, params, &share, stall, rng);
         iterations += done;
         admit(setting, &mut pool, found, elite);
+        if done == 0 {
+            // Nothing to search (no target): one search says it all.
+            break;
+        }
     }
     // No search ran (the deadline had passed): the start is the answer.
     let best = match best_member(setting, &pool) {
@@ -228,11 +241,16 @@ mod tests {
     }
 
     fn evolved(problem: &TeamProblem, seed: u64) -> (State, u64) {
+        evolved_with(problem, seed, TeamLnsParams::default().sum_stall_per_target)
+    }
+
+    fn evolved_with(problem: &TeamProblem, seed: u64, stall_per_target: f64) -> (State, u64) {
         let setting = Setting::new(problem, 0.02, 100);
         let params = TeamLnsParams {
             max_iterations: 600,
             sum_elite: 3,
             sum_offspring: 3,
+            sum_stall_per_target: stall_per_target,
             ..TeamLnsParams::default()
         };
         let deadline = Deadline::new();
@@ -256,6 +274,19 @@ mod tests {
         // Six searches share the 600 iterations (each rounded up).
         assert!((600..=606).contains(&iterations), "{iterations}");
         assert_eq!(evolved(&problem, 3), (state, iterations));
+    }
+
+    #[test]
+    fn stalled_searches_leave_their_iterations_to_more_children() {
+        let problem = problem(30, 4);
+        let setting = Setting::new(&problem, 0.02, 100);
+        // A stall of one iteration per target (30): searches end early, more of them run,
+        // and together they still spend the whole budget, reproducibly.
+        let (state, iterations) = evolved_with(&problem, 3, 1.0);
+        assert_eq!(state.violation(&setting), 0, "{:?}", state.routes);
+        problem.validate(&state.solution(&setting)).unwrap();
+        assert!((600..=700).contains(&iterations), "{iterations}");
+        assert_eq!(evolved_with(&problem, 3, 1.0), (state, iterations));
     }
 
     #[test]

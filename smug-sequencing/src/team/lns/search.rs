@@ -60,12 +60,15 @@ pub(super) fn construct(setting: &Setting, rng: &mut impl Rng) -> State {
     state
 }
 
-/// Searches from `start`; returns the best state seen and the iterations done.
+/// Searches from `start`; returns the best state seen and the iterations done. With
+/// `stall > 0` the search ends early once its best has not improved for `stall`
+/// iterations and for as many as it took to reach that best.
 pub(super) fn search(
     setting: &Setting,
     start: State,
     params: &TeamLnsParams,
     budget: &Budget,
+    stall: u64,
     rng: &mut impl Rng,
 ) -> (State, u64) {
     let started = Instant::now();
@@ -90,9 +93,10 @@ pub(super) fn search(
         TeamObjective::Makespan => 1,
     };
     let mut cycle = 0u64;
+    let mut improved_at = 0u64;
     loop {
         let progress = budget.progress(started, iterations);
-        if progress >= 1.0 {
+        if progress >= 1.0 || stalled(stall, improved_at, iterations) {
             break;
         }
         iterations += 1;
@@ -133,6 +137,7 @@ pub(super) fn search(
         if better(setting, &candidate, &best) {
             best = candidate.clone();
             best_scalar = best_scalar.min(scalar);
+            improved_at = iterations;
         }
         let threshold = current_scalar - temperature * rng.random::<f64>().max(1e-300).ln();
         if scalar < threshold {
@@ -141,6 +146,13 @@ pub(super) fn search(
         }
     }
     (best, iterations)
+}
+
+/// Whether a search whose best last improved at iteration `improved_at` has stalled at
+/// iteration `iterations` (never with `stall == 0`).
+fn stalled(stall: u64, improved_at: u64, iterations: u64) -> bool {
+    let idle = iterations - improved_at;
+    stall > 0 && idle >= stall && idle >= improved_at
 }
 
 /// Mean number of targets a ruin removes: `mean_removed`, at most half the targets, for
@@ -188,5 +200,20 @@ fn mean_leg(setting: &Setting, state: &State) -> f64 {
         unit
     } else {
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stalled;
+
+    #[test]
+    fn a_search_stalls_after_the_stall_and_as_long_as_its_best_took() {
+        assert!(!stalled(0, 0, 1_000_000), "no stall given: never");
+        assert!(!stalled(100, 0, 99));
+        assert!(stalled(100, 0, 100));
+        // Best found at 300: idle for 100 is not enough, idle for 300 is.
+        assert!(!stalled(100, 300, 400));
+        assert!(stalled(100, 300, 600));
     }
 }
