@@ -117,7 +117,7 @@ pub(crate) fn check_search_budget(
 /// What a local search run did, besides its tour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SearchStats {
-    /// True cost of the constructed tour.
+    /// True cost of the constructed tour (of the initial tour, for a warm start).
     pub construction_cost: f64,
     /// True cost of the first local optimum.
     pub first_optimum_cost: f64,
