@@ -72,7 +72,7 @@ pub enum AppError {
     Write {
         /// The directory or file.
         path: PathBuf,
-        /// `cannot create` or `cannot write`.
+        /// `cannot create`, `cannot write` or `cannot remove`.
         what: &'static str,
         /// The cause.
         source: std::io::Error,

@@ -3,7 +3,8 @@
 //! binary that uses this crate) and offers what both front ends do:
 //!
 //! - [`plan()`]: a config to a plan (and [`outputs`]: plan.json, plan.csv, plan.svg,
-//!   and [`plan_mcap`]: plan.mcap for the ROS 2 viewers);
+//!   and [`plan_mcap`]: plan.mcap for the ROS 2 viewers; [`no_plan`]: the plan.json of
+//!   a mission that ended without a plan);
 //! - [`replan()`]: the rest of a mission from a mission state file;
 //! - [`p2p`]: point-to-point queries on one shared roadmap, one typed result;
 //! - [`save_roadmap`] / [`load_roadmap`]: the planner's roadmap file;
@@ -28,6 +29,7 @@ use smug_validity as _;
 use smug_worlds as _;
 
 pub mod error;
+pub mod no_plan;
 pub mod outcome;
 pub mod outputs;
 pub mod p2p;
@@ -44,6 +46,7 @@ pub mod team_session;
 pub mod version;
 
 pub use error::{AppError, Result};
+pub use no_plan::{NoPlan, NoPlanReport};
 pub use outcome::{one_line, NoSolution, Outcome};
 pub use plan::{load_config, plan, Planned, WORLD_STAGES};
 pub use replan::{replan, ReplanRequest};

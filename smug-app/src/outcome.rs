@@ -3,15 +3,16 @@
 
 use smug_mission::{CutOff, NoTargetLeft, Unreachable};
 
-/// What a planning command found.
+/// What a planning command found; `W` says why there is no solution (a
+/// [`NoSolution`], or a `NoPlan` with the report plan.json gets).
 #[derive(Debug)]
-pub enum Outcome<T> {
+pub enum Outcome<T, W = NoSolution> {
     /// A solution (the CLI's exit 0).
     Solved(T),
     /// The pipeline ran but found no solution (the CLI's exit 1; Python's `NoSolution`).
     NoSolution {
         /// Why.
-        why: NoSolution,
+        why: W,
     },
 }
 
@@ -48,12 +49,22 @@ impl<T> Outcome<T> {
             },
         }
     }
+}
 
+impl<T, W> Outcome<T, W> {
     /// The solution, if any.
     pub fn solved(self) -> Option<T> {
         match self {
             Self::Solved(value) => Some(value),
             Self::NoSolution { .. } => None,
+        }
+    }
+
+    /// The same outcome with the reason for no solution mapped by `f`.
+    pub fn map_no_solution<V>(self, f: impl FnOnce(W) -> V) -> Outcome<T, V> {
+        match self {
+            Self::Solved(value) => Outcome::Solved(value),
+            Self::NoSolution { why } => Outcome::NoSolution { why: f(why) },
         }
     }
 }
@@ -105,6 +116,7 @@ mod tests {
             Unreachable {
                 targets: vec!["t1".into()],
                 why: Vec::new(),
+                legs: Vec::new(),
             },
         );
         let outcome = Outcome::<()>::of(Err(unreachable)).unwrap();

@@ -1,8 +1,10 @@
 //! The files a plan is written to: plan.json, plan.csv, plan.svg and plan.mcap (as the
 //! config's `[output]` asks), each whole or not at all.
 
+use crate::no_plan::{NoPlanReport, PLANNED};
 use crate::plan_mcap::{write_plan_mcap, PlanScene, RunInfo, WriteMode};
 use crate::{AppError, Result};
+use smug_core::config::OutputConfig;
 use smug_core::{LoadedConfig, Mission, Pipeline, PipelineConfig, Plan, World};
 use smug_worlds::render::{render_svg, RenderOptions};
 use std::path::{Path, PathBuf};
@@ -18,7 +20,7 @@ pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMo
     let output = &pipeline.config.output;
     let write = file_writer(dir)?;
     if output.json {
-        write("plan.json", serde_json::to_string_pretty(plan)?)?;
+        write("plan.json", plan_json(plan)?)?;
     }
     if output.csv {
         write("plan.csv", plan_csv(plan))?;
@@ -49,6 +51,49 @@ pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMo
             "plan.svg",
             render_svg(world, Some(mission), &render_options(plan, world, mission)),
         )?;
+    }
+    Ok(())
+}
+
+/// `plan.json`'s text: the plan with `"status": "planned"` first (what `smug plan
+/// --json` prints and `smug.Plan.to_json()` returns).
+pub fn plan_json(plan: &Plan) -> Result<String> {
+    #[derive(serde::Serialize)]
+    struct Planned<'a> {
+        status: &'static str,
+        #[serde(flatten)]
+        plan: &'a Plan,
+    }
+    let planned = Planned {
+        status: PLANNED,
+        plan,
+    };
+    Ok(serde_json::to_string_pretty(&planned)?)
+}
+
+/// Writes the plan.json of a mission that ended without a plan into `dir` (when the
+/// config's `[output]` asks for plan.json); the other files are not written, there is
+/// nothing to draw, and those of an earlier plan in `dir` are removed, so that the
+/// directory does not show a plan beside a plan.json that says there is none.
+pub fn write_no_plan(report: &NoPlanReport, output: &OutputConfig, dir: &Path) -> Result<()> {
+    if output.json {
+        file_writer(dir)?("plan.json", serde_json::to_string_pretty(report)?)?;
+    }
+    let stale = OUTPUT_FILES
+        .iter()
+        .filter(|name| !output.json || **name != "plan.json");
+    for name in stale {
+        let path = dir.join(name);
+        match std::fs::remove_file(&path) {
+            Err(source) if source.kind() != std::io::ErrorKind::NotFound => {
+                return Err(AppError::Write {
+                    path,
+                    what: "cannot remove",
+                    source,
+                })
+            }
+            _ => {}
+        }
     }
     Ok(())
 }

@@ -1,9 +1,10 @@
 //! Planning a mission from a config, as `smug plan` and `smug.plan` do.
 
+use crate::no_plan::NoPlan;
 use crate::{AppError, Outcome, Result};
 use smug_core::registry::{ObjectiveStage, SpaceStage, Stage, TraversabilityStage, WorldStage};
 use smug_core::{LoadedConfig, Mission, Pipeline, Plan, TraversabilityEstimator, World};
-use smug_mission::{plan_mission, traversability_files};
+use smug_mission::{plan_mission_reporting, traversability_files, MissionFailed};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -48,11 +49,22 @@ pub fn assemble(
 }
 
 /// Plans the mission on an assembled pipeline with the config's plan options.
-pub fn plan_on(mut pipeline: Pipeline) -> Result<Outcome<Planned>> {
+pub fn plan_on(pipeline: Pipeline) -> Result<Outcome<Planned>> {
+    Ok(plan_on_reporting(pipeline)?.map_no_solution(|no_plan| no_plan.why))
+}
+
+/// [`plan_on`] that, without a plan, also says what plan.json reports: what could not be
+/// reached and the run's statistics.
+pub fn plan_on_reporting(mut pipeline: Pipeline) -> Result<Outcome<Planned, NoPlan>> {
     let options = pipeline.config.plan;
-    let plan = match Outcome::of(plan_mission(&mut pipeline, options))? {
-        Outcome::Solved(plan) => plan,
-        Outcome::NoSolution { why } => return Ok(Outcome::NoSolution { why }),
+    let plan = match plan_mission_reporting(&mut pipeline, options) {
+        Ok(plan) => plan,
+        Err(MissionFailed { error, stats }) => {
+            return match NoPlan::of(&error, *stats) {
+                Some(why) => Ok(Outcome::NoSolution { why }),
+                None => Err(error.into()),
+            }
+        }
     };
     let world = pipeline.world.clone().ok_or(AppError::NoWorld)?;
     Ok(Outcome::Solved(Planned {
@@ -72,13 +84,19 @@ pub fn plan(
     if estimator.is_some() {
         return plan_on(assemble(loaded, world, estimator)?);
     }
-    plan_config_pipeline(loaded, assemble(loaded, world, None)?)
+    Ok(
+        plan_config_pipeline(loaded, assemble(loaded, world, None)?)?
+            .map_no_solution(|no_plan| no_plan.why),
+    )
 }
 
-/// [`plan_on`] for a pipeline assembled from `loaded` with the config's own
+/// [`plan_on_reporting`] for a pipeline assembled from `loaded` with the config's own
 /// estimator: the plan records the files its traversability came from.
-pub fn plan_config_pipeline(loaded: &LoadedConfig, pipeline: Pipeline) -> Result<Outcome<Planned>> {
-    let mut outcome = plan_on(pipeline)?;
+pub fn plan_config_pipeline(
+    loaded: &LoadedConfig,
+    pipeline: Pipeline,
+) -> Result<Outcome<Planned, NoPlan>> {
+    let mut outcome = plan_on_reporting(pipeline)?;
     if let Outcome::Solved(planned) = &mut outcome {
         planned.plan.traversability_files = traversability_files(loaded);
     }

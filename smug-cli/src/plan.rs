@@ -2,7 +2,7 @@
 
 use crate::progress::Progress;
 use crate::Outcome;
-use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::outputs::{plan_json, refuse_overwriting_inputs, write_no_plan, write_outputs};
 use smug_app::plan_mcap::WriteMode;
 use smug_app::Planned;
 use smug_core::{Pipeline, Plan};
@@ -65,7 +65,10 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         world,
     } = match planned? {
         smug_app::Outcome::Solved(planned) => planned,
-        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
+        smug_app::Outcome::NoSolution { why } => {
+            write_no_plan(&why.report, &loaded.config.output, &out)?;
+            return Ok(crate::no_solution(why.why));
+        }
     };
     if plan.deadline_reached {
         eprintln!(
@@ -78,7 +81,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
         smug_app::save_roadmap(&pipeline, &loaded, &world, file)?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&plan)?);
+        println!("{}", plan_json(&plan)?);
     } else {
         print_summary(&plan, &pipeline, &out);
     }

@@ -75,7 +75,7 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
     };
     write_outputs(&plan, &pipeline, &out, WriteMode::Append)?;
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&plan)?);
+        println!("{}", smug_app::outputs::plan_json(&plan)?);
     } else {
         print_summary(&plan, &pipeline, &out);
     }

@@ -35,7 +35,7 @@ pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
     ReplanInfo, SkippedTarget,
 };
-pub use run::{plan_mission, Unreachable};
+pub use run::{plan_mission, plan_mission_reporting, MissionFailed, Unreachable};
 pub use session::{MissionSession, WorldUpdate};
 pub use smug_core::mission::{Mission, PlanOptions};
 pub use team::{plan_team, TeamMember, TeamMission};

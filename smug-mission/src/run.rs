@@ -17,10 +17,11 @@ use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{PlanMode, PlanOptions};
 use smug_core::pipeline::Pipeline;
-use smug_core::plan::Plan;
+use smug_core::plan::{Plan, PlanStats};
 use smug_core::stages::PathCosts;
 use smug_core::stages::{Selection, SelectionError, SelectionProblem};
 use smug_core::world::World;
+use std::collections::BTreeMap;
 use std::time::Instant;
 /// Targets that cannot be reached: the plan fails and names them.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -30,6 +31,10 @@ pub struct Unreachable {
     pub targets: Vec<String>,
     /// Why, where known: one line per PoI left out (target, PoI index, reason).
     pub why: Vec<String>,
+    /// How the legs from the start to each target's PoIs ended, by `kind:why`
+    /// (`proved:disconnected`, `budget_spent:samples`, …), one map per target in
+    /// `targets`' order; empty where the legs were not what ruled the target out.
+    pub legs: Vec<BTreeMap<String, u64>>,
 }
 
 /// The reasons of an [`Unreachable`], on lines of their own.
@@ -70,6 +75,27 @@ fn unreachable_targets(
     Ok(unreachable)
 }
 
+/// How the legs from the start to the PoIs of each of `targets` ended, by `kind:why`.
+fn start_legs(
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    targets: &[usize],
+) -> Result<Vec<BTreeMap<String, u64>>> {
+    let mut legs = Vec::with_capacity(targets.len());
+    for &t in targets {
+        let mut counts = BTreeMap::new();
+        for &p in &layout.pois[t] {
+            if let Some(reason) = oracle.path(layout.start, p)?.outcome.no_path_reason() {
+                *counts
+                    .entry(format!("{}:{}", reason.kind(), reason.why()))
+                    .or_insert(0) += 1;
+            }
+        }
+        legs.push(counts);
+    }
+    Ok(legs)
+}
+
 /// Why the start reaches no target at all: the start pose and how its legs to the PoIs
 /// ended (the same reason for every leg says the start is enclosed).
 fn enclosed_start(
@@ -77,7 +103,7 @@ fn enclosed_start(
     layout: &Layout,
     targets: &[usize],
 ) -> Result<Vec<String>> {
-    let mut reasons: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut reasons: BTreeMap<String, usize> = Default::default();
     for &t in targets {
         for &p in &layout.pois[t] {
             let planned = oracle.path(layout.start, p)?;
@@ -135,7 +161,7 @@ fn order_then_select(
     layout: &Layout,
     targets: &[usize],
     options: PlanOptions,
-    times: &mut std::collections::BTreeMap<String, f64>,
+    times: &mut BTreeMap<String, f64>,
 ) -> Result<(Vec<usize>, Result<Selection>)> {
     let t = Instant::now();
     pipeline.run().progress.enter("sequencing");
@@ -173,6 +199,25 @@ pub fn plan_mission(pipeline: &mut Pipeline, options: PlanOptions) -> Result<Pla
     plan_mission_keeping(pipeline, options, None)
 }
 
+/// A mission that ended without a plan: the error, and the counters and timings of the
+/// run up to then (paths planned, legs without a path, the planner's counters).
+#[derive(Debug)]
+pub struct MissionFailed {
+    /// Why there is no plan.
+    pub error: Error,
+    /// The run's statistics when it ended (only `total` and the build stages in
+    /// `stage_times_s`; empty when it failed before planning any path).
+    pub stats: Box<PlanStats>,
+}
+
+/// [`plan_mission`] that, when it fails, also says what the run did up to then.
+pub fn plan_mission_reporting(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+) -> std::result::Result<Plan, MissionFailed> {
+    plan_mission_keeping_reporting(pipeline, options, None)
+}
+
 /// [`plan_mission`] serving the pose pairs found in `answers` (paths kept from earlier
 /// missions) without planning, and adding to it every exact path it planned (what a
 /// [`MissionSession`](crate::MissionSession) remembers between replans).
@@ -181,6 +226,15 @@ pub(crate) fn plan_mission_keeping(
     options: PlanOptions,
     answers: Option<&mut KnownAnswers>,
 ) -> Result<Plan> {
+    plan_mission_keeping_reporting(pipeline, options, answers).map_err(|failed| failed.error)
+}
+
+/// [`plan_mission_keeping`] that, when it fails, also says what the run did up to then.
+fn plan_mission_keeping_reporting(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    answers: Option<&mut KnownAnswers>,
+) -> std::result::Result<Plan, MissionFailed> {
     let Some(seconds) = options.deadline else {
         return plan_unbounded(pipeline, options, answers);
     };
@@ -192,13 +246,19 @@ pub(crate) fn plan_mission_keeping(
             plan.deadline_reached = deadline.reached();
             Ok(plan)
         }
-        Err(Error::DeadlinePassed { during, .. }) => Err(Error::DeadlinePassed { seconds, during }),
-        // An anytime search cut short can look like a missing path: say what happened.
-        Err(_) if deadline.reached() => Err(Error::DeadlinePassed {
-            seconds,
-            during: "path planning".into(),
-        }),
-        Err(other) => Err(other),
+        Err(MissionFailed { error, stats }) => {
+            let error = match error {
+                Error::DeadlinePassed { during, .. } => Error::DeadlinePassed { seconds, during },
+                // An anytime search cut short can look like a missing path: say what
+                // happened.
+                _ if deadline.reached() => Error::DeadlinePassed {
+                    seconds,
+                    during: "path planning".into(),
+                },
+                other => other,
+            };
+            Err(MissionFailed { error, stats })
+        }
     }
 }
 
@@ -225,20 +285,26 @@ fn plan_unbounded(
     pipeline: &mut Pipeline,
     options: PlanOptions,
     mut answers: Option<&mut KnownAnswers>,
-) -> Result<Plan> {
+) -> std::result::Result<Plan, MissionFailed> {
     let started = Instant::now();
-    let mission = pipeline.mission.clone().ok_or(Error::MissingStage {
+    let failed = |error| MissionFailed {
+        error,
+        stats: Box::default(),
+    };
+    let missing = || Error::MissingStage {
         stage: "plan".into(),
         needed: "world",
-    })?;
-    let world = pipeline.world.clone().ok_or(Error::MissingStage {
-        stage: "plan".into(),
-        needed: "world",
-    })?;
-    let oracle = PathOracle::of_pipeline(pipeline, "plan")?;
+    };
+    let mission = pipeline.mission.clone().ok_or_else(|| failed(missing()))?;
+    let world = pipeline.world.clone().ok_or_else(|| failed(missing()))?;
+    let oracle = PathOracle::of_pipeline(pipeline, "plan").map_err(failed)?;
     let known = answers.as_deref_mut().map(std::mem::take);
     let mut oracle = oracle.with_known(known.unwrap_or_default());
-    let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started);
+    let planned = plan_on_oracle(pipeline, &mut oracle, &mission, &world, options, started)
+        .map_err(|error| MissionFailed {
+            error,
+            stats: Box::new(stats(&oracle, pipeline, run_times(pipeline, started))),
+        });
     if let Some(answers) = answers {
         *answers = oracle.take_known_answers();
     }
@@ -246,6 +312,20 @@ fn plan_unbounded(
     // session's next replan), whatever the outcome.
     pipeline.planner = Some(oracle.into_planner());
     planned
+}
+
+/// The run's `total` time (planning since `started` and building the stages) and each
+/// stage's build time, as `stage_times_s` has them.
+fn run_times(pipeline: &Pipeline, started: Instant) -> BTreeMap<String, f64> {
+    let mut times = BTreeMap::new();
+    times.insert(
+        "total".into(),
+        started.elapsed().as_secs_f64() + pipeline.build_times_s.values().sum::<f64>(),
+    );
+    for (stage, s) in &pipeline.build_times_s {
+        times.insert(format!("build:{stage}"), *s);
+    }
+    times
 }
 
 /// The mission in the options' mode on `oracle`, its poses not registered yet.
@@ -262,7 +342,7 @@ fn plan_on_oracle(
     let mut layout = register_poses(oracle, mission);
     let mut targets: Vec<usize> = (0..mission.targets.len()).collect();
     let mut skipped = Vec::new();
-    let mut times = std::collections::BTreeMap::new();
+    let mut times = BTreeMap::new();
     let t = Instant::now();
     pipeline.run().progress.enter("dead ends");
     probe_start_and_end(oracle, &layout, &targets)?;
@@ -285,7 +365,14 @@ fn plan_on_oracle(
                     .filter(|d| ids.contains(&d.target))
                     .map(|d| format!("target `{}` PoI {}: {}", d.target, d.index, d.why))
                     .collect();
-                return Err(Error::stage("plan", Unreachable { targets: ids, why }));
+                return Err(Error::stage(
+                    "plan",
+                    Unreachable {
+                        targets: ids,
+                        why,
+                        legs: Vec::new(),
+                    },
+                ));
             }
             skipped.extend(ids);
             targets.retain(|t| !emptied.contains(t));
@@ -336,6 +423,7 @@ fn plan_on_oracle(
                                     "target `{}`: the start reaches its PoIs, but none of them continues the route in the order chosen (a directed model: a PoI it can enter but not leave, or reach only from some targets)",
                                     mission.targets[target].id
                                 )],
+                                legs: Vec::new(),
                             },
                         ));
                     }
@@ -345,6 +433,7 @@ fn plan_on_oracle(
                         Unreachable {
                             targets: vec!["(the end pose)".into()],
                             why: Vec::new(),
+                            legs: Vec::new(),
                         },
                     ));
                 }
@@ -359,7 +448,15 @@ fn plan_on_oracle(
                     } else {
                         Vec::new()
                     };
-                    return Err(Error::stage("plan", Unreachable { targets: ids, why }));
+                    let legs = start_legs(oracle, &layout, &unreachable)?;
+                    return Err(Error::stage(
+                        "plan",
+                        Unreachable {
+                            targets: ids,
+                            why,
+                            legs,
+                        },
+                    ));
                 }
                 skipped.extend(ids);
                 targets.retain(|t| !unreachable.contains(t));
@@ -392,13 +489,7 @@ fn plan_on_oracle(
     plan.skipped = skipped;
     plan.dead_ends = dead_ends;
     times.insert("post-processing".into(), t.elapsed().as_secs_f64());
-    times.insert(
-        "total".into(),
-        started.elapsed().as_secs_f64() + pipeline.build_times_s.values().sum::<f64>(),
-    );
-    for (stage, s) in &pipeline.build_times_s {
-        times.insert(format!("build:{stage}"), *s);
-    }
+    times.extend(run_times(pipeline, started));
     plan.stats = stats(oracle, pipeline, times);
     Ok(plan)
 }

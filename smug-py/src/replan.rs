@@ -21,7 +21,7 @@ type PlanParts<'py> = (String, Bound<'py, PyArray2<f64>>, PyWorld, (String, u64)
 
 /// The plan as Python parts.
 fn parts<'py>(py: Python<'py>, plan: &Plan, pipeline: &Pipeline) -> PyResult<PlanParts<'py>> {
-    let text = serde_json::to_string_pretty(plan)
+    let text = smug_app::outputs::plan_json(plan)
         .map_err(|e| InputError::new_err(format!("cannot write the plan as JSON: {e}")))?;
     let waypoints = Array2::from_shape_fn((plan.waypoints.len(), 4), |(k, c)| {
         let w = &plan.waypoints[k];

@@ -106,6 +106,7 @@ impl LazyTeam<'_> {
             Unreachable {
                 targets: vec![target.id.clone()],
                 why,
+                legs: Vec::new(),
             },
         )
     }
@@ -158,6 +159,7 @@ impl LazyTeam<'_> {
                              every target (restrictions and paths leave none)"
                                 .into(),
                         ],
+                        legs: Vec::new(),
                     },
                 ));
             }
