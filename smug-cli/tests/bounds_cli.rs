@@ -51,7 +51,13 @@ fn a_deadline_without_a_complete_plan_exits_1_within_its_grace() {
         err.contains("the deadline of 0.000001 s passed during path planning"),
         "{err}"
     );
-    assert!(!out.join("plan.json").exists(), "no plan is written");
+    // plan.json says there is no plan, and why; nothing is drawn.
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(report["status"], "no_plan");
+    assert_eq!(report["cause"], "deadline");
+    assert!(report.get("cost").is_none(), "{report}");
+    assert!(!out.join("plan.svg").exists(), "no drawing is written");
     // A second of grace after the deadline, plus the world's build and the process.
     assert!(
         started.elapsed() < Duration::from_secs(20),
