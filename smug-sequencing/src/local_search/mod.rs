@@ -183,11 +183,7 @@ impl LocalSearch {
             };
             return Ok((tour, stats));
         }
-        Ok(self.iterated_local_search(costs, kind))
-    }
-
-    fn iterated_local_search(&self, costs: &CostMatrix, kind: TourKind) -> (Tour, SearchStats) {
-        self.search_from(costs, kind, None)
+        Ok(self.search_from(costs, kind, None))
     }
 
     /// The iterated local search from `initial`'s order with the warm budget (a
