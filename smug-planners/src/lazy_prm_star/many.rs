@@ -113,12 +113,10 @@ impl LazyPrmStar {
         if row.pending.is_empty() {
             return false;
         }
-        if self.cut_off.contains(&s) {
-            self.counts.cut_off_queries += row.pending.len() as u64;
-            row.pending.clear();
-            return false;
-        }
-        true
+        let before = row.pending.len();
+        row.pending.retain(|&(_, g)| !self.cut_off_from(s, g));
+        self.counts.cut_off_queries += (before - row.pending.len()) as u64;
+        !row.pending.is_empty()
     }
 
     /// [`search_side_by_side`](Self::search_side_by_side) in batches of 1, 1, 2, 4, 8, …
@@ -255,7 +253,7 @@ impl LazyPrmStar {
             Some(_) if self.proved_disconnected(start, goal) => Ok(PlannerOutcome::NoPath(
                 NoPathReason::Proved(Proof::Disconnected),
             )),
-            Some(g) if self.cut_off.contains(&g) => {
+            Some(g) if self.cut_off_from(g, s) => {
                 self.counts.cut_off_queries += 1;
                 Ok(PlannerOutcome::NoPath(NoPathReason::BudgetSpent(
                     Budget::EarlierQuery,

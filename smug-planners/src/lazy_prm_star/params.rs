@@ -88,8 +88,10 @@ pub struct LazyPrmStarParams {
     /// Retry query endpoints found cut off: when a query ends without a path, the
     /// endpoint whose roadmap component is the smaller one (less than half the roadmap:
     /// a pocket the robot could not leave or enter within the budget) is cut off, and
-    /// later queries from or to it answer "no path" at once. True: every query spends
-    /// its whole budget again.
+    /// later queries from or to any pose of its pocket (its component, while that holds
+    /// less than half the roadmap) to a pose outside answer "no path" at once: every
+    /// PoI of a room a car cannot leave fails once, not once each. True: every query
+    /// spends its whole budget again.
     pub retry_cut_off: bool,
     /// Answer a source's many goals (a cost-matrix row, a DP layer) with one search:
     /// one Dijkstra search on the shared roadmap settles every goal it connects, each

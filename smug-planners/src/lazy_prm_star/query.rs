@@ -188,7 +188,7 @@ impl LazyPrmStar {
         if self.proved_disconnected(start, goal) {
             return PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Disconnected));
         }
-        if self.cut_off.contains(&s) || self.cut_off.contains(&g) {
+        if self.cut_off_from(s, g) || self.cut_off_from(g, s) {
             self.counts.cut_off_queries += 1;
             return PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::EarlierQuery));
         }
@@ -196,6 +196,27 @@ impl LazyPrmStar {
             Some(path) => PlannerOutcome::Exact(self.post_processed(&path)),
             None => PlannerOutcome::NoPath(NoPathReason::BudgetSpent(self.last_budget)),
         }
+    }
+
+    /// True when `v` lies in a pocket an earlier query was cut off in, apart from
+    /// `other`: `v`'s component holds a cut-off vertex and less than half the roadmap,
+    /// and `other` is not in it. A pocket is the component as it grows (every PoI of a
+    /// room a car cannot leave, not only the endpoint that failed); one that joins the
+    /// rest of the roadmap (more than half of it) is a pocket no more.
+    pub(super) fn cut_off_from(&mut self, v: u32, other: u32) -> bool {
+        if self.cut_off.is_empty() || self.roadmap.maybe_connected(v, other) {
+            return false;
+        }
+        self.roadmap.refresh_components();
+        if self.roadmap.maybe_connected(v, other)
+            || self.roadmap.component_size(v) >= self.roadmap.live_vertex_count() / 2
+        {
+            return false;
+        }
+        let cut_off: Vec<u32> = self.cut_off.iter().copied().collect();
+        cut_off
+            .into_iter()
+            .any(|c| self.roadmap.maybe_connected(c, v))
     }
 
     /// After a failed query: cuts off the endpoint whose component is the smaller one

@@ -138,6 +138,21 @@ fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
         "the other end is not cut off"
     );
 
+    let beside = Pose2::new(8.5, 7.5, 0.0);
+    let spent = p.stats().counters["samples"];
+    let third = p.plan(&beside, &Pose2::new(9.0, 1.0, 0.0)).unwrap();
+    assert_eq!(
+        third,
+        PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::EarlierQuery)),
+        "another pose in the same pocket is cut off with it"
+    );
+    assert_eq!(p.stats().counters["samples"], spent);
+    let inside = p.plan(&beside, &pocket).unwrap();
+    assert!(
+        inside.exact_path().is_some(),
+        "a query inside the pocket is not cut off"
+    );
+
     let mut retried = ring_planner(true);
     retried.plan(&Pose2::new(1.0, 1.0, 0.0), &pocket).unwrap();
     retried.plan(&pocket, &Pose2::new(1.0, 9.0, 0.0)).unwrap();
