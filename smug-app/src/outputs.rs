@@ -74,14 +74,22 @@ pub fn plan_json(plan: &Plan) -> Result<String> {
 /// Writes the plan.json of a mission that ended without a plan into `dir` (when the
 /// config's `[output]` asks for plan.json); the other files are not written, there is
 /// nothing to draw, and those of an earlier plan in `dir` are removed, so that the
-/// directory does not show a plan beside a plan.json that says there is none.
-pub fn write_no_plan(report: &NoPlanReport, output: &OutputConfig, dir: &Path) -> Result<()> {
+/// directory does not show a plan beside a plan.json that says there is none. A
+/// replan's ([`WriteMode::Append`]) plan.mcap is kept: it holds the earlier plans, a
+/// history rather than the current plan.
+pub fn write_no_plan(
+    report: &NoPlanReport,
+    output: &OutputConfig,
+    dir: &Path,
+    mcap: WriteMode,
+) -> Result<()> {
     if output.json {
         file_writer(dir)?("plan.json", serde_json::to_string_pretty(report)?)?;
     }
-    let stale = OUTPUT_FILES
-        .iter()
-        .filter(|name| !output.json || **name != "plan.json");
+    let stale = OUTPUT_FILES.iter().filter(|name| {
+        !(output.json && **name == "plan.json"
+            || mcap == WriteMode::Append && **name == "plan.mcap")
+    });
     for name in stale {
         let path = dir.join(name);
         match std::fs::remove_file(&path) {

@@ -1,11 +1,12 @@
 //! Replanning the rest of a mission from a mission state file, as `smug replan` and
 //! `smug.replan` do.
 
+use crate::no_plan::NoPlan;
 use crate::plan::Planned;
 use crate::{AppError, Outcome, Result};
 use smug_core::mission::MissionState;
 use smug_core::LoadedConfig;
-use smug_mission::{assemble_replan_fingerprinted, replan_mission};
+use smug_mission::{assemble_replan_fingerprinted, replan_mission_reporting, MissionFailed};
 use std::path::Path;
 
 /// What to replan from.
@@ -34,16 +35,17 @@ pub fn replan(
     progress: &mut dyn FnMut(&'static str),
 ) -> Result<Outcome<Planned>> {
     let state = MissionState::from_file(request.state)?;
-    replan_from(loaded, &state, request, progress)
+    Ok(replan_from(loaded, &state, request, progress)?.map_no_solution(|no_plan| no_plan.why))
 }
 
-/// [`replan`] with the state already read from `request.state`.
+/// [`replan`] with the state already read from `request.state`; without a plan, also
+/// what plan.json reports (what could not be reached, the run's statistics).
 pub fn replan_from(
     loaded: &LoadedConfig,
     state: &MissionState,
     request: &ReplanRequest<'_>,
     progress: &mut dyn FnMut(&'static str),
-) -> Result<Outcome<Planned>> {
+) -> Result<Outcome<Planned, NoPlan>> {
     progress(stages::ASSEMBLING);
     let state_name = request.state.display().to_string();
     let (mut pipeline, fingerprint) = assemble_replan_fingerprinted(loaded, state, &state_name)?;
@@ -53,9 +55,14 @@ pub fn replan_from(
     }
     progress(stages::REPLANNING);
     let options = pipeline.config.plan;
-    let mut plan = match Outcome::of(replan_mission(&mut pipeline, options, state))? {
-        Outcome::Solved(plan) => plan,
-        Outcome::NoSolution { why } => return Ok(Outcome::NoSolution { why }),
+    let mut plan = match replan_mission_reporting(&mut pipeline, options, state) {
+        Ok(plan) => plan,
+        Err(MissionFailed { error, stats }) => {
+            return match NoPlan::of(&error, *stats) {
+                Some(why) => Ok(Outcome::NoSolution { why }),
+                None => Err(error.into()),
+            }
+        }
     };
     plan.traversability_files = smug_mission::traversability_files(loaded);
     if let Some(info) = plan.replan.as_mut() {

@@ -66,7 +66,7 @@ pub fn run(args: PlanArgs) -> anyhow::Result<Outcome> {
     } = match planned? {
         smug_app::Outcome::Solved(planned) => planned,
         smug_app::Outcome::NoSolution { why } => {
-            write_no_plan(&why.report, &loaded.config.output, &out)?;
+            write_no_plan(&why.report, &loaded.config.output, &out, WriteMode::Replace)?;
             return Ok(crate::no_solution(why.why));
         }
     };

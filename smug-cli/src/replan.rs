@@ -4,10 +4,10 @@
 use crate::plan::print_summary;
 use crate::progress::Progress;
 use crate::Outcome;
-use smug_app::outputs::{refuse_overwriting_inputs, write_outputs};
+use smug_app::outputs::{refuse_overwriting_inputs, write_no_plan, write_outputs};
 use smug_app::plan_mcap::WriteMode;
 use smug_app::replan::{replan_from, stages, ReplanRequest};
-use smug_app::{NoSolution, Planned};
+use smug_app::{NoPlan, NoSolution, Planned};
 use smug_core::mission::MissionState;
 use std::path::PathBuf;
 
@@ -66,10 +66,15 @@ pub fn run(args: ReplanArgs) -> anyhow::Result<Outcome> {
         smug_app::Outcome::Solved(planned) => planned,
         // A passed deadline is an error here (exit 2), as it always was for replans.
         smug_app::Outcome::NoSolution {
-            why: NoSolution::DeadlinePassed(why),
+            why:
+                NoPlan {
+                    why: NoSolution::DeadlinePassed(why),
+                    ..
+                },
         } => anyhow::bail!("{why}"),
         smug_app::Outcome::NoSolution { why } => {
-            eprintln!("smug: no solution: {why}");
+            write_no_plan(&why.report, &loaded.config.output, &out, WriteMode::Append)?;
+            eprintln!("smug: no solution: {}", why.why);
             return Ok(Outcome::NoSolution);
         }
     };

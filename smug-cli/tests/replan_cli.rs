@@ -147,14 +147,25 @@ fn bad_states_exit_2_naming_the_key() {
 #[test]
 fn a_state_that_leaves_no_target_exits_1_and_says_so() {
     let dir = scratch("none-left");
+    let out_dir = dir.join("out");
+    let earlier = state_file(&dir, "pose = [1.0, 1.0, 0.0]\nvisited = [\"gauge-a\"]");
+    assert_eq!(replan(&earlier, &out_dir).status.code(), Some(0));
     for text in [
         "pose = [1.0, 1.0, 0.0]\nvisited = [\"gauge-a\", \"gauge-b\", \"valve-c\"]",
         "pose = [1.0, 1.0, 0.0]\nvisited = [\"gauge-a\", \"gauge-b\"]\nfailed_pois = [[\"valve-c\", 0]]",
     ] {
         let state = state_file(&dir, text);
-        let out = replan(&state, &dir.join("out"));
+        let out = replan(&state, &out_dir);
         let err = stderr(&out);
         assert_eq!(out.status.code(), Some(1), "{err}");
         assert!(err.contains("no reachable target"), "{err}");
+        // plan.json says so; the earlier plan's table and drawing are gone, the
+        // recording of the earlier plans stays.
+        let plan = plan_json(&out_dir);
+        assert_eq!(plan["status"], "no_plan", "{plan}");
+        assert_eq!(plan["cause"], "no_target_left", "{plan}");
+        assert!(plan["reason"].as_str().unwrap().contains("no reachable target"));
+        assert!(!out_dir.join("plan.csv").exists() && !out_dir.join("plan.svg").exists());
+        assert!(out_dir.join("plan.mcap").is_file());
     }
 }

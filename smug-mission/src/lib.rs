@@ -32,8 +32,8 @@ pub use fingerprint::{fingerprint, traversability_files};
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
 pub use probe::{CutOff, Side};
 pub use replan::{
-    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission, NoTargetLeft,
-    ReplanInfo, SkippedTarget,
+    assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission,
+    replan_mission_reporting, NoTargetLeft, ReplanInfo, SkippedTarget,
 };
 pub use run::{plan_mission, plan_mission_reporting, MissionFailed, Unreachable};
 pub use session::{MissionSession, WorldUpdate};

@@ -4,7 +4,7 @@
 //! pipeline ([`assemble_replan`] then [`replan_mission`]).
 
 use crate::oracle::KnownAnswers;
-use crate::run::plan_mission_keeping;
+use crate::run::{plan_mission_keeping_reporting, MissionFailed};
 use smug_core::config::{LoadedConfig, RobotConfig};
 use smug_core::error::{Error, Result};
 use smug_core::mission::MissionState;
@@ -230,42 +230,77 @@ pub fn replan_mission(
     options: PlanOptions,
     state: &MissionState,
 ) -> Result<Plan> {
-    replan_mission_keeping(pipeline, options, state, None)
+    replan_mission_reporting(pipeline, options, state).map_err(|failed| failed.error)
+}
+
+/// [`replan_mission`] that, when it fails, also says what the run did up to then (as
+/// [`plan_mission_reporting`](crate::plan_mission_reporting)).
+pub fn replan_mission_reporting(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    state: &MissionState,
+) -> std::result::Result<Plan, MissionFailed> {
+    replan_mission_keeping_reporting(pipeline, options, state, None)
 }
 
 /// [`replan_mission`] with paths kept between missions (as
-/// [`plan_mission_keeping`]).
+/// [`plan_mission_keeping`](crate::run::plan_mission_keeping)).
 pub(crate) fn replan_mission_keeping(
     pipeline: &mut Pipeline,
     options: PlanOptions,
     state: &MissionState,
     answers: Option<&mut KnownAnswers>,
 ) -> Result<Plan> {
-    let original = pipeline.given_mission.clone().ok_or(Error::MissingStage {
-        stage: "replan".into(),
-        needed: "world",
-    })?;
+    replan_mission_keeping_reporting(pipeline, options, state, answers)
+        .map_err(|failed| failed.error)
+}
+
+/// [`replan_mission_keeping`] that, when it fails, also says what the run did up to then.
+fn replan_mission_keeping_reporting(
+    pipeline: &mut Pipeline,
+    options: PlanOptions,
+    state: &MissionState,
+    answers: Option<&mut KnownAnswers>,
+) -> std::result::Result<Plan, MissionFailed> {
+    let before_planning = |error| MissionFailed {
+        error,
+        stats: Box::default(),
+    };
+    let original = pipeline
+        .given_mission
+        .clone()
+        .ok_or(Error::MissingStage {
+            stage: "replan".into(),
+            needed: "world",
+        })
+        .map_err(before_planning)?;
     let (targets, skipped, dropped) = remaining_targets(pipeline, &original, state);
     if targets.is_empty() {
-        return Err(Error::stage("replan", NoTargetLeft { skipped }));
+        return Err(before_planning(Error::stage(
+            "replan",
+            NoTargetLeft { skipped },
+        )));
     }
     let mission = replan_mission_of(&original, state, targets);
-    check_endpoints(pipeline, &mission, "mission state")?;
+    check_endpoints(pipeline, &mission, "mission state").map_err(before_planning)?;
     pipeline.mission = Some(mission);
     pipeline.dropped_pois = dropped;
-    let mut plan = plan_mission_keeping(pipeline, options, answers)?;
+    let mut plan = plan_mission_keeping_reporting(pipeline, options, answers)?;
     let mut skipped_all = skipped.clone();
     skipped_all.extend(plan.skipped.iter().map(|id| SkippedTarget {
         target: id.clone(),
         reason: "unreachable".into(),
     }));
     if plan.sequence.is_empty() {
-        return Err(Error::stage(
-            "replan",
-            NoTargetLeft {
-                skipped: skipped_all,
-            },
-        ));
+        return Err(MissionFailed {
+            error: Error::stage(
+                "replan",
+                NoTargetLeft {
+                    skipped: skipped_all,
+                },
+            ),
+            stats: Box::new(plan.stats),
+        });
     }
     let mut ids: Vec<String> = skipped.into_iter().map(|s| s.target).collect();
     ids.append(&mut plan.skipped);

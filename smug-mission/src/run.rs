@@ -230,7 +230,7 @@ pub(crate) fn plan_mission_keeping(
 }
 
 /// [`plan_mission_keeping`] that, when it fails, also says what the run did up to then.
-fn plan_mission_keeping_reporting(
+pub(crate) fn plan_mission_keeping_reporting(
     pipeline: &mut Pipeline,
     options: PlanOptions,
     answers: Option<&mut KnownAnswers>,
