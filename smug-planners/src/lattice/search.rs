@@ -4,8 +4,8 @@
 
 use super::buffers::{Node, Searcher};
 use super::caches::ShotTable;
+use super::queue::BucketQueue;
 use super::Shared;
-use dary_heap::OctonaryHeap as BinaryHeap;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::cmp::Ordering;
 use std::sync::Arc;
@@ -13,6 +13,9 @@ use std::time::Instant;
 
 /// The start's node id (lattice poses are `0..len`).
 pub(super) const START: u32 = u32::MAX;
+
+/// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
+const QUEUE_BUCKET_CELLS: f64 = 0.25;
 
 /// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,6 +30,10 @@ pub(super) enum Item {
         prim: u16,
         reverse: bool,
         verified: bool,
+        /// The heuristic's focus ([`Run::focus`]) the entry's key was computed with
+        /// (not part of the order: a key computed with an older focus is computed
+        /// again when popped, see [`Worker::refocus`]).
+        focus: u32,
     },
     Shot {
         from: u32,
@@ -105,7 +112,7 @@ pub(super) enum End {
 
 /// A search in progress.
 pub(super) struct Run {
-    pub(super) heap: BinaryHeap<Entry>,
+    pub(super) heap: BucketQueue,
     pub(super) goals: Vec<Goal>,
     /// Goals neither settled nor proved unreachable.
     open_goals: usize,
@@ -114,6 +121,8 @@ pub(super) struct Run {
     pub(super) aimed: Vec<Pose2>,
     /// The start's curves onto the lattice (taken when the start is expanded).
     joins: Vec<(u32, f64, bool)>,
+    /// How many times the heuristic was re-aimed (the focus of the keys computed now).
+    pub(super) focus: u32,
 }
 
 impl Run {
@@ -265,12 +274,13 @@ impl Worker<'_> {
         let open_goals = goals.len();
         let joins = self.start_successors(start);
         let mut run = Run {
-            heap: BinaryHeap::new(),
+            heap: BucketQueue::new(self.sh.lattice.cell * QUEUE_BUCKET_CELLS),
             goals,
             open_goals,
             h2d: None,
             aimed: Vec::new(),
             joins,
+            focus: 0,
         };
         self.apply_kept_proofs(start, &mut run);
         if run.open_goals == 0 {
@@ -286,6 +296,7 @@ impl Worker<'_> {
                 prim: 0,
                 reverse: false,
                 verified: true,
+                focus: 0,
             },
         );
         let started = Instant::now();
@@ -314,7 +325,11 @@ impl Worker<'_> {
                     prim,
                     reverse,
                     verified,
+                    focus,
                 } => {
+                    if focus != run.focus && self.rekeyed(&mut run, entry) {
+                        continue;
+                    }
                     if !verified && !self.verify(id, parent, prim) {
                         continue;
                     }
@@ -531,6 +546,7 @@ impl Worker<'_> {
                 prim,
                 reverse,
                 verified,
+                focus: run.focus,
             },
         );
     }
