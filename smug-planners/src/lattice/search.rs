@@ -15,7 +15,7 @@ use std::time::Instant;
 pub(super) const START: u32 = u32::MAX;
 
 /// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
-const QUEUE_BUCKET_CELLS: f64 = 0.25;
+const QUEUE_BUCKET_CELLS: f64 = 1.0 / 32.0;
 
 /// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
 #[derive(Clone, Copy, Debug, PartialEq)]
