@@ -1,7 +1,8 @@
 //! Focusing a one-to-many search: as goals settle, its heuristic is re-aimed at the
 //! goals left and its queue re-keyed, so it stops expanding towards settled goals.
 
-use super::search::{Entry, Item, Run, Worker};
+use super::queue::{Entry, Item};
+use super::search::{Run, Worker};
 
 /// A search with goals left re-aims its heuristic at them whenever at most this
 /// many are left (and whenever half of those aimed at are settled).

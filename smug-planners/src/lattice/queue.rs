@@ -10,8 +10,81 @@
 //! bucket: the lowest non-empty bucket holds the queue's least entry, and the pops are
 //! the same as one heap's, ties included.
 
-use super::search::Entry;
 use dary_heap::OctonaryHeap as Heap;
+use std::cmp::Ordering;
+
+/// What the queue holds: a lattice pose (or the start) to expand, or a shot to a goal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Item {
+    /// A lattice pose (or the start) reached from `parent` at cost `g` by primitive
+    /// `prim` of the parent's heading, whose validity is checked when popped unless
+    /// `verified`.
+    Node {
+        id: u32,
+        parent: u32,
+        g: f64,
+        prim: u16,
+        reverse: bool,
+        verified: bool,
+        /// The heuristic's focus (`Run::focus`) the entry's key was computed with
+        /// (not part of the order: a key computed with an older focus is computed
+        /// again when popped, see `Worker::refocus`).
+        focus: u32,
+    },
+    Shot {
+        from: u32,
+        goal: u32,
+        costed: bool,
+    },
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Entry {
+    pub(super) key: f64,
+    pub(super) item: Item,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Entry {
+    // A min-heap on the key, ties broken by the item: a total order, so the order of
+    // pops does not depend on which other entries were pushed (whether a motion's
+    // validity was already known, learnt by a search on another thread, changes what
+    // is pushed, never what is popped first).
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .key
+            .total_cmp(&self.key)
+            .then_with(|| other.item.rank().cmp(&self.item.rank()))
+    }
+}
+
+impl Item {
+    /// The tie-break of equal keys: shots before nodes (a goal settled ends a search
+    /// sooner), then by ids, cost and motion.
+    fn rank(&self) -> (u8, u32, u32, u64, u16, bool) {
+        match *self {
+            Item::Node {
+                id,
+                parent,
+                g,
+                prim,
+                reverse,
+                ..
+            } => (1, id, parent, g.to_bits(), prim, reverse),
+            Item::Shot { from, goal, costed } => (0, goal, from, 0, 0, costed),
+        }
+    }
+}
 
 /// The bucket index keys at or above `LAST_BUCKET · width` share.
 const LAST_BUCKET: usize = 1 << 16;
@@ -104,7 +177,6 @@ impl BucketQueue {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lattice::search::Item;
     use proptest::prelude::*;
 
     fn entry(key: f64, id: u32, shot: bool) -> Entry {
@@ -112,7 +184,7 @@ mod tests {
             Item::Shot {
                 from: id,
                 goal: id % 3,
-                costed: id % 2 == 0,
+                costed: id.is_multiple_of(2),
             }
         } else {
             Item::Node {
@@ -151,7 +223,7 @@ mod tests {
         fn pops_as_a_heap_does(ops in ops(), width in 0.01f64..2.0) {
             let mut queue = BucketQueue::new(width);
             let mut heap = Heap::new();
-            for (step, op) in ops.iter().enumerate() {
+            for op in &ops {
                 match *op {
                     Some((key, id, shot)) => {
                         queue.push(entry(key, id, shot));

@@ -4,10 +4,9 @@
 
 use super::buffers::{Node, Searcher};
 use super::caches::ShotTable;
-use super::queue::BucketQueue;
+use super::queue::{BucketQueue, Entry, Item};
 use super::Shared;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
-use std::cmp::Ordering;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -16,79 +15,6 @@ pub(super) const START: u32 = u32::MAX;
 
 /// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
 const QUEUE_BUCKET_CELLS: f64 = 1.0 / 32.0;
-
-/// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Item {
-    /// A lattice pose (or the start) reached from `parent` at cost `g` by primitive
-    /// `prim` of the parent's heading, whose validity is checked when popped unless
-    /// `verified`.
-    Node {
-        id: u32,
-        parent: u32,
-        g: f64,
-        prim: u16,
-        reverse: bool,
-        verified: bool,
-        /// The heuristic's focus ([`Run::focus`]) the entry's key was computed with
-        /// (not part of the order: a key computed with an older focus is computed
-        /// again when popped, see [`Worker::refocus`]).
-        focus: u32,
-    },
-    Shot {
-        from: u32,
-        goal: u32,
-        costed: bool,
-    },
-}
-
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Entry {
-    pub(super) key: f64,
-    pub(super) item: Item,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    // A min-heap on the key, ties broken by the item: a total order, so the order of
-    // pops does not depend on which other entries were pushed (whether a motion's
-    // validity was already known, learnt by a search on another thread, changes what
-    // is pushed, never what is popped first).
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .key
-            .total_cmp(&self.key)
-            .then_with(|| other.item.rank().cmp(&self.item.rank()))
-    }
-}
-
-impl Item {
-    /// The tie-break of equal keys: shots before nodes (a goal settled ends a search
-    /// sooner), then by ids, cost and motion.
-    fn rank(&self) -> (u8, u32, u32, u64, u16, bool) {
-        match *self {
-            Item::Node {
-                id,
-                parent,
-                g,
-                prim,
-                reverse,
-                ..
-            } => (1, id, parent, g.to_bits(), prim, reverse),
-            Item::Shot { from, goal, costed } => (0, goal, from, 0, 0, costed),
-        }
-    }
-}
 
 /// One goal of a search.
 pub(super) struct Goal {
