@@ -1,8 +1,8 @@
 //! Focusing a one-to-many search: as goals settle, its heuristic is re-aimed at the
 //! goals left and its queue re-keyed, so it stops expanding towards settled goals.
 
-use super::search::{Entry, Item, Run, Worker};
-use dary_heap::OctonaryHeap as BinaryHeap;
+use super::queue::{Entry, Item};
+use super::search::{Run, Worker};
 
 /// A search with goals left re-aims its heuristic at them whenever at most this
 /// many are left (and whenever half of those aimed at are settled).
@@ -33,33 +33,41 @@ impl Worker<'_> {
         left < run.aimed.len() && (left <= REFOCUS_BELOW || 2 * left <= run.aimed.len())
     }
 
-    /// Once a goal is settled, aims the heuristic at the goals left and re-keys the
-    /// queue with it (the search would otherwise keep expanding towards settled
-    /// goals). The new heuristic is consistent too, so every pose still closes at its
-    /// optimal cost; shots to settled goals and poses that reach no goal left go.
+    /// Once a goal is settled, aims the heuristic at the goals left (the search would
+    /// otherwise keep expanding towards settled goals). The queue is re-keyed lazily:
+    /// an entry keyed with an older focus gets its key again when popped
+    /// ([`Self::rekeyed`]). The new heuristic is consistent too, so every pose still
+    /// closes at its optimal cost.
     pub(super) fn refocus(&mut self, run: &mut Run) {
         self.aim(run);
-        let entries = std::mem::take(&mut run.heap).into_vec();
-        let weight = self.sh.params.heuristic_weight;
-        let mut kept = Vec::with_capacity(entries.len());
-        for entry in entries {
-            match entry.item {
-                Item::Node { id, g, .. } => {
-                    let h = self.heuristic(id, &run.aimed, run.h2d.as_deref());
-                    if h.is_finite() {
-                        kept.push(Entry {
-                            key: g + weight * h,
-                            item: entry.item,
-                        });
-                    }
-                }
-                Item::Shot { goal, .. } => {
-                    if run.goals[goal as usize].reached.is_none() {
-                        kept.push(entry);
-                    }
-                }
-            }
+        run.focus = run.focus.wrapping_add(1);
+    }
+
+    /// A popped node entry keyed with an older focus: true when it is done with
+    /// (dropped, as no goal left is reachable from it, or queued again at its key under
+    /// the current focus), false when its key stands (then it pops now, as it would
+    /// from a queue re-keyed at once). The heuristic aims at fewer goals each time, so
+    /// keys only grow: an entry pops at its current key after every entry whose
+    /// current key is below it, ties in the same order, as from a queue re-keyed at
+    /// every refocus.
+    pub(super) fn rekeyed(&mut self, run: &mut Run, entry: Entry) -> bool {
+        let Item::Node { id, g, .. } = entry.item else {
+            return false;
+        };
+        let h = self.heuristic(id, &run.aimed, run.h2d.as_deref());
+        if h.is_infinite() {
+            return true;
         }
-        run.heap = BinaryHeap::from(kept);
+        let key = g + self.sh.params.heuristic_weight * h;
+        debug_assert!(key >= entry.key, "a refocused key never falls");
+        let mut item = entry.item;
+        if let Item::Node { focus, .. } = &mut item {
+            *focus = run.focus;
+        }
+        if key == entry.key {
+            return false;
+        }
+        run.heap.push(Entry { key, item });
+        true
     }
 }

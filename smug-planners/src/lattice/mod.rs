@@ -28,6 +28,7 @@ mod focus;
 mod heuristic;
 mod primitives;
 mod prove;
+mod queue;
 mod search;
 mod shots;
 #[cfg(test)]

@@ -4,84 +4,17 @@
 
 use super::buffers::{Node, Searcher};
 use super::caches::ShotTable;
+use super::queue::{BucketQueue, Entry, Item};
 use super::Shared;
-use dary_heap::OctonaryHeap as BinaryHeap;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
-use std::cmp::Ordering;
 use std::sync::Arc;
 use std::time::Instant;
 
 /// The start's node id (lattice poses are `0..len`).
 pub(super) const START: u32 = u32::MAX;
 
-/// What the heap holds: a lattice pose (or the start) to expand, or a shot to a goal.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Item {
-    /// A lattice pose (or the start) reached from `parent` at cost `g` by primitive
-    /// `prim` of the parent's heading, whose validity is checked when popped unless
-    /// `verified`.
-    Node {
-        id: u32,
-        parent: u32,
-        g: f64,
-        prim: u16,
-        reverse: bool,
-        verified: bool,
-    },
-    Shot {
-        from: u32,
-        goal: u32,
-        costed: bool,
-    },
-}
-
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Entry {
-    pub(super) key: f64,
-    pub(super) item: Item,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    // A min-heap on the key, ties broken by the item: a total order, so the order of
-    // pops does not depend on which other entries were pushed (whether a motion's
-    // validity was already known, learnt by a search on another thread, changes what
-    // is pushed, never what is popped first).
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .key
-            .total_cmp(&self.key)
-            .then_with(|| other.item.rank().cmp(&self.item.rank()))
-    }
-}
-
-impl Item {
-    /// The tie-break of equal keys: shots before nodes (a goal settled ends a search
-    /// sooner), then by ids, cost and motion.
-    fn rank(&self) -> (u8, u32, u32, u64, u16, bool) {
-        match *self {
-            Item::Node {
-                id,
-                parent,
-                g,
-                prim,
-                reverse,
-                ..
-            } => (1, id, parent, g.to_bits(), prim, reverse),
-            Item::Shot { from, goal, costed } => (0, goal, from, 0, 0, costed),
-        }
-    }
-}
+/// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
+const QUEUE_BUCKET_CELLS: f64 = 1.0 / 32.0;
 
 /// One goal of a search.
 pub(super) struct Goal {
@@ -105,7 +38,7 @@ pub(super) enum End {
 
 /// A search in progress.
 pub(super) struct Run {
-    pub(super) heap: BinaryHeap<Entry>,
+    pub(super) heap: BucketQueue,
     pub(super) goals: Vec<Goal>,
     /// Goals neither settled nor proved unreachable.
     open_goals: usize,
@@ -114,6 +47,8 @@ pub(super) struct Run {
     pub(super) aimed: Vec<Pose2>,
     /// The start's curves onto the lattice (taken when the start is expanded).
     joins: Vec<(u32, f64, bool)>,
+    /// How many times the heuristic was re-aimed (the focus of the keys computed now).
+    pub(super) focus: u32,
 }
 
 impl Run {
@@ -265,12 +200,13 @@ impl Worker<'_> {
         let open_goals = goals.len();
         let joins = self.start_successors(start);
         let mut run = Run {
-            heap: BinaryHeap::new(),
+            heap: BucketQueue::new(self.sh.lattice.cell * QUEUE_BUCKET_CELLS),
             goals,
             open_goals,
             h2d: None,
             aimed: Vec::new(),
             joins,
+            focus: 0,
         };
         self.apply_kept_proofs(start, &mut run);
         if run.open_goals == 0 {
@@ -286,6 +222,7 @@ impl Worker<'_> {
                 prim: 0,
                 reverse: false,
                 verified: true,
+                focus: 0,
             },
         );
         let started = Instant::now();
@@ -314,7 +251,11 @@ impl Worker<'_> {
                     prim,
                     reverse,
                     verified,
+                    focus,
                 } => {
+                    if focus != run.focus && self.rekeyed(&mut run, entry) {
+                        continue;
+                    }
                     if !verified && !self.verify(id, parent, prim) {
                         continue;
                     }
@@ -531,6 +472,7 @@ impl Worker<'_> {
                 prim,
                 reverse,
                 verified,
+                focus: run.focus,
             },
         );
     }
