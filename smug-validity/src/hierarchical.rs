@@ -3,6 +3,7 @@
 //! volumetric box check only in between.
 
 use crate::robot_box::RobotBox;
+use crate::verdicts::ThresholdVerdicts;
 use crate::volumetric::{shared_volumes, VolumetricChecker, VolumetricParams};
 use serde::{Deserialize, Serialize};
 use smug_core::Counter;
@@ -36,10 +37,9 @@ impl Default for HierarchicalParams {
 
 /// Traversability first, the volumetric check where traversability is unsure.
 pub struct HierarchicalChecker {
-    traversability: GridLayer,
+    /// The thresholds' verdict per cell of the traversability layer.
+    verdicts: ThresholdVerdicts,
     volumetric: VolumetricChecker,
-    t_low: f64,
-    t_high: f64,
     checks: Counter,
     decided_by_traversability: Counter,
 }
@@ -47,7 +47,7 @@ pub struct HierarchicalChecker {
 impl HierarchicalChecker {
     /// A checker over `traversability` with `volumetric` for the unsure band.
     pub fn new(
-        traversability: GridLayer,
+        traversability: &GridLayer,
         volumetric: VolumetricChecker,
         t_low: f64,
         t_high: f64,
@@ -59,10 +59,8 @@ impl HierarchicalChecker {
             ));
         }
         Ok(Self {
-            traversability,
+            verdicts: ThresholdVerdicts::new(traversability, t_low, t_high),
             volumetric,
-            t_low,
-            t_high,
             checks: Counter::new(),
             decided_by_traversability: Counter::new(),
         })
@@ -70,12 +68,7 @@ impl HierarchicalChecker {
 
     /// The decision traversability alone makes, if any.
     fn traversability_verdict(&self, state: &Pose2) -> Option<bool> {
-        match self.traversability.nearest(state.x, state.y) {
-            None => Some(false),
-            Some(t) if t < self.t_low => Some(false),
-            Some(t) if t > self.t_high => Some(true),
-            Some(_) => None,
-        }
+        self.verdicts.verdict(state.x, state.y)
     }
 }
 
@@ -111,7 +104,7 @@ fn build_hierarchical(
     ctx: &BuildContext,
 ) -> Result<HierarchicalChecker, Error> {
     let world = ctx.world()?;
-    let traversability = world.traversability.clone().ok_or_else(|| {
+    let traversability = world.traversability.as_ref().ok_or_else(|| {
         Error::invalid_param(
             "validity",
             "the hierarchical checker needs a traversability layer: add a [traversability] section \
@@ -121,7 +114,7 @@ fn build_hierarchical(
     let robot = RobotBox::from_robot(ctx.robot());
     let volumes = shared_volumes(ctx, &robot)?;
     let volumetric = VolumetricChecker::with_shared_volumes(
-        world,
+        world.clone(),
         volumes.clone(),
         robot,
         VolumetricParams {

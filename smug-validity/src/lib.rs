@@ -22,6 +22,7 @@ pub mod hierarchical;
 #[cfg(feature = "onnx")]
 pub mod onnx;
 pub mod robot_box;
+pub mod verdicts;
 pub mod volumes;
 mod volumes_update;
 pub mod volumetric;

@@ -176,11 +176,13 @@ impl MemoEvaluator for MemoChecks<'_> {
 
     fn edge(&mut self, map: &Roadmap, e: u32) -> bool {
         let tally = self.tally;
-        let edge = *map.edge(e);
         self.memo.edge(
             map,
             e,
             || {
+                // The edge's ends are read only when it is checked: known edges are
+                // answered from the roadmap's compact validity copy.
+                let edge = *map.edge(e);
                 timed_into(&tally.edge_nanoseconds, || {
                     self.motions
                         .is_valid_motion(map.pose(edge.a), map.pose(edge.b))

@@ -65,7 +65,7 @@ impl CheckMemo {
         counted: impl FnOnce(),
     ) -> bool {
         known_or_checked(
-            map.edge(e).validity,
+            map.edge_validity(e),
             &self.edges[e as usize],
             check,
             counted,

@@ -59,6 +59,10 @@ pub struct Roadmap {
     /// without touching the edge array).
     adjacent_costs: Vec<Vec<f64>>,
     edges: Vec<Edge>,
+    /// Each edge's validity as in `edges`, one byte per edge: the searches read it for
+    /// every neighbour they consider, and the edge array (24 bytes per edge) does not
+    /// stay in the cache on big roadmaps.
+    edge_validity: Vec<Validity>,
     grid: XyGrid,
     by_pose: HashMap<[u64; 3], u32>,
     components: UnionFind,
@@ -85,6 +89,7 @@ impl Roadmap {
             range: f64::INFINITY,
             adjacent_costs: Vec::new(),
             edges: Vec::new(),
+            edge_validity: Vec::new(),
             grid: XyGrid::new(bounds, (w.max(h) / 8.0).max(1e-3)),
             by_pose: HashMap::new(),
             components: UnionFind::default(),
@@ -146,7 +151,24 @@ impl Roadmap {
 
     /// Records that edge `e` was checked valid.
     pub fn mark_edge_valid(&mut self, e: u32) {
-        self.edges[e as usize].validity = Validity::Valid;
+        self.set_edge_validity(e, Validity::Valid);
+    }
+
+    /// True when edge `e` is known valid (as `edge(e).validity == Valid`, from a
+    /// compact copy).
+    pub fn edge_known_valid(&self, e: u32) -> bool {
+        self.edge_validity[e as usize] == Validity::Valid
+    }
+
+    /// What is known about edge `e` (as `edge(e).validity`, from a compact copy).
+    pub fn edge_validity(&self, e: u32) -> Validity {
+        self.edge_validity[e as usize]
+    }
+
+    /// Sets what is known about edge `e` (in the edge and its compact copy).
+    fn set_edge_validity(&mut self, e: u32, validity: Validity) {
+        self.edges[e as usize].validity = validity;
+        self.edge_validity[e as usize] = validity;
     }
 
     /// The vertex at exactly `pose`, if there is one.
@@ -209,6 +231,7 @@ impl Roadmap {
             cost,
             validity: Validity::Unknown,
         });
+        self.edge_validity.push(Validity::Unknown);
         self.adjacency[a as usize].push((b, e));
         self.adjacent_costs[a as usize].push(cost);
         self.incoming[b as usize].push(e);
@@ -225,6 +248,7 @@ impl Roadmap {
             cost: there,
             validity: Validity::Unknown,
         });
+        self.edge_validity.push(Validity::Unknown);
         self.adjacency[a as usize].push((b, e));
         self.adjacency[b as usize].push((a, e));
         self.adjacent_costs[a as usize].push(there);
@@ -235,11 +259,11 @@ impl Roadmap {
 
     /// Removes edge `e` (found invalid).
     pub fn remove_edge(&mut self, e: u32) {
-        let edge = &mut self.edges[e as usize];
+        let edge = self.edges[e as usize];
         if edge.validity == Validity::Invalid {
             return;
         }
-        edge.validity = Validity::Invalid;
+        self.set_edge_validity(e, Validity::Invalid);
         let (a, b) = (edge.a, edge.b);
         for v in [a, b] {
             let list = &mut self.adjacency[v as usize];

@@ -144,7 +144,7 @@ impl Roadmap {
             if edge.status == CheckStatus::Invalid || dead_end {
                 self.remove_edge(e);
             } else {
-                self.edges[e as usize].validity = validity(edge.status);
+                self.set_edge_validity(e, validity(edge.status));
             }
         }
         self.refresh_components();
@@ -154,9 +154,8 @@ impl Roadmap {
     /// Marks edge `e` unchecked again (the world changed near it); removed edges stay
     /// removed (obstacles only ever get added).
     pub fn mark_edge_unknown(&mut self, e: u32) {
-        let edge = &mut self.edges[e as usize];
-        if edge.validity == Validity::Valid {
-            edge.validity = Validity::Unknown;
+        if self.edges[e as usize].validity == Validity::Valid {
+            self.set_edge_validity(e, Validity::Unknown);
         }
     }
 

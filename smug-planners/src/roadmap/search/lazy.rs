@@ -79,7 +79,7 @@ impl AStar {
             let Some(h) = self.admit(map, w, candidate, target, marks, rule) else {
                 continue;
             };
-            if map.edge(e).validity == Validity::Valid {
+            if map.edge_known_valid(e) {
                 let record = &mut self.records[w as usize];
                 (record.mark, record.g) = (marks.open, candidate);
             }

@@ -4,7 +4,7 @@
 //! searches from many sources can run side by side.
 
 use super::records::{Marks, Reached, VertexRecord, NO_PARENT};
-use super::{AStar, GraphPath, Roadmap, Validity};
+use super::{AStar, GraphPath, Roadmap};
 use crate::nn::from_total_order_key;
 use crate::roadmap::memo::MemoEvaluator;
 
@@ -59,7 +59,7 @@ impl AStar {
                 if record.mark == marks.open && candidate >= record.g {
                     continue;
                 }
-                if map.edge(e).validity == Validity::Valid {
+                if map.edge_known_valid(e) {
                     (record.mark, record.g) = (marks.open, candidate);
                 }
                 open.push(Reached::new(candidate, w, (v, e)));
@@ -144,6 +144,10 @@ mod tests {
             let found = AStar::default().search_many_lazy(&map, 0, &goals, &mut marked);
             marked.memo.apply(&mut map);
             prop_assert_eq!(found.len(), goals.len());
+            // The compact copy of the edges' validity follows the edges.
+            for e in 0..map.edge_count() as u32 {
+                prop_assert_eq!(map.edge_validity(e), map.edge(e).validity);
+            }
             // No edge is checked twice (validity is cached on the roadmap).
             let distinct: BTreeSet<u32> = marked.checked.iter().copied().collect();
             prop_assert_eq!(distinct.len(), marked.checked.len());
