@@ -144,7 +144,6 @@ impl LazyPrmStar {
             best = self.attempt(s, g, f64::INFINITY, 0);
         }
         if best.is_none() {
-            self.cut_off_pocket(s, g);
             self.last_budget = if deadline.passed() {
                 Budget::Deadline
             } else if self
@@ -156,6 +155,10 @@ impl LazyPrmStar {
             } else {
                 Budget::Samples
             };
+            // A passed deadline ends every query alike: it says nothing of a pocket.
+            if self.last_budget != Budget::Deadline {
+                self.cut_off_pocket(s, g);
+            }
         }
         best
     }
