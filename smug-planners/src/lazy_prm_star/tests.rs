@@ -111,6 +111,26 @@ fn a_spent_time_budget_is_named_as_such() {
 }
 
 #[test]
+fn a_query_the_deadline_ends_cuts_off_no_pocket() {
+    let mut p = ring_planner(false);
+    let free = p.plan(&Pose2::new(1.0, 9.0, 0.0), &Pose2::new(1.0, 1.0, 0.0));
+    assert!(
+        free.unwrap().exact_path().is_some(),
+        "a roadmap outside the ring"
+    );
+    p.deadline = Deadline::after(0.0);
+    let cut = p.plan(&Pose2::new(1.0, 1.0, 0.0), &Pose2::new(8.0, 8.0, 0.0));
+    assert_eq!(
+        cut.unwrap(),
+        PlannerOutcome::NoPath(NoPathReason::BudgetSpent(Budget::Deadline))
+    );
+    assert!(
+        p.cut_off.is_empty(),
+        "the deadline says nothing of a pocket"
+    );
+}
+
+#[test]
 fn an_endpoint_in_a_pocket_is_cut_off_after_one_failed_budget() {
     let pocket = Pose2::new(8.0, 8.0, 0.0);
     let mut p = ring_planner(false);
