@@ -295,6 +295,12 @@ fn plan_writes_json_csv_and_svg() {
             "{file} missing or empty"
         );
     }
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(written["status"], "planned");
+    assert!(written["sequence"]
+        .as_array()
+        .is_some_and(|s| !s.is_empty()));
     let json = smug(&[
         "plan",
         "configs/flat-demo.toml",
@@ -303,6 +309,7 @@ fn plan_writes_json_csv_and_svg() {
         "--json",
     ]);
     let plan: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert_eq!(plan["status"], "planned");
     for key in ["sequence", "pois", "segments", "waypoints", "cost", "stats"] {
         assert!(plan.get(key).is_some(), "plan.json lacks `{key}`");
     }
@@ -325,6 +332,18 @@ fn an_unreachable_target_exits_with_1_and_is_named() {
     let err = stderr(&run);
     assert_eq!(run.status.code(), Some(1), "{err}");
     assert!(err.contains("`valve-c`"), "{err}");
+    // plan.json names the target and how the legs to it ended.
+    let text = std::fs::read_to_string(workspace().join("target/cli-test-walled/plan.json"));
+    let plan: serde_json::Value = serde_json::from_str(&text.unwrap()).unwrap();
+    assert_eq!(plan["status"], "no_plan");
+    assert_eq!(plan["cause"], "unreachable");
+    assert!(plan["reason"].as_str().unwrap().contains("`valve-c`"));
+    let target = &plan["unreachable"][0];
+    assert_eq!(target["kind"], "target");
+    assert_eq!(target["target"], "valve-c");
+    assert_eq!(target["no_path"], "budget_spent", "{target}");
+    assert!(!target["legs"].as_object().unwrap().is_empty(), "{target}");
+    assert!(plan["stats"]["paths_planned"].as_u64().unwrap() > 0);
     let skip = smug(&[
         "plan",
         &config,

@@ -229,7 +229,9 @@ fn a_dubins_car_on_lunar_ends_in_seconds_naming_the_end_pose_it_cannot_enter() {
     // early probe proves it from every PoI and names the end pose, without searching
     // the map (it used to run for minutes with LazyPRM*, saying nothing; then it named
     // every stone, each PoI "a dead end").
-    let out_dir = workspace().join("target/cli-test-robots/dubins-lunar");
+    let out_dir = scratch_dir("cli-test-robots", "dubins-lunar");
+    // A plan from before in the directory: its drawings must not outlive it.
+    std::fs::write(out_dir.join("plan.csv"), "x,y,z,yaw\n").unwrap();
     let started = std::time::Instant::now();
     let run = smug(&[
         "plan",
@@ -250,4 +252,27 @@ fn a_dubins_car_on_lunar_ends_in_seconds_naming_the_end_pose_it_cannot_enter() {
     );
     assert!(err.contains("proved"), "{err}");
     assert!(seconds < 60.0, "{seconds} s");
+    // plan.json says there is no plan, why, and what the run did; nothing is drawn.
+    let plan: Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("plan.json")).unwrap()).unwrap();
+    assert_eq!(plan["status"], "no_plan");
+    assert_eq!(plan["cause"], "cut_off");
+    let reason = plan["reason"].as_str().unwrap();
+    assert!(
+        !reason.is_empty() && err.contains(reason),
+        "{reason} / {err}"
+    );
+    let end = &plan["unreachable"][0];
+    assert_eq!(end["kind"], "end");
+    assert_eq!(end["no_path"], "proved");
+    assert_eq!(end["why"], "exhausted");
+    assert_eq!(end["pose"].as_array().unwrap().len(), 3);
+    assert!(plan["stats"]["validity_queries"].as_u64().unwrap() > 0);
+    assert!(plan["stats"]["stage_times_s"]["total"].as_f64().unwrap() > 0.0);
+    for file in ["plan.csv", "plan.svg", "plan.mcap"] {
+        assert!(
+            !out_dir.join(file).exists(),
+            "{file} written without a plan"
+        );
+    }
 }
