@@ -161,20 +161,10 @@ fn shared(legs: &BTreeMap<String, u64>, part: usize) -> Option<&'static str> {
     if !parts.all(|p| p == Some(first)) {
         return None;
     }
-    [
-        "proved",
-        "budget_spent",
-        "disconnected",
-        "exhausted",
-        "samples",
-        "time",
-        "deadline",
-        "expansions",
-        "earlier_query",
-        "unspecified",
-    ]
-    .into_iter()
-    .find(|name| *name == first)
+    NoPathReason::ALL
+        .iter()
+        .flat_map(|reason| [reason.kind(), reason.why()])
+        .find(|name| *name == first)
 }
 
 /// A target item without reasons.

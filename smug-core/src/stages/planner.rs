@@ -99,6 +99,19 @@ pub enum Budget {
 }
 
 impl NoPathReason {
+    /// Every reason (the names [`kind`](Self::kind) and [`why`](Self::why) give are
+    /// theirs).
+    pub const ALL: [NoPathReason; 8] = [
+        NoPathReason::Proved(Proof::Disconnected),
+        NoPathReason::Proved(Proof::Exhausted),
+        NoPathReason::BudgetSpent(Budget::Samples),
+        NoPathReason::BudgetSpent(Budget::Time),
+        NoPathReason::BudgetSpent(Budget::Deadline),
+        NoPathReason::BudgetSpent(Budget::EarlierQuery),
+        NoPathReason::BudgetSpent(Budget::Expansions),
+        NoPathReason::BudgetSpent(Budget::Unspecified),
+    ];
+
     /// True when no path exists (proved), false when the budget ran out.
     pub fn is_proved(&self) -> bool {
         matches!(self, NoPathReason::Proved(_))
