@@ -216,10 +216,8 @@ impl LazyPrmStar {
         {
             return false;
         }
-        let cut_off: Vec<u32> = self.cut_off.iter().copied().collect();
-        cut_off
-            .into_iter()
-            .any(|c| self.roadmap.maybe_connected(c, v))
+        let roadmap = &mut self.roadmap;
+        self.cut_off.iter().any(|&c| roadmap.maybe_connected(c, v))
     }
 
     /// After a failed query: cuts off the endpoint whose component is the smaller one
