@@ -363,6 +363,22 @@ fn an_unreachable_target_exits_with_1_and_is_named() {
         "{}",
         stdout(&skip)
     );
+    // With the full matrix the start's row is planned first and already tells: the
+    // mission ends after its three legs, not after every row and the selection.
+    let full = smug(&[
+        "plan",
+        &config,
+        "--out",
+        "target/cli-test-walled",
+        "--set",
+        "plan.sequencing_costs=\"full\"",
+    ]);
+    assert_eq!(full.status.code(), Some(1), "{}", stderr(&full));
+    assert!(stderr(&full).contains("`valve-c`"), "{}", stderr(&full));
+    let text = std::fs::read_to_string(workspace().join("target/cli-test-walled/plan.json"));
+    let plan: serde_json::Value = serde_json::from_str(&text.unwrap()).unwrap();
+    assert_eq!(plan["unreachable"][0]["target"], "valve-c");
+    assert_eq!(plan["stats"]["paths_planned"], 3, "{}", plan["stats"]);
 }
 
 #[test]

@@ -27,6 +27,7 @@ mod session;
 mod team;
 #[cfg(test)]
 mod test_support;
+mod unreachable;
 
 pub use fingerprint::{fingerprint, traversability_files};
 pub use oracle::{KnownAnswers, OracleStats, PathOracle, PlannedPath};
@@ -35,7 +36,8 @@ pub use replan::{
     assemble_replan, assemble_replan_fingerprinted, changed_discs, replan_mission,
     replan_mission_reporting, NoTargetLeft, ReplanInfo, SkippedTarget,
 };
-pub use run::{plan_mission, plan_mission_reporting, MissionFailed, Unreachable};
+pub use run::{plan_mission, plan_mission_reporting, MissionFailed};
 pub use session::{MissionSession, WorldUpdate};
 pub use smug_core::mission::{Mission, PlanOptions};
 pub use team::{plan_team, TeamMember, TeamMission};
+pub use unreachable::Unreachable;

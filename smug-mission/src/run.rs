@@ -12,7 +12,8 @@ use crate::layout::{register_poses, Layout};
 use crate::oracle::{KnownAnswers, PathOracle};
 use crate::post_process::{concatenate, waypoints};
 use crate::probe::{end_not_entered, probe_start_and_end};
-use crate::sequential::sequence;
+use crate::sequential::{sequence, unreached_from_start_row};
+use crate::unreachable::{fail_or_skip, unreachable_targets, Unreachable};
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{PlanMode, PlanOptions};
@@ -23,24 +24,6 @@ use smug_core::stages::{Selection, SelectionError, SelectionProblem};
 use smug_core::world::World;
 use std::collections::BTreeMap;
 use std::time::Instant;
-/// Targets that cannot be reached: the plan fails and names them.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("no safe path reaches target(s) {}{}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "), why_suffix(.why))]
-pub struct Unreachable {
-    /// Ids of the unreachable targets.
-    pub targets: Vec<String>,
-    /// Why, where known: one line per PoI left out (target, PoI index, reason).
-    pub why: Vec<String>,
-    /// How the legs from the start to each target's PoIs ended, by `kind:why`
-    /// (`proved:disconnected`, `budget_spent:samples`, …), one map per target in
-    /// `targets`' order; empty where the legs were not what ruled the target out.
-    pub legs: Vec<BTreeMap<String, u64>>,
-}
-
-/// The reasons of an [`Unreachable`], on lines of their own.
-fn why_suffix(why: &[String]) -> String {
-    why.iter().map(|w| format!("\n  {w}")).collect()
-}
 
 /// The target (mission index) a selector found no route through, from its error.
 fn unroutable_target(selected: &Result<Selection>, order: &[usize]) -> Option<usize> {
@@ -51,82 +34,6 @@ fn unroutable_target(selected: &Result<Selection>, order: &[usize]) -> Option<us
         SelectionError::Unreachable { group } => order.get(*group).copied(),
         SelectionError::EndUnreachable => None,
     }
-}
-
-/// Targets none of whose PoIs the start reaches.
-fn unreachable_targets(
-    oracle: &mut PathOracle,
-    layout: &Layout,
-    targets: &[usize],
-) -> Result<Vec<usize>> {
-    let mut unreachable = Vec::new();
-    for &t in targets {
-        let mut reached = false;
-        for &p in &layout.pois[t] {
-            if oracle.cost(layout.start, p)?.is_finite() {
-                reached = true;
-                break;
-            }
-        }
-        if !reached {
-            unreachable.push(t);
-        }
-    }
-    Ok(unreachable)
-}
-
-/// How the legs from the start to the PoIs of each of `targets` ended, by `kind:why`.
-fn start_legs(
-    oracle: &mut PathOracle,
-    layout: &Layout,
-    targets: &[usize],
-) -> Result<Vec<BTreeMap<String, u64>>> {
-    let mut legs = Vec::with_capacity(targets.len());
-    for &t in targets {
-        let mut counts = BTreeMap::new();
-        for &p in &layout.pois[t] {
-            if let Some(reason) = oracle.path(layout.start, p)?.outcome.no_path_reason() {
-                *counts
-                    .entry(format!("{}:{}", reason.kind(), reason.why()))
-                    .or_insert(0) += 1;
-            }
-        }
-        legs.push(counts);
-    }
-    Ok(legs)
-}
-
-/// Why the start reaches no target at all: the start pose and how its legs to the PoIs
-/// ended (the same reason for every leg says the start is enclosed).
-fn enclosed_start(
-    oracle: &mut PathOracle,
-    layout: &Layout,
-    targets: &[usize],
-) -> Result<Vec<String>> {
-    let mut reasons: BTreeMap<String, usize> = Default::default();
-    for &t in targets {
-        for &p in &layout.pois[t] {
-            let planned = oracle.path(layout.start, p)?;
-            let reason = match planned.outcome.no_path_reason() {
-                Some(reason) => reason.to_string(),
-                None => format!("{:?}", planned.outcome),
-            };
-            *reasons.entry(reason).or_default() += 1;
-        }
-    }
-    let start = oracle.pose(layout.start);
-    let legs: Vec<String> = reasons
-        .iter()
-        .map(|(reason, n)| format!("{n} × {reason}"))
-        .collect();
-    Ok(vec![format!(
-        "the start ({:.3}, {:.3}, yaw {:.3}) reaches no PoI of any target: the robot is \
-         enclosed where it starts, or every PoI is cut off from it; its legs: {}",
-        start.x,
-        start.y,
-        start.yaw,
-        legs.join("; ")
-    )])
 }
 
 /// Most pose pairs one sweep of the PoI selection may weigh (a count bound: beyond it a
@@ -379,6 +286,21 @@ fn plan_on_oracle(
         }
     }
     let (order, problem, selection) = loop {
+        if options.mode == PlanMode::Sequential {
+            let unreached = unreached_from_start_row(oracle, mission, &layout, &targets, options)?;
+            if !unreached.is_empty() {
+                fail_or_skip(
+                    oracle,
+                    mission,
+                    &layout,
+                    &mut targets,
+                    &unreached,
+                    options.skip_unreachable,
+                    &mut skipped,
+                )?;
+                continue;
+            }
+        }
         let (order, selected) = match options.mode {
             PlanMode::Sequential => order_then_select(
                 pipeline, oracle, mission, &layout, &targets, options, &mut times,
@@ -437,29 +359,15 @@ fn plan_on_oracle(
                         },
                     ));
                 }
-                let ids: Vec<String> = unreachable
-                    .iter()
-                    .map(|&t| mission.targets[t].id.clone())
-                    .collect();
-                if !options.skip_unreachable {
-                    // Every one of several targets: say where the trouble is likelier.
-                    let why = if targets.len() > 1 && unreachable.len() == targets.len() {
-                        enclosed_start(oracle, &layout, &targets)?
-                    } else {
-                        Vec::new()
-                    };
-                    let legs = start_legs(oracle, &layout, &unreachable)?;
-                    return Err(Error::stage(
-                        "plan",
-                        Unreachable {
-                            targets: ids,
-                            why,
-                            legs,
-                        },
-                    ));
-                }
-                skipped.extend(ids);
-                targets.retain(|t| !unreachable.contains(t));
+                fail_or_skip(
+                    oracle,
+                    mission,
+                    &layout,
+                    &mut targets,
+                    &unreachable,
+                    options.skip_unreachable,
+                    &mut skipped,
+                )?;
                 continue;
             }
         };

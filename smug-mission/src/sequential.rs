@@ -5,9 +5,10 @@ use crate::layout::Layout;
 use crate::lazy::lazy_solve;
 use crate::matrix::full_matrix;
 use crate::oracle::PathOracle;
+use crate::unreachable::unreachable_targets;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
-use smug_core::mission::{Representative, SequencingCosts};
+use smug_core::mission::{PlanOptions, Representative, SequencingCosts};
 use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
 use smug_core::stages::{Sequencer, Tour, TourKind};
@@ -30,6 +31,56 @@ fn representative(
     layout.pois[target][best]
 }
 
+/// The stand-ins of `targets` (indices into the mission) for sequencing, in their order.
+fn representatives(
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    rule: Representative,
+) -> Vec<usize> {
+    targets
+        .iter()
+        .map(|&t| representative(mission, layout, t, rule))
+        .collect()
+}
+
+/// The targets the start cannot reach, found from the full cost matrix's first row
+/// before its other rows are planned: a robot whose start is cut off from some targets
+/// (a car in a room it cannot leave) then fails in the time of one failed leg per
+/// pocket, not after every row has spent its budgets. A planner answering one leg at
+/// a time gets the row's legs in the matrix's own order, so a mission whose start
+/// reaches every stand-in is planned exactly as before; a one-to-many planner plans
+/// the start's row on its own, then the other rows together (the same plans on every
+/// shipped config, measured). Where a stand-in is missed, the target's other PoIs are
+/// asked too: a target is unreachable only when none is reached. Only for `"full"`
+/// costs (lazy costs plan the start's legs the tour uses, first).
+pub(super) fn unreached_from_start_row(
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    options: PlanOptions,
+) -> Result<Vec<usize>> {
+    if fills_lazily(oracle, options.sequencing_costs) {
+        return Ok(Vec::new());
+    }
+    let mut missed = Vec::new();
+    let stand_ins = representatives(mission, layout, targets, options.representative);
+    if oracle.answers_many() {
+        oracle.plan_from(layout.start, &stand_ins)?;
+    }
+    for (&t, &p) in targets.iter().zip(&stand_ins) {
+        let reached = oracle.cost(layout.start, p)?.is_finite();
+        if !oracle.is_symmetric() && !oracle.answers_many() {
+            oracle.cost(p, layout.start)?;
+        }
+        if !reached {
+            missed.push(t);
+        }
+    }
+    unreachable_targets(oracle, layout, &missed)
+}
+
 /// The visiting order of `targets` (indices into the mission). A lazy matrix
 /// (`"lazy"` costs) with `refine_legs` refines the early legs that decide the order
 /// ([`lazy_solve`]'s `settle`).
@@ -50,11 +101,7 @@ pub(super) fn sequence(
     })?;
     let open = mission.end.is_some();
     let mut nodes = vec![layout.start];
-    nodes.extend(
-        targets
-            .iter()
-            .map(|&t| representative(mission, layout, t, rule)),
-    );
+    nodes.extend(representatives(mission, layout, targets, rule));
     if open {
         nodes.push(layout.end);
     }

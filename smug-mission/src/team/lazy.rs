@@ -5,7 +5,7 @@
 //! argument, per robot: a bound never exceeds the cost it stands for).
 
 use super::robots::{Nodes, RobotOracle};
-use crate::run::Unreachable;
+use crate::unreachable::Unreachable;
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::stages::{
