@@ -3,14 +3,16 @@
 //! planner), the targets split among them by the `team_sequencer` stage (`team-auto`
 //! unless the config names another) for the sum of their costs or the makespan.
 
+use crate::no_plan::NoPlan;
 use crate::{AppError, Outcome, Result};
 use smug_core::config::{team_key, PluginSection, TeamConfig, TeamUnit};
 use smug_core::registry::{
     ObjectiveStage, Stage, TeamSequencerStage, TraversabilityStage, WorldStage,
 };
 use smug_core::{LoadedConfig, Mission, Objective, Pipeline, RobotConfig, TeamObjective, TeamPlan};
-use smug_core::{Pose2, TeamSequencer, World};
+use smug_core::{PlanStats, Pose2, TeamSequencer, World};
 use smug_mission::{plan_team, TeamMember, TeamMission};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -161,35 +163,54 @@ pub(crate) fn renumbered(
 }
 
 /// Plans an assembled team for `objectives` (see [`plan_team`]); unreachable or
-/// unservable targets are no solution.
+/// unservable targets are no solution, with the report plan.json gets.
 pub fn plan_assembled(
     mut team: Team,
     objectives: &[TeamObjective],
-) -> Result<Outcome<TeamPlanned>> {
+) -> Result<Outcome<TeamPlanned, NoPlan>> {
+    let started = Instant::now();
     let planned = plan_team(
         &mut team.members,
         &team.mission,
         team.sequencer.as_ref(),
         objectives,
     );
-    Ok(match Outcome::of(planned)? {
-        Outcome::Solved(plans) => Outcome::Solved(TeamPlanned { plans, team }),
-        Outcome::NoSolution { why } => Outcome::NoSolution { why },
-    })
+    match planned {
+        Ok(plans) => Ok(Outcome::Solved(TeamPlanned { plans, team })),
+        Err(error) => {
+            let total_s = team.mission.spent_s + started.elapsed().as_secs_f64();
+            no_team_plan(error, total_s)
+        }
+    }
+}
+
+/// The no-plan outcome of a team run's library `error` (other errors stay errors); its
+/// report's stats hold the run's total time (`stage_times_s.total`), the robots' own
+/// counters being per robot.
+pub(crate) fn no_team_plan<T>(error: smug_core::Error, total_s: f64) -> Result<Outcome<T, NoPlan>> {
+    let stats = PlanStats {
+        stage_times_s: BTreeMap::from([("total".to_string(), total_s)]),
+        ..PlanStats::default()
+    };
+    match NoPlan::of(&error, stats) {
+        Some(why) => Ok(Outcome::NoSolution { why }),
+        None => Err(error.into()),
+    }
 }
 
 /// Assembles and plans a team config for its own objective, as `smug plan` does
 /// (a `[plan] deadline` counts from the start, assembly included).
 pub fn plan_team_config(loaded: &LoadedConfig) -> Result<Outcome<TeamPlanned>> {
-    plan_team_config_with(loaded, &mut |_| {})
+    Ok(plan_team_config_with(loaded, &mut |_| {})?.map_no_solution(|no_plan| no_plan.why))
 }
 
 /// [`plan_team_config`], showing `assembled` the team before it plans (e.g. for a
-/// display following each robot's progress).
+/// display following each robot's progress); without a plan, also what plan.json
+/// reports.
 pub fn plan_team_config_with(
     loaded: &LoadedConfig,
     assembled: &mut dyn FnMut(&Team),
-) -> Result<Outcome<TeamPlanned>> {
+) -> Result<Outcome<TeamPlanned, NoPlan>> {
     let started = Instant::now();
     let mut team = assemble_team(loaded)?;
     assembled(&team);

@@ -2,7 +2,9 @@
 //! team has not visited, shared again among the robots that are not lost, each from
 //! its pose in the [`TeamState`] to its end, on the world with the obstacles seen.
 
-use crate::team::{assemble_on, plan_assembled, restrictions, team_config, Deployment};
+use crate::no_plan::NoPlan;
+use crate::team::Deployment;
+use crate::team::{assemble_on, no_team_plan, plan_assembled, restrictions, team_config};
 use crate::team::{Team, TeamPlanned};
 use crate::{AppError, Outcome, Result};
 use smug_core::config::TeamConfig;
@@ -31,15 +33,14 @@ pub fn replan_team(
     loaded: &LoadedConfig,
     state: &TeamState,
     state_file: Option<&str>,
-) -> Result<Outcome<TeamPlanned>> {
+) -> Result<Outcome<TeamPlanned, NoPlan>> {
     let started = std::time::Instant::now();
     let team = assemble_replan(loaded, state, state_file)?;
     let (mut team, skipped) = match team {
         Ok(assembled) => assembled,
         Err(none_left) => {
-            return Ok(Outcome::of(Err(smug_core::Error::stage(
-                "replan", none_left,
-            )))?)
+            let error = smug_core::Error::stage("replan", none_left);
+            return no_team_plan(error, started.elapsed().as_secs_f64());
         }
     };
     team.spend(started.elapsed().as_secs_f64());

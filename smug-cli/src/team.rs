@@ -3,11 +3,12 @@
 
 use crate::progress::Progress;
 use crate::Outcome;
-use smug_app::outputs::config_run_info;
+use smug_app::outputs::{config_run_info, write_no_plan};
 use smug_app::plan_mcap::WriteMode;
 use smug_app::team::{plan_team_config_with, Team, TeamPlanned};
 use smug_app::team_outputs::write_team_outputs;
 use smug_app::team_replan::replan_team;
+use smug_app::NoPlan;
 use smug_core::mission::TeamState;
 use smug_core::{LoadedConfig, TeamPlan};
 use std::path::{Path, PathBuf};
@@ -60,16 +61,20 @@ pub fn replan(
 }
 
 /// Writes a team plan's files into `out` (plan.mcap as `mode` says) and prints it
-/// (`json`) or its summary; no solution is exit 1.
+/// (`json`) or its summary; no solution is exit 1, with a plan.json that says why (and
+/// no other file of an earlier plan left beside it).
 fn finish(
-    outcome: smug_app::Outcome<TeamPlanned>,
+    outcome: smug_app::Outcome<TeamPlanned, NoPlan>,
     loaded: &LoadedConfig,
     out: &Path,
     (json, mode): (bool, WriteMode),
 ) -> anyhow::Result<Outcome> {
     let TeamPlanned { plans, team } = match outcome {
         smug_app::Outcome::Solved(planned) => planned,
-        smug_app::Outcome::NoSolution { why } => return Ok(crate::no_solution(why)),
+        smug_app::Outcome::NoSolution { why } => {
+            write_no_plan(&why.report, &loaded.config.output, out, mode)?;
+            return Ok(crate::no_solution(why.why));
+        }
     };
     let plan = &plans[0];
     if plan.robots.iter().any(|r| r.plan.deadline_reached) {

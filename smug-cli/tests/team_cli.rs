@@ -271,6 +271,14 @@ fn bad_teams_are_named() {
     ] {
         assert!(err.contains(needle), "`{needle}` missing from: {err}");
     }
+    // plan.json says so too, as a single robot's does.
+    let text = std::fs::read_to_string(out.join("plan.json")).unwrap();
+    let plan: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(plan["status"], "no_plan", "{plan}");
+    assert_eq!(plan["cause"], "unreachable", "{plan}");
+    assert_eq!(plan["unreachable"][0]["target"], "slot", "{plan}");
+    assert!(plan["reason"].as_str().unwrap().contains("robot `big`"));
+    assert!(plan["stats"]["stage_times_s"]["total"].as_f64().unwrap() > 0.0);
 }
 
 /// Replans `config` from the team state `state` (TOML); the run, and plan.json when
@@ -354,13 +362,16 @@ fn a_lost_robots_targets_go_to_the_others() {
     assert!(reason.contains("only lost robots") && reason.contains("rover"));
     assert!(stdout(&run).contains("lost: rover"), "{}", stdout(&run));
     // `small` is lost: `gauge-a` goes to the others, `slot` fits nobody left (exit 1).
-    let (run, _) = replan(&path, "small-lost", &team_state(&[], &["small"]));
+    let (run, plan) = replan(&path, "small-lost", &team_state(&[], &["small"]));
     let err = stderr(&run);
     assert_eq!(run.status.code(), Some(1), "{err}");
     assert!(
         err.contains("`slot`") && err.contains("robot `big`"),
         "{err}"
     );
+    let plan = plan.expect("a failed replan writes plan.json");
+    assert_eq!(plan["status"], "no_plan", "{plan}");
+    assert_eq!(plan["unreachable"][0]["target"], "slot", "{plan}");
     // A robot elsewhere with an obstacle seen: its route keeps out of the obstacle.
     let moved = team_state(&[], &["rover"]).replace("[1.5, 3.0, 0.0]", "[4.0, 5.0, 0.0]")
         + "[[obstacles]]\ncenter = [5.0, 3.5]\nradius = 0.4\nheight = 1.0\n";

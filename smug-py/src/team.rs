@@ -55,7 +55,8 @@ pub(crate) fn replan_team_file<'py>(
     let name = state.display().to_string();
     let outcome = py
         .detach(|| replan_team(&loaded, &parsed, Some(&name)))
-        .map_err(app_to_py)?;
+        .map_err(app_to_py)?
+        .map_no_solution(|no_plan| no_plan.why);
     let TeamPlanned { plans, team } = solved(outcome)?;
     team_parts(py, &plans[0], &team, &loaded)
 }
