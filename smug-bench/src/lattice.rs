@@ -47,6 +47,10 @@ pub struct BenchLatticeArgs {
     /// Seed of the maps and the queries.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Lattice resolutions to compare, metres (one row each; LazyPRM* plans each query
+    /// once); empty: the planner's default (a sixth of the turning radius).
+    #[arg(long, value_delimiter = ',')]
+    resolutions: Vec<f64>,
     /// `--set`, `--out`, `--json`.
     #[command(flatten)]
     report: ReportArgs,
@@ -57,6 +61,8 @@ pub struct BenchLatticeArgs {
 struct Query {
     map: String,
     model: String,
+    /// The lattice's resolution (`None`: its default).
+    resolution: Option<f64>,
     start: [f64; 3],
     goal: [f64; 3],
     /// The lattice's path cost (`None`: no path) and seconds.
@@ -125,14 +131,29 @@ fn pipeline(
     Ok(Pipeline::assemble_with_world(&loaded, world.clone())?)
 }
 
-/// Every query on `world` for `model`, planned by the lattice and by LazyPRM*.
+/// Every query on `world` for `model`, planned by LazyPRM* and by the lattice at each
+/// resolution asked for.
 fn compare(
     args: &BenchLatticeArgs,
     name: &str,
     world: &smug_core::World,
     model: &str,
 ) -> crate::Result<Vec<Query>> {
-    let mut lattice = pipeline(args, world, model, "lattice", &[])?;
+    let resolutions: Vec<Option<f64>> = if args.resolutions.is_empty() {
+        vec![None]
+    } else {
+        args.resolutions.iter().copied().map(Some).collect()
+    };
+    let mut lattices = resolutions
+        .iter()
+        .map(|r| {
+            let set: Vec<String> = r
+                .map(|r| format!("planner.params.resolution={r}"))
+                .into_iter()
+                .collect();
+            pipeline(args, world, model, "lattice", &set)
+        })
+        .collect::<crate::Result<Vec<Pipeline>>>()?;
     let budget = [
         format!("planner.params.max_samples={}", 20_000 * args.budget),
         format!("planner.params.max_stall={}", 3 * args.budget),
@@ -140,21 +161,24 @@ fn compare(
     ];
     let mut prm = pipeline(args, world, model, "lazy-prm-star", &budget)?;
     let mut out = Vec::new();
-    for (start, goal) in draw_queries(args, world, &lattice)? {
-        let ours = plan(&mut lattice, &start, &goal)?;
+    for (start, goal) in draw_queries(args, world, &lattices[0])? {
         let theirs = plan(&mut prm, &start, &goal)?;
-        eprintln!(
-            "{name} {model}: lattice {:?} in {:.2} s, LazyPRM* {:?} in {:.2} s",
-            ours.0, ours.1, theirs.0, theirs.1
-        );
-        out.push(Query {
-            map: name.to_string(),
-            model: model.to_string(),
-            start: [start.x, start.y, start.yaw],
-            goal: [goal.x, goal.y, goal.yaw],
-            lattice: ours,
-            prm: theirs,
-        });
+        for (lattice, &resolution) in lattices.iter_mut().zip(&resolutions) {
+            let ours = plan(lattice, &start, &goal)?;
+            eprintln!(
+                "{name} {model} (resolution {resolution:?}): lattice {:?} in {:.2} s, LazyPRM* {:?} in {:.2} s",
+                ours.0, ours.1, theirs.0, theirs.1
+            );
+            out.push(Query {
+                map: name.to_string(),
+                model: model.to_string(),
+                resolution,
+                start: [start.x, start.y, start.yaw],
+                goal: [goal.x, goal.y, goal.yaw],
+                lattice: ours,
+                prm: theirs,
+            });
+        }
     }
     Ok(out)
 }
@@ -241,25 +265,28 @@ fn report(args: &BenchLatticeArgs, queries: &[Query]) -> String {
     );
     let _ = writeln!(
         s,
-        "| map | model | both | lattice only | LazyPRM* only | costlier | mean ratio | worst ratio | lattice s | LazyPRM* s |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "| map | model | lattice resolution | both | lattice only | LazyPRM* only | costlier | mean ratio | worst ratio | lattice s | LazyPRM* s |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
-    let mut groups: Vec<(&str, &str)> = queries
-        .iter()
-        .map(|q| (q.map.as_str(), q.model.as_str()))
-        .collect();
-    groups.dedup();
-    for (map, model) in groups {
+    let mut groups: Vec<(&str, &str, Option<f64>)> = Vec::new();
+    for q in queries {
+        let group = (q.map.as_str(), q.model.as_str(), q.resolution);
+        if !groups.contains(&group) {
+            groups.push(group);
+        }
+    }
+    for (map, model, resolution) in groups {
         let rows: Vec<&Query> = queries
             .iter()
-            .filter(|q| q.map == map && q.model == model)
+            .filter(|q| q.map == map && q.model == model && q.resolution == resolution)
             .collect();
-        let _ = writeln!(s, "{}", row(map, model, &rows));
+        let resolution = resolution.map_or("default".to_string(), |r| format!("{r} m"));
+        let _ = writeln!(s, "{}", row(map, model, &resolution, &rows));
     }
     s
 }
 
 /// One report row.
-fn row(map: &str, model: &str, rows: &[&Query]) -> String {
+fn row(map: &str, model: &str, resolution: &str, rows: &[&Query]) -> String {
     let ratios: Vec<f64> = rows
         .iter()
         .filter_map(|q| Some(q.lattice.0? / q.prm.0?))
@@ -274,7 +301,7 @@ fn row(map: &str, model: &str, rows: &[&Query]) -> String {
     let worst = ratios.iter().copied().fold(f64::NAN, f64::max);
     let seconds = |f: fn(&Query) -> f64| mean(&rows.iter().map(|q| f(q)).collect::<Vec<_>>());
     format!(
-        "| {map} | {model} | {} | {} | {} | {costlier} | {:.4} | {:.4} | {:.3} | {:.3} |",
+        "| {map} | {model} | {resolution} | {} | {} | {} | {costlier} | {:.4} | {:.4} | {:.3} | {:.3} |",
         ratios.len(),
         only(true),
         only(false),
