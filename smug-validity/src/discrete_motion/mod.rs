@@ -3,6 +3,7 @@
 //! limit. States are checked in bisection order (collisions are found early);
 //! `check_motion` scans in order from the start to report the last valid state.
 
+use gentle::GentleCells;
 use serde::{Deserialize, Serialize};
 use smug_core::Counter;
 use smug_core::{
@@ -10,6 +11,8 @@ use smug_core::{
     StateValidityChecker, World,
 };
 use std::sync::Arc;
+
+mod gentle;
 
 /// Parameters of the discrete motion validator.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -54,6 +57,8 @@ pub struct DiscreteMotionValidator {
     states: Arc<dyn StateValidityChecker>,
     space: Arc<dyn StateSpace>,
     terrain: Option<(Arc<World>, f64)>,
+    /// The terrain's gentle cells under the limit, for segments up to the resolution.
+    gentle: Option<GentleCells>,
     resolution: f64,
     motions_checked: Counter,
     states_checked: Counter,
@@ -82,10 +87,14 @@ impl DiscreteMotionValidator {
                 ));
             }
         }
+        let gentle = terrain
+            .as_ref()
+            .map(|(world, limit)| GentleCells::new(&world.elevation, *limit, resolution));
         Ok(Self {
             states,
             space,
             terrain,
+            gentle,
             resolution,
             motions_checked: Counter::new(),
             states_checked: Counter::new(),
@@ -121,20 +130,29 @@ impl DiscreteMotionValidator {
     }
 
     /// [`Self::inclination_ok`] for every pair of consecutive states of the
-    /// `n`-segment motion `a → b`, looking each state's height up once.
+    /// `n`-segment motion `a → b`, looking each state's height up at most once, and
+    /// not at all for a segment from a gentle cell ([`GentleCells`]: the same
+    /// verdict).
     fn slopes_ok(&self, a: &Pose2, b: &Pose2, along: &mut Along) -> bool {
-        let Some((world, limit)) = &self.terrain else {
+        let (Some((world, limit)), Some(gentle)) = (&self.terrain, &self.gentle) else {
             return true;
         };
         let mut p = *a;
-        let mut zp = world.height_at(p.x, p.y);
+        // `p`'s height, once looked up.
+        let mut zp = None;
         for k in 1..=along.segments() {
             let q = along.state(self, a, b, k);
+            let horizontal = p.xy_distance(&q);
+            if gentle.vouches(&p, horizontal) {
+                (p, zp) = (q, None);
+                continue;
+            }
+            let zp_known = zp.unwrap_or_else(|| world.height_at(p.x, p.y));
             let zq = world.height_at(q.x, q.y);
-            if !slope_ok(p.xy_distance(&q), (zp, zq), *limit) {
+            if !slope_ok(horizontal, (zp_known, zq), *limit) {
                 return false;
             }
-            (p, zp) = (q, zq);
+            (p, zp) = (q, Some(zq));
         }
         true
     }
