@@ -110,8 +110,9 @@ fn steep_cells(elevation: &GridLayer, limit: f64) -> Vec<u8> {
             let gx = (v10 - v00).abs().max((v11 - v01).abs()) / geometry.resolution;
             let gy = (v01 - v00).abs().max((v11 - v10).abs()) / geometry.resolution;
             let bound = gx.hypot(gy);
-            // A corner without data makes the bound NaN, which fails the comparison.
-            let within = bound + slack <= limit;
+            // A corner without data is steep (`f64::max` would skip its NaN).
+            let has_data = [v00, v10, v01, v11].iter().all(|v| !v.is_nan());
+            let within = has_data && bound + slack <= limit;
             if !within {
                 for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
                     steep[(j + dj) * w + i + di] = 1;
