@@ -109,10 +109,11 @@ fn steep_cells(elevation: &GridLayer, limit: f64) -> Vec<u8> {
             let v11 = elevation.get(i + 1, j + 1) as f64;
             let gx = (v10 - v00).abs().max((v11 - v01).abs()) / geometry.resolution;
             let gy = (v01 - v00).abs().max((v11 - v10).abs()) / geometry.resolution;
-            let bound = gx.hypot(gy);
-            // A corner without data is steep (`f64::max` would skip its NaN).
+            // The bound `√(gx² + gy²) ≤ limit − slack`, squared (no libm `hypot` per
+            // cell); a corner without data is steep (`f64::max` would skip its NaN).
+            let allowed = limit - slack;
             let has_data = [v00, v10, v01, v11].iter().all(|v| !v.is_nan());
-            let within = has_data && bound + slack <= limit;
+            let within = has_data && allowed > 0.0 && gx * gx + gy * gy <= allowed * allowed;
             if !within {
                 for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
                     steep[(j + dj) * w + i + di] = 1;
