@@ -249,7 +249,8 @@ fn interpolation_axis(
     if f <= 0.0 || n == 1 {
         return (0, 0, 0.0);
     }
-    let lower = f.floor() as usize;
+    // `f > 0`: truncation is the floor (no libm call on the slope checks' hot path).
+    let lower = f as usize;
     if lower + 1 >= n {
         return (n - 1, n - 1, 0.0);
     }

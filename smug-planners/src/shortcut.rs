@@ -17,6 +17,12 @@
 //! through a door or along a wall becomes nearly the shortest path through it. Both
 //! steps only replace a part of the path by a cheaper one whose segments the motion
 //! validator accepts, so the cost never rises and the path stays valid.
+//!
+//! The input is a valid path (its segments were checked, so its states are valid),
+//! and every state these steps add ends a segment checked valid: a segment between
+//! two such states is asked with
+//! [`is_valid_motion_between_valid`](MotionValidator::is_valid_motion_between_valid),
+//! which may skip the ends' checks (the same verdict, two state checks fewer).
 
 use smug_core::{MotionValidator, Objective, Pose2, StateSpace};
 
@@ -27,8 +33,8 @@ const SMOOTH_TOLERANCE: f64 = 1e-3;
 /// Bisection steps of a corner cut (the cut's fraction is found to `2⁻⁶`).
 const CUT_BISECTIONS: u32 = 6;
 
-/// The shortcut path through `states` (same endpoints): from each kept state, the
-/// farthest later state with a valid segment.
+/// The shortcut path through the valid path `states` (same endpoints): from each kept
+/// state, the farthest later state with a valid segment.
 pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     if states.len() <= 2 {
         return states.to_vec();
@@ -37,7 +43,7 @@ pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     let mut i = 0;
     while i + 1 < states.len() {
         let mut j = states.len() - 1;
-        while j > i + 1 && !motions.is_valid_motion(&states[i], &states[j]) {
+        while j > i + 1 && !motions.is_valid_motion_between_valid(&states[i], &states[j]) {
             j -= 1;
         }
         kept.push(states[j]);
@@ -46,8 +52,8 @@ pub fn shortcut(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     kept
 }
 
-/// The shortcut path through `states` (same endpoints), each jump found by galloping
-/// and bisection (far, not always the farthest; few checks on long paths).
+/// The shortcut path through the valid path `states` (same endpoints), each jump found
+/// by galloping and bisection (far, not always the farthest; few checks on long paths).
 pub fn shortcut_galloping(states: &[Pose2], motions: &dyn MotionValidator) -> Vec<Pose2> {
     if states.len() <= 2 {
         return states.to_vec();
@@ -66,7 +72,7 @@ pub fn shortcut_galloping(states: &[Pose2], motions: &dyn MotionValidator) -> Ve
 /// by the path's own valid segments).
 fn farthest_jump(states: &[Pose2], i: usize, motions: &dyn MotionValidator) -> usize {
     let last = states.len() - 1;
-    let reaches = |j: usize| motions.is_valid_motion(&states[i], &states[j]);
+    let reaches = |j: usize| motions.is_valid_motion_between_valid(&states[i], &states[j]);
     let (mut valid, mut step) = (i + 1, 1);
     let invalid = loop {
         if valid == last {
@@ -95,7 +101,7 @@ fn bisect_jump(mut valid: usize, mut invalid: usize, reaches: impl Fn(usize) -> 
     valid
 }
 
-/// The path through `states` shortened by rounds of greedy shortcutting and corner
+/// The valid path through `states` shortened by rounds of greedy shortcutting and corner
 /// cutting (same endpoints, cost never higher, every new segment checked).
 pub fn smooth(
     states: &[Pose2],
@@ -125,7 +131,8 @@ pub fn smooth(
 /// `a` and the next state `b`) becomes `p = v + t(a − v)`, `q = v + t(b − v)` with the
 /// largest `t` found by bisection for which `a → p`, `p → q` and `q → b` are valid and
 /// cheaper than `a → v → b` under `objective` (`p`, `q` on the space's motions); it
-/// stays when no such `t` is found.
+/// stays when no such `t` is found. `p → q` is checked first, with its ends; `a` and
+/// `b` are valid (the path's), so `a → p` and `q → b` are then between valid states.
 fn cut_corners(
     states: &[Pose2],
     motions: &dyn MotionValidator,
@@ -145,8 +152,8 @@ fn cut_corners(
             let cost = cost(&a, &p) + cost(&p, &q) + cost(&q, &b);
             (cost < corner
                 && motions.is_valid_motion(&p, &q)
-                && motions.is_valid_motion(&a, &p)
-                && motions.is_valid_motion(&q, &b))
+                && motions.is_valid_motion_between_valid(&a, &p)
+                && motions.is_valid_motion_between_valid(&q, &b))
             .then_some((p, q))
         };
         let (mut lo, mut hi, mut best) = (0.0, 1.0, None);
@@ -221,6 +228,54 @@ mod tests {
         assert_eq!(short.last(), states.last());
         assert!(short.len() <= 4, "{short:?}");
         assert!(short.windows(2).all(|w| Wall.is_valid_motion(&w[0], &w[1])));
+    }
+
+    /// [`Wall`], counting the checks asked without the ends known valid.
+    #[derive(Default)]
+    struct EndsCounted {
+        with_ends: std::sync::atomic::AtomicUsize,
+        between_valid: std::sync::atomic::AtomicUsize,
+    }
+
+    impl MotionValidator for EndsCounted {
+        fn is_valid_motion(&self, a: &Pose2, b: &Pose2) -> bool {
+            self.with_ends
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Wall.is_valid_motion(a, b)
+        }
+
+        fn is_valid_motion_between_valid(&self, a: &Pose2, b: &Pose2) -> bool {
+            self.between_valid
+                .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            Wall.is_valid_motion(a, b)
+        }
+
+        fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
+            Wall.check_motion(a, b)
+        }
+    }
+
+    #[test]
+    fn segments_between_the_paths_states_skip_the_ends_checks() {
+        use std::sync::atomic::Ordering::Relaxed;
+        let mut states: Vec<Pose2> = (0..=8)
+            .map(|k| Pose2::new(1.0, 8.0 - k as f64, 0.0))
+            .collect();
+        states.push(Pose2::new(5.0, 0.0, 0.0));
+        states.extend((0..=8).map(|k| Pose2::new(9.0, k as f64, 0.0)));
+        for f in [shortcut, shortcut_galloping] {
+            let motions = EndsCounted::default();
+            f(&states, &motions);
+            assert_eq!(motions.with_ends.load(Relaxed), 0);
+            assert!(motions.between_valid.load(Relaxed) > 0);
+        }
+        // Corner cutting checks each new `p → q` with its ends; its shortcut passes and
+        // the cuts' `a → p`, `q → b` go between valid states.
+        let space = smug_core::Se2Space::new(1.0, 0.0).unwrap();
+        let motions = EndsCounted::default();
+        smooth(&states, &motions, &space, &length(0.0));
+        assert!(motions.with_ends.load(Relaxed) > 0);
+        assert!(motions.between_valid.load(Relaxed) > 0);
     }
 
     #[test]

@@ -40,8 +40,9 @@ pub struct HierarchicalChecker {
     /// The thresholds' verdict per cell of the traversability layer.
     verdicts: ThresholdVerdicts,
     volumetric: VolumetricChecker,
+    /// Every state asked (those traversability decides are these less the volumetric
+    /// checker's own: one counter bump per state, not two).
     checks: Counter,
-    decided_by_traversability: Counter,
 }
 
 impl HierarchicalChecker {
@@ -62,7 +63,6 @@ impl HierarchicalChecker {
             verdicts: ThresholdVerdicts::new(traversability, t_low, t_high),
             volumetric,
             checks: Counter::new(),
-            decided_by_traversability: Counter::new(),
         })
     }
 
@@ -76,24 +76,20 @@ impl StateValidityChecker for HierarchicalChecker {
     fn is_valid(&self, state: &Pose2) -> bool {
         self.checks.increment();
         match self.traversability_verdict(state) {
-            Some(verdict) => {
-                self.decided_by_traversability.increment();
-                verdict
-            }
+            Some(verdict) => verdict,
             None => self.volumetric.is_valid(state),
         }
     }
 
     fn counters(&self) -> Counters {
         let mut counters = self.volumetric.counters();
-        counters.insert(
-            "volumetric_checks".into(),
-            counters.get("checks").copied().unwrap_or(0),
-        );
-        counters.insert("checks".into(), self.checks.total());
+        let volumetric = counters.get("checks").copied().unwrap_or(0);
+        let checks = self.checks.total();
+        counters.insert("volumetric_checks".into(), volumetric);
+        counters.insert("checks".into(), checks);
         counters.insert(
             "traversability_decided".into(),
-            self.decided_by_traversability.total(),
+            checks.saturating_sub(volumetric),
         );
         counters
     }

@@ -65,6 +65,10 @@ impl MotionValidator for CountedMotions<'_> {
         self.timed(|| self.inner.is_valid_motion(a, b))
     }
 
+    fn is_valid_motion_between_valid(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.timed(|| self.inner.is_valid_motion_between_valid(a, b))
+    }
+
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
         self.timed(|| self.inner.check_motion(a, b))
     }

@@ -3,14 +3,16 @@
 //! limit. States are checked in bisection order (collisions are found early);
 //! `check_motion` scans in order from the start to report the last valid state.
 
+use gentle::GentleCells;
 use serde::{Deserialize, Serialize};
 use smug_core::Counter;
 use smug_core::{
     BuildContext, Counters, Error, MotionCheck, MotionValidator, Pose2, StateSpace,
     StateValidityChecker, World,
 };
-use std::collections::VecDeque;
 use std::sync::Arc;
+
+mod gentle;
 
 /// Parameters of the discrete motion validator.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -55,6 +57,8 @@ pub struct DiscreteMotionValidator {
     states: Arc<dyn StateValidityChecker>,
     space: Arc<dyn StateSpace>,
     terrain: Option<(Arc<World>, f64)>,
+    /// The terrain's gentle cells under the limit, for segments up to the resolution.
+    gentle: Option<GentleCells>,
     resolution: f64,
     motions_checked: Counter,
     states_checked: Counter,
@@ -83,10 +87,14 @@ impl DiscreteMotionValidator {
                 ));
             }
         }
+        let gentle = terrain
+            .as_ref()
+            .map(|(world, limit)| GentleCells::new(&world.elevation, *limit, resolution));
         Ok(Self {
             states,
             space,
             terrain,
+            gentle,
             resolution,
             motions_checked: Counter::new(),
             states_checked: Counter::new(),
@@ -122,20 +130,29 @@ impl DiscreteMotionValidator {
     }
 
     /// [`Self::inclination_ok`] for every pair of consecutive states of the
-    /// `n`-segment motion `a → b`, looking each state's height up once.
+    /// `n`-segment motion `a → b`, looking each state's height up at most once, and
+    /// not at all for a segment from a gentle cell ([`GentleCells`]: the same
+    /// verdict).
     fn slopes_ok(&self, a: &Pose2, b: &Pose2, along: &mut Along) -> bool {
-        let Some((world, limit)) = &self.terrain else {
+        let (Some((world, limit)), Some(gentle)) = (&self.terrain, &self.gentle) else {
             return true;
         };
         let mut p = *a;
-        let mut zp = world.height_at(p.x, p.y);
+        // `p`'s height, once looked up.
+        let mut zp = None;
         for k in 1..=along.segments() {
             let q = along.state(self, a, b, k);
+            let horizontal = p.xy_distance(&q);
+            if gentle.vouches(&p, horizontal) {
+                (p, zp) = (q, None);
+                continue;
+            }
+            let zp_known = zp.unwrap_or_else(|| world.height_at(p.x, p.y));
             let zq = world.height_at(q.x, q.y);
-            if !slope_ok(p.xy_distance(&q), (zp, zq), *limit) {
+            if !slope_ok(horizontal, (zp_known, zq), *limit) {
                 return false;
             }
-            (p, zp) = (q, zq);
+            (p, zp) = (q, Some(zq));
         }
         true
     }
@@ -220,10 +237,18 @@ impl DiscreteMotionValidator {
         match self.swept_either_way(a, b) {
             Some(swept) => swept == Swept::Clear,
             None => {
+                // The states checked are counted here and added once (one counter
+                // bump per motion, not one per state).
+                let mut checked = 0u64;
+                let mut valid = |s: &Pose2| {
+                    checked += 1;
+                    self.states.is_valid(s)
+                };
                 let n = along.segments();
-                (ends_known_valid || (self.is_valid_state(b) && self.is_valid_state(a)))
-                    && Self::bisection_order(n)
-                        .all(|k| self.is_valid_state(&along.state(self, a, b, k)))
+                let all_valid = (ends_known_valid || (valid(b) && valid(a)))
+                    && all_in_bisection_order(n, |k| valid(&along.state(self, a, b, k)));
+                self.states_checked.add(checked);
+                all_valid
             }
         }
     }
@@ -241,21 +266,46 @@ impl DiscreteMotionValidator {
         };
         states_valid && self.slopes_ok(a, b, &mut along)
     }
+}
 
-    /// Interior state indices `1..n` in bisection order (midpoints first).
-    fn bisection_order(n: usize) -> impl Iterator<Item = usize> {
-        let mut queue = VecDeque::from([(0usize, n)]);
-        std::iter::from_fn(move || {
-            while let Some((lo, hi)) = queue.pop_front() {
-                if hi - lo >= 2 {
-                    let mid = lo + (hi - lo) / 2;
-                    queue.push_back((lo, mid));
-                    queue.push_back((mid, hi));
-                    return Some(mid);
-                }
-            }
-            None
-        })
+/// True when `check(k)` holds for every interior state index `1..n`, asked in
+/// bisection order (the motion's midpoint first, then the midpoints of its halves,
+/// level by level, left to right: collisions are found early), stopping at the first
+/// that fails. Each level is walked from the top instead of queued: no allocation.
+fn all_in_bisection_order(n: usize, mut check: impl FnMut(usize) -> bool) -> bool {
+    for depth in 0.. {
+        match level_passes(0, n, depth, &mut check) {
+            None => return true,
+            Some(false) => return false,
+            Some(true) => {}
+        }
+    }
+    unreachable!("the levels run out")
+}
+
+/// The midpoints `depth` halvings below the interval `lo..hi` (intervals of fewer
+/// than two segments have none), left to right: `Some(false)` at the first whose
+/// check fails, `Some(true)` when there were some and all passed, `None` when there
+/// were none.
+fn level_passes(
+    lo: usize,
+    hi: usize,
+    depth: u32,
+    check: &mut impl FnMut(usize) -> bool,
+) -> Option<bool> {
+    if hi - lo < 2 {
+        return None;
+    }
+    let mid = lo + (hi - lo) / 2;
+    if depth == 0 {
+        return Some(check(mid));
+    }
+    match level_passes(lo, mid, depth - 1, check) {
+        Some(false) => Some(false),
+        left => match level_passes(mid, hi, depth - 1, check) {
+            Some(false) => Some(false),
+            right => left.or(right),
+        },
     }
 }
 

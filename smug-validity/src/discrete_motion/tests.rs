@@ -111,13 +111,48 @@ fn a_curved_motion_is_traced_along_its_curve_not_its_chord() {
     assert!(v.check_motion(&b, &a).is_valid());
 }
 
+/// The bisection order as a queue of intervals (midpoint first, then the halves'
+/// midpoints, breadth first): the reference for the allocation-free walk.
+fn queued_bisection_order(n: usize) -> Vec<usize> {
+    let mut queue = std::collections::VecDeque::from([(0usize, n)]);
+    let mut order = Vec::new();
+    while let Some((lo, hi)) = queue.pop_front() {
+        if hi - lo >= 2 {
+            let mid = lo + (hi - lo) / 2;
+            queue.push_back((lo, mid));
+            queue.push_back((mid, hi));
+            order.push(mid);
+        }
+    }
+    order
+}
+
 #[test]
-fn bisection_visits_every_interior_state_once() {
-    for n in 1..40 {
-        let mut seen: Vec<usize> = DiscreteMotionValidator::bisection_order(n).collect();
-        assert_eq!(seen[..1.min(seen.len())], [n / 2][..1.min(seen.len())]);
+fn bisection_visits_every_interior_state_once_in_breadth_first_order() {
+    for n in 1..300 {
+        let mut seen = Vec::new();
+        assert!(all_in_bisection_order(n, |k| {
+            seen.push(k);
+            true
+        }));
+        assert_eq!(seen, queued_bisection_order(n), "n = {n}");
         seen.sort();
         assert_eq!(seen, (1..n).collect::<Vec<_>>());
+    }
+}
+
+#[test]
+fn bisection_stops_at_the_first_failing_state() {
+    for n in 2..100 {
+        let order = queued_bisection_order(n);
+        for (stop, &bad) in order.iter().enumerate() {
+            let mut asked = 0;
+            assert!(!all_in_bisection_order(n, |k| {
+                asked += 1;
+                k != bad
+            }));
+            assert_eq!(asked, stop + 1, "n = {n}, bad = {bad}");
+        }
     }
 }
 
