@@ -344,6 +344,11 @@ fn an_unreachable_target_exits_with_1_and_is_named() {
     assert_eq!(target["no_path"], "budget_spent", "{target}");
     assert!(!target["legs"].as_object().unwrap().is_empty(), "{target}");
     assert!(plan["stats"]["paths_planned"].as_u64().unwrap() > 0);
+    // Once a leg came back without a path, the start's legs to each target tell which
+    // target it is, before the PoI selection spends a budget on every leg into the
+    // walled PoI (9 legs and 4 spent budgets before, 5 and 2 now).
+    let spent = &plan["stats"]["legs_without_path"]["budget_spent:samples"];
+    assert!(spent.as_u64().unwrap() <= 2, "{}", plan["stats"]);
     let skip = smug(&[
         "plan",
         &config,

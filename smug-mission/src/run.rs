@@ -12,7 +12,7 @@ use crate::layout::{register_poses, Layout};
 use crate::oracle::{KnownAnswers, PathOracle};
 use crate::post_process::{concatenate, waypoints};
 use crate::probe::{end_not_entered, probe_start_and_end};
-use crate::sequential::{sequence, unreached_from_start_row};
+use crate::sequential::{sequence, unreached_after_failed_legs, unreached_from_start_row};
 use crate::unreachable::{fail_or_skip, unreachable_targets, Unreachable};
 use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
@@ -60,7 +60,17 @@ fn check_selection_size(mission: &Mission) -> Result<()> {
     )))
 }
 
-/// The sequential mode's order (sequencer) and PoIs along it (selector), timed.
+/// What one round of the sequential mode found.
+enum Step {
+    /// Targets the start cannot reach (mission indices), found from its legs.
+    Unreached(Vec<usize>),
+    /// The order and the selector's PoIs along it (or its failure).
+    Selected(Vec<usize>, Result<Selection>),
+}
+
+/// One round of the sequential mode: the targets the start cannot reach when its legs
+/// show some (before ordering with full costs, after it once a leg had no path), else
+/// the order (sequencer) and the PoIs along it (selector), timed.
 fn order_then_select(
     pipeline: &Pipeline,
     oracle: &mut PathOracle,
@@ -69,7 +79,30 @@ fn order_then_select(
     targets: &[usize],
     options: PlanOptions,
     times: &mut BTreeMap<String, f64>,
-) -> Result<(Vec<usize>, Result<Selection>)> {
+) -> Result<Step> {
+    let unreached = unreached_from_start_row(oracle, mission, layout, targets, options)?;
+    if !unreached.is_empty() {
+        return Ok(Step::Unreached(unreached));
+    }
+    let order = order_targets(pipeline, oracle, mission, layout, targets, options, times)?;
+    let unreached = unreached_after_failed_legs(oracle, mission, layout, targets, options)?;
+    if !unreached.is_empty() {
+        return Ok(Step::Unreached(unreached));
+    }
+    let selected = select_pois(pipeline, oracle, layout, &order, times)?;
+    Ok(Step::Selected(order, selected))
+}
+
+/// The sequential mode's order of `targets` (sequencer), timed.
+fn order_targets(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    options: PlanOptions,
+    times: &mut BTreeMap<String, f64>,
+) -> Result<Vec<usize>> {
     let t = Instant::now();
     pipeline.run().progress.enter("sequencing");
     let order = sequence(
@@ -83,6 +116,18 @@ fn order_then_select(
         options.refine_legs,
     )?;
     *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    Ok(order)
+}
+
+/// The sequential mode's PoIs along `order` (selector), timed; the selector's own
+/// failure is the inner result.
+fn select_pois(
+    pipeline: &Pipeline,
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    order: &[usize],
+    times: &mut BTreeMap<String, f64>,
+) -> Result<Result<Selection>> {
     let t = Instant::now();
     pipeline.run().progress.enter("selection");
     let selector = pipeline.selector.as_ref().ok_or(Error::MissingStage {
@@ -96,7 +141,7 @@ fn order_then_select(
     };
     let selected = selector.select(oracle, &problem);
     *times.entry("selection".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
-    Ok((order, selected))
+    Ok(selected)
 }
 
 /// Plans the pipeline's mission: sequencing, PoI selection, post-processing, within
@@ -286,25 +331,24 @@ fn plan_on_oracle(
         }
     }
     let (order, problem, selection) = loop {
-        if options.mode == PlanMode::Sequential {
-            let unreached = unreached_from_start_row(oracle, mission, &layout, &targets, options)?;
-            if !unreached.is_empty() {
-                fail_or_skip(
-                    oracle,
-                    mission,
-                    &layout,
-                    &mut targets,
-                    &unreached,
-                    options.skip_unreachable,
-                    &mut skipped,
-                )?;
-                continue;
-            }
-        }
         let (order, selected) = match options.mode {
-            PlanMode::Sequential => order_then_select(
+            PlanMode::Sequential => match order_then_select(
                 pipeline, oracle, mission, &layout, &targets, options, &mut times,
-            )?,
+            )? {
+                Step::Selected(order, selected) => (order, selected),
+                Step::Unreached(unreached) => {
+                    fail_or_skip(
+                        oracle,
+                        mission,
+                        &layout,
+                        &mut targets,
+                        &unreached,
+                        options.skip_unreachable,
+                        &mut skipped,
+                    )?;
+                    continue;
+                }
+            },
             PlanMode::Joint => {
                 let t = Instant::now();
                 pipeline.run().progress.enter("joint order and PoIs");

@@ -64,14 +64,63 @@ pub(super) fn unreached_from_start_row(
     if fills_lazily(oracle, options.sequencing_costs) {
         return Ok(Vec::new());
     }
+    start_row_misses(
+        oracle,
+        mission,
+        layout,
+        targets,
+        options.representative,
+        true,
+    )
+}
+
+/// Once the order is chosen, when some leg planned so far has no path: the targets the
+/// start cannot reach, from its legs to every target's stand-in (and to the other PoIs
+/// of a target whose stand-in it misses). Found here, before the PoI selection plans
+/// the legs between the targets' PoIs (each spending a budget where a target lies in a
+/// pocket the others cannot reach), a mission with lazy costs whose robot cannot leave
+/// the room it starts in fails after a few spent budgets. Missions whose legs all have
+/// a path ask nothing more.
+pub(super) fn unreached_after_failed_legs(
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    options: PlanOptions,
+) -> Result<Vec<usize>> {
+    if !oracle.has_legs_without_path() {
+        return Ok(Vec::new());
+    }
+    start_row_misses(
+        oracle,
+        mission,
+        layout,
+        targets,
+        options.representative,
+        false,
+    )
+}
+
+/// The targets of which the start reaches no PoI: its legs to each target's stand-in
+/// (one call for a one-to-many planner; `as_the_matrix`: each leg followed by its
+/// reverse for a directed model, as the full matrix asks them), then, for the
+/// stand-ins missed, to the target's other PoIs.
+fn start_row_misses(
+    oracle: &mut PathOracle,
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    rule: Representative,
+    as_the_matrix: bool,
+) -> Result<Vec<usize>> {
     let mut missed = Vec::new();
-    let stand_ins = representatives(mission, layout, targets, options.representative);
+    let stand_ins = representatives(mission, layout, targets, rule);
     if oracle.answers_many() {
         oracle.plan_from(layout.start, &stand_ins)?;
     }
     for (&t, &p) in targets.iter().zip(&stand_ins) {
         let reached = oracle.cost(layout.start, p)?.is_finite();
-        if !oracle.is_symmetric() && !oracle.answers_many() {
+        if as_the_matrix && !oracle.is_symmetric() && !oracle.answers_many() {
             oracle.cost(p, layout.start)?;
         }
         if !reached {

@@ -395,6 +395,13 @@ impl PathOracle {
         counts
     }
 
+    /// True when some pair asked so far has no path.
+    pub fn has_legs_without_path(&self) -> bool {
+        self.cache
+            .values()
+            .any(|planned| planned.outcome.no_path_reason().is_some())
+    }
+
     /// Whether the planner proves dead ends cheaply ([`PointToPointPlanner::proves_dead_ends`]).
     pub fn proves_dead_ends(&self) -> bool {
         self.planner.proves_dead_ends()
