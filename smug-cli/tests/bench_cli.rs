@@ -127,7 +127,7 @@ fn lattice_bench_compares_both_planners_on_a_generated_map() {
     assert_eq!(out.status.code(), Some(0), "stderr: {}", stderr(&out));
     let text = std::fs::read_to_string(&report).unwrap();
     assert!(
-        text.contains("| terrain-64x64-d20-s1 | reeds-shepp | 3 | 0 | 0 |"),
+        text.contains("| terrain-64x64-d20-s1 | reeds-shepp | default | 3 | 0 | 0 |"),
         "{text}"
     );
     let raw: Vec<serde_json::Value> =
