@@ -133,6 +133,9 @@ impl GeometricEstimator {
 mod window;
 use window::Window;
 
+#[path = "geometric_rows.rs"]
+mod rows;
+
 #[path = "geometric_estimate.rs"]
 mod estimate;
 
@@ -223,7 +226,7 @@ mod tests {
                 + 2.0 * a * c * self.sy
                 + 2.0 * b * c * self.sxy;
             Some(TerrainFeatures {
-                slope: b.hypot(c).atan(),
+                slope: (b * b + c * c).sqrt().atan(),
                 roughness: (sse.max(0.0) / self.n).sqrt(),
                 step,
             })
@@ -254,7 +257,7 @@ mod tests {
                 if inside && x.hypot(y) <= radius + 1e-9 {
                     let z = elevation.get(ci as usize, cj as usize);
                     if !z.is_nan() {
-                        fit.add(x, y, (z - z0) as f64);
+                        fit.add(x, y, z as f64 - z0 as f64);
                     }
                 }
             }
@@ -268,8 +271,27 @@ mod tests {
         f.map(|f| [bits(f.slope), bits(f.roughness), bits(f.step)])
     }
 
+    /// Features equal to within `tolerance` (the step, a difference of two heights,
+    /// exactly; missing alike).
+    fn features_close(
+        a: Option<TerrainFeatures>,
+        b: Option<TerrainFeatures>,
+        tolerance: f64,
+    ) -> bool {
+        let close = |x: f64, y: f64| (x.is_nan() && y.is_nan()) || (x - y).abs() <= tolerance;
+        match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => {
+                close(a.slope, b.slope)
+                    && close(a.roughness, b.roughness)
+                    && feature_bits(Some(a)).map(|f| f[2]) == feature_bits(Some(b)).map(|f| f[2])
+            }
+            _ => false,
+        }
+    }
+
     #[test]
-    fn lunar_traversability_equals_the_reference_bit_for_bit() {
+    fn lunar_traversability_equals_the_reference() {
         use rand::SeedableRng;
         use smug_worlds::lunar::{lunar_world, LunarParams};
         let mut rng = smug_core::rng::StageRng::seed_from_u64(3);
@@ -283,16 +305,31 @@ mod tests {
         let reference = GridLayer::from_fn(e.geometry, |i, j| {
             reference_features(radius, e, i, j).map_or(f32::NAN, |f| estimator.score(&f) as f32)
         });
-        let bits = |l: &GridLayer| l.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        assert_eq!(bits(&layer), bits(&reference));
+        let mut differing = 0;
+        for (k, (&v, &r)) in layer.data.iter().zip(&reference.data).enumerate() {
+            assert!(
+                (v.is_nan() && r.is_nan()) || (v - r).abs() <= 1e-6,
+                "cell {k}: {v} vs {r}"
+            );
+            differing += usize::from(v.to_bits() != r.to_bits());
+        }
+        // The sums differ from the reference's in their last bits only.
+        assert!(
+            differing * 1000 < layer.data.len(),
+            "{differing} cells differ"
+        );
     }
 
     proptest! {
-        /// Random terrain with holes and a few infinite heights, any window.
+        /// Random terrain with holes and a few infinite heights, any window: the
+        /// cell-by-cell fit is the reference's to the bit, the row-sum fit of every
+        /// cell of any rectangle equals it to rounding, and a cell's row-sum fit does
+        /// not depend on the rectangle it is computed in.
         #[test]
-        fn row_run_window_equals_the_reference_bit_for_bit(
+        fn row_sums_equal_the_reference(
             nx in 1usize..24, ny in 1usize..24, resolution in 0.05f64..0.3,
             radius in 0.01f64..2.0, holes in 0.0f64..0.3, seed in any::<u64>(),
+            corner in (0usize..24, 0usize..24),
         ) {
             use rand::{Rng, SeedableRng};
             let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
@@ -305,15 +342,20 @@ mod tests {
                 }
             });
             let window = Window::new(radius, resolution);
+            let runs = rows::RowRuns::new(&window).expect("a symmetric window");
+            let whole = smug_core::CellRect { i0: 0, j0: 0, i1: nx, j1: ny };
+            let mut fast = vec![None; nx * ny];
+            runs.rect_features(&window, &elevation, whole, |i, j, f| fast[j * nx + i] = Some(f));
+            let part = smug_core::CellRect { i0: corner.0.min(nx), j0: corner.1.min(ny), i1: nx, j1: ny };
+            runs.rect_features(&window, &elevation, part, |i, j, f| {
+                assert_eq!(feature_bits(f), feature_bits(fast[j * nx + i].flatten()), "cell ({}, {})", i, j);
+            });
             for j in 0..ny {
-                let mut row = Vec::new();
-                window.row_features(&elevation, j, |i, f| row.push((i, feature_bits(f))));
-                prop_assert_eq!(row.iter().map(|&(i, _)| i).collect::<Vec<_>>(), (0..nx).collect::<Vec<_>>());
-                for (i, &(_, by_row)) in row.iter().enumerate() {
-                    let fast = feature_bits(window.features(&elevation, i, j));
-                    let slow = feature_bits(reference_features(radius, &elevation, i, j));
-                    prop_assert_eq!(fast, slow, "cell ({}, {})", i, j);
-                    prop_assert_eq!(by_row, slow, "row cell ({}, {})", i, j);
+                for i in 0..nx {
+                    let slow = reference_features(radius, &elevation, i, j);
+                    prop_assert_eq!(feature_bits(window.features(&elevation, i, j)), feature_bits(slow), "cell ({}, {})", i, j);
+                    let by_rows = fast[j * nx + i].expect("every cell emitted");
+                    prop_assert!(features_close(by_rows, slow, 1e-9), "cell ({}, {}): {:?} vs {:?}", i, j, by_rows, slow);
                 }
             }
         }

@@ -4,9 +4,6 @@
 use super::TerrainFeatures;
 use smug_core::GridLayer;
 
-/// Cells fitted side by side by [`Window::row_features`].
-const LANES: usize = 2;
-
 /// The fitting window: the cell offsets within the radius, as runs of consecutive
 /// offsets along x, row by row — the cells (and the order) of the plain double loop
 /// over the bounding square, with the distance test done once instead of per cell.
@@ -16,6 +13,8 @@ pub(super) struct Window {
     /// `x` offset (metres) of each `di`, indexed by `di + reach`.
     x: Vec<f64>,
     pub(super) reach: isize,
+    /// Cell size, metres.
+    resolution: f64,
     /// The fit of every cell of the window at height 0: the sums of `x` and `y` alone
     /// (`n`, `sx`, `sy`, `sxx`, `sxy`, `syy`) that a window inside the grid without a
     /// missing height accumulates, in the same order, hence to the same bits.
@@ -24,11 +23,11 @@ pub(super) struct Window {
 
 /// Consecutive window offsets `di_lo..=di_hi` in row `dj`.
 #[derive(Clone, Copy, Debug)]
-struct WindowRun {
-    dj: isize,
-    y: f64,
-    di_lo: isize,
-    di_hi: isize,
+pub(super) struct WindowRun {
+    pub(super) dj: isize,
+    pub(super) y: f64,
+    pub(super) di_lo: isize,
+    pub(super) di_hi: isize,
 }
 
 impl Window {
@@ -64,7 +63,41 @@ impl Window {
             runs,
             x,
             reach,
+            resolution,
             shape,
+        }
+    }
+
+    /// The window's runs, row by row.
+    pub(super) fn runs(&self) -> &[WindowRun] {
+        &self.runs
+    }
+
+    /// Cell size, metres.
+    pub(super) fn resolution(&self) -> f64 {
+        self.resolution
+    }
+
+    /// The fit of a window inside the grid without a missing height, from its height
+    /// sums and extremes (relative to the cell's height): the position sums are the
+    /// window's [`shape`](Self::shape).
+    pub(super) fn fit_from_heights(
+        &self,
+        sz: f64,
+        sxz: f64,
+        syz: f64,
+        szz: f64,
+        low: f64,
+        high: f64,
+    ) -> PlaneFit {
+        PlaneFit {
+            sz,
+            sxz,
+            syz,
+            szz,
+            low,
+            high,
+            ..self.shape
         }
     }
 
@@ -100,87 +133,11 @@ impl Window {
             let xs = &self.x[(lo - i + self.reach) as usize..=(hi - i + self.reach) as usize];
             for (&z, &x) in cells.iter().zip(xs) {
                 if !z.is_nan() {
-                    fit.add(x, run.y, (z - z0) as f64);
+                    fit.add(x, run.y, z as f64 - z0 as f64);
                 }
             }
         }
         fit.features()
-    }
-
-    /// The features of every cell of row `j`, in order of `i`: the same values as
-    /// [`Window::features`] cell by cell. Cells whose windows lie inside the grid are
-    /// fitted [`LANES`] at a time ([`Window::inner_fits`]), each lane's sums in the
-    /// order of one cell alone, so that the processor overlaps the lanes' additions.
-    pub(super) fn row_features(
-        &self,
-        elevation: &GridLayer,
-        j: usize,
-        mut emit: impl FnMut(usize, Option<TerrainFeatures>),
-    ) {
-        let [nx, ny] = elevation.geometry.size;
-        let r = self.reach.max(0) as usize;
-        let rows_inside = j >= r && j + r < ny;
-        let mut i = 0;
-        while i < nx {
-            let lanes_inside = rows_inside && i >= r && i + LANES - 1 + r < nx;
-            match lanes_inside
-                .then(|| self.inner_fits(elevation, i, j))
-                .flatten()
-            {
-                Some(fits) => {
-                    for (lane, fit) in fits.iter().enumerate() {
-                        emit(i + lane, fit.features());
-                    }
-                    i += LANES;
-                }
-                None => {
-                    emit(i, self.features(elevation, i, j));
-                    i += 1;
-                }
-            }
-        }
-    }
-
-    /// The fits of cells `i .. i + LANES` of row `j`, whose windows lie inside the
-    /// grid, as [`Window::inner_fit`] gives each; `None` when a lane's sums are not
-    /// numbers (a missing height, say: the caller fits those cells one by one).
-    fn inner_fits(&self, elevation: &GridLayer, i: usize, j: usize) -> Option<[PlaneFit; LANES]> {
-        let nx = elevation.geometry.size[0];
-        let r = self.reach;
-        let z0: [f32; LANES] = std::array::from_fn(|lane| elevation.data[j * nx + i + lane]);
-        let (mut sz, mut sxz, mut syz, mut szz) =
-            ([0.0f64; LANES], [0.0; LANES], [0.0; LANES], [0.0; LANES]);
-        let (mut low, mut high) = ([f64::INFINITY; LANES], [f64::NEG_INFINITY; LANES]);
-        for run in &self.runs {
-            let row = &elevation.data[(j as isize + run.dj) as usize * nx..][..nx];
-            let lo = (i as isize + run.di_lo) as usize;
-            let len = (run.di_hi - run.di_lo + 1) as usize;
-            let cells = &row[lo..lo + len + LANES - 1];
-            let xs = &self.x[(run.di_lo + r) as usize..][..len];
-            for (k, &x) in xs.iter().enumerate() {
-                for lane in 0..LANES {
-                    let z = (cells[k + lane] - z0[lane]) as f64;
-                    sz[lane] += z;
-                    sxz[lane] += x * z;
-                    syz[lane] += run.y * z;
-                    szz[lane] += z * z;
-                    low[lane] = low[lane].min(z);
-                    high[lane] = high[lane].max(z);
-                }
-            }
-        }
-        if sz.iter().chain(&szz).any(|s| s.is_nan()) {
-            return None;
-        }
-        Some(std::array::from_fn(|lane| PlaneFit {
-            sz: sz[lane],
-            sxz: sxz[lane],
-            syz: syz[lane],
-            szz: szz[lane],
-            low: low[lane],
-            high: high[lane],
-            ..self.shape
-        }))
     }
 
     /// The fit around `(i, j)` (height `z0`) when the window lies inside the grid and
@@ -207,7 +164,7 @@ impl Window {
                 if z.is_nan() {
                     return None;
                 }
-                fit.add_height(x, run.y, (z - z0) as f64);
+                fit.add_height(x, run.y, z as f64 - z0 as f64);
             }
         }
         Some(fit)
@@ -279,7 +236,7 @@ impl PlaneFit {
     }
 
     /// Solves the 3×3 normal equations (Cramer's rule); flat when under-determined.
-    fn features(&self) -> Option<TerrainFeatures> {
+    pub(super) fn features(&self) -> Option<TerrainFeatures> {
         if self.n == 0.0 {
             return None;
         }
@@ -308,6 +265,21 @@ impl PlaneFit {
         } else {
             (self.sz / self.n, 0.0, 0.0)
         };
+        Some(self.features_of_plane(a, b, c, step))
+    }
+
+    /// The features of a fit over a window of `solver`'s shape (the same position
+    /// sums), its plane solved with the shape's inverse normal matrix.
+    pub(super) fn features_solved(&self, solver: &ShapeSolver) -> TerrainFeatures {
+        let rhs = [self.sz, self.sxz, self.syz];
+        let [a, b, c] = solver
+            .inverse
+            .map(|row| row[0] * rhs[0] + row[1] * rhs[1] + row[2] * rhs[2]);
+        self.features_of_plane(a, b, c, self.high - self.low)
+    }
+
+    /// The features of the plane `z = a + b·x + c·y` fitted to the sums.
+    fn features_of_plane(&self, a: f64, b: f64, c: f64, step: f64) -> TerrainFeatures {
         // Σ(z − a − bx − cy)² expanded in the accumulated sums.
         let sse = self.szz + a * a * self.n + b * b * self.sxx + c * c * self.syy
             - 2.0 * a * self.sz
@@ -316,11 +288,43 @@ impl PlaneFit {
             + 2.0 * a * b * self.sx
             + 2.0 * a * c * self.sy
             + 2.0 * b * c * self.sxy;
-        Some(TerrainFeatures {
-            slope: b.hypot(c).atan(),
+        TerrainFeatures {
+            slope: (b * b + c * c).sqrt().atan(),
             roughness: (sse.max(0.0) / self.n).sqrt(),
             step,
-        })
+        }
+    }
+}
+
+/// The inverse of a window shape's normal matrix: the plane of a fit over a whole
+/// window is this matrix times the fit's height sums.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ShapeSolver {
+    inverse: [[f64; 3]; 3],
+}
+
+impl ShapeSolver {
+    /// The solver of `window`'s shape; `None` when [`PlaneFit::features`] would
+    /// fit a flat plane (too few cells, or a singular matrix).
+    pub(super) fn new(window: &Window) -> Option<Self> {
+        let f = &window.shape;
+        let m = [
+            [f.n, f.sx, f.sy],
+            [f.sx, f.sxx, f.sxy],
+            [f.sy, f.sxy, f.syy],
+        ];
+        let det = det3(m);
+        if !(f.n >= 3.0 && det.abs() > 1e-12) {
+            return None;
+        }
+        // The adjugate's entry (r, k) is the cofactor (k, r).
+        let cofactor = |k: usize, r: usize| {
+            let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+            let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
+            m[k1][r1] * m[k2][r2] - m[k1][r2] * m[k2][r1]
+        };
+        let inverse = std::array::from_fn(|r| std::array::from_fn(|k| cofactor(k, r) / det));
+        Some(Self { inverse })
     }
 }
 
