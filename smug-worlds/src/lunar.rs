@@ -7,7 +7,9 @@ use crate::canvas::{add_feature, geometry, raise_feature, world_rng};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::StageRng;
-use smug_core::{Error, GridLayer, MemoryLimit, Mission, Point3, Pose2, Scenario, Target, World};
+use smug_core::{
+    Error, GridGeometry, GridLayer, MemoryLimit, Mission, Point3, Pose2, Scenario, Target, World,
+};
 use std::f64::consts::{PI, TAU};
 
 /// Parameters of the lunar world.
@@ -89,36 +91,89 @@ impl Placer {
 
 /// Gently sloped ground: a tilt and a few long waves.
 fn base_terrain(layer: &mut GridLayer, rng: &mut StageRng) {
-    let g = layer.geometry;
-    let tilt_dir = rng.random_range(0.0..TAU);
-    let tilt = rng.random_range(0.01..0.03);
-    let waves: Vec<(f64, f64, f64, f64)> = (0..4)
-        .map(|_| {
-            (
-                rng.random_range(0.04..0.1),
-                TAU / rng.random_range(6.0..14.0),
-                rng.random_range(0.0..TAU),
-                rng.random_range(0.0..TAU),
-            )
-        })
-        .collect();
-    // The directions' cosines and sines once, not per cell (the same numbers).
-    let tilt_dir = (tilt_dir.cos(), tilt_dir.sin());
-    let waves: Vec<(f64, f64, (f64, f64), f64)> = waves
-        .into_iter()
-        .map(|(amplitude, k, direction, phase)| {
-            (amplitude, k, (direction.cos(), direction.sin()), phase)
-        })
-        .collect();
-    // Each cell's height is its own: rows are filled side by side.
-    *layer = GridLayer::from_fn_par(g, |i, j| {
-        let [x, y] = g.center_of(i, j);
-        let mut h = tilt * (x * tilt_dir.0 + y * tilt_dir.1);
-        for &(amplitude, k, (cos, sin), phase) in &waves {
+    *layer = Ground::draw(rng).layer(layer.geometry);
+}
+
+/// The ground's tilt and its long waves.
+struct Ground {
+    /// Slope of the tilt, and the cosine and sine of its direction.
+    tilt: f64,
+    tilt_dir: (f64, f64),
+    /// Per wave: amplitude, wave number, cosine and sine of its direction, phase.
+    waves: Vec<(f64, f64, (f64, f64), f64)>,
+}
+
+impl Ground {
+    /// A tilt and four waves drawn from `rng`.
+    fn draw(rng: &mut StageRng) -> Self {
+        let tilt_dir = rng.random_range(0.0..TAU);
+        let tilt = rng.random_range(0.01..0.03);
+        let waves: Vec<(f64, f64, f64, f64)> = (0..4)
+            .map(|_| {
+                (
+                    rng.random_range(0.04..0.1),
+                    TAU / rng.random_range(6.0..14.0),
+                    rng.random_range(0.0..TAU),
+                    rng.random_range(0.0..TAU),
+                )
+            })
+            .collect();
+        Self {
+            tilt,
+            // The directions' cosines and sines once, not per cell.
+            tilt_dir: (tilt_dir.cos(), tilt_dir.sin()),
+            waves: waves
+                .into_iter()
+                .map(|(amplitude, k, direction, phase)| {
+                    (amplitude, k, (direction.cos(), direction.sin()), phase)
+                })
+                .collect(),
+        }
+    }
+
+    /// The height at `(x, y)`, wave by wave (what [`Ground::layer`] computes).
+    #[cfg(test)]
+    fn height_at(&self, x: f64, y: f64) -> f64 {
+        let mut h = self.tilt * (x * self.tilt_dir.0 + y * self.tilt_dir.1);
+        for &(amplitude, k, (cos, sin), phase) in &self.waves {
             h += amplitude * (k * (x * cos + y * sin) + phase).sin();
         }
-        h as f32
-    });
+        h
+    }
+
+    /// The heights of the cells of `g`. A wave's phase at a cell is a column's part
+    /// plus a row's part, so its sine is `sin a · cos b + cos a · sin b` from a sine
+    /// and a cosine per column and per row: two products per cell instead of a sine.
+    fn layer(&self, g: GridGeometry) -> GridLayer {
+        let [nx, ny] = g.size;
+        // Per column (x) or row (y): each wave's part of the phase, as (sin, cos).
+        let parts =
+            |along: f64, axis: fn(&(f64, f64)) -> f64, with_phase: bool| -> Vec<(f64, f64)> {
+                self.waves
+                    .iter()
+                    .map(|(_, k, direction, phase)| {
+                        (k * along * axis(direction) + if with_phase { *phase } else { 0.0 })
+                            .sin_cos()
+                    })
+                    .collect()
+            };
+        let columns: Vec<Vec<(f64, f64)>> = (0..nx)
+            .map(|i| parts(g.center_of(i, 0)[0], |d| d.0, true))
+            .collect();
+        let rows: Vec<Vec<(f64, f64)>> = (0..ny)
+            .map(|j| parts(g.center_of(0, j)[1], |d| d.1, false))
+            .collect();
+        // Each cell's height is its own: rows are filled side by side.
+        GridLayer::from_fn_par(g, |i, j| {
+            let [x, y] = g.center_of(i, j);
+            let mut h = self.tilt * (x * self.tilt_dir.0 + y * self.tilt_dir.1);
+            for (w, &(amplitude, ..)) in self.waves.iter().enumerate() {
+                let ((sin_a, cos_a), (sin_b, cos_b)) = (columns[i][w], rows[j][w]);
+                h += amplitude * (sin_a * cos_b + cos_a * sin_b);
+            }
+            h as f32
+        })
+    }
 }
 
 /// A bowl of `radius` and `depth` with a steep rim.
@@ -382,6 +437,26 @@ mod tests {
                 "stone {} is not raised",
                 t.id
             );
+        }
+    }
+
+    #[test]
+    fn the_ground_by_columns_and_rows_is_the_ground_wave_by_wave() {
+        let g = GridGeometry::new([-3.0, 2.0], 0.1, [400, 300]).unwrap();
+        for seed in 0..5 {
+            let ground = Ground::draw(&mut StageRng::seed_from_u64(seed));
+            let layer = ground.layer(g);
+            for j in 0..300 {
+                for i in 0..400 {
+                    let [x, y] = g.center_of(i, j);
+                    let direct = ground.height_at(x, y);
+                    let by_parts = layer.get(i, j) as f64;
+                    assert!(
+                        (by_parts - direct).abs() < 1e-6,
+                        "({i}, {j}): {by_parts} vs {direct}"
+                    );
+                }
+            }
         }
     }
 
