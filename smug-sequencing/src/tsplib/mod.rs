@@ -10,8 +10,19 @@
 //! is always 0; `DIMENSION` wins over the number in the name (ftv33 has 34 nodes); a
 //! missing `EOF`; blank lines; `KEY: value`, `KEY : value` and `KEY value`-less sections.
 
+mod cursor;
+mod distance;
+mod error;
+mod tour;
+
+pub(crate) use cursor::Cursor;
+pub use cursor::MAX_DIMENSION;
+use cursor::{parse_dimension, Located};
+use distance::{coordinate_matrix, WeightType};
+pub use error::TsplibError;
 use smug_core::CostMatrix;
 use std::path::Path;
+pub use tour::parse_tour;
 
 /// Problem types the reader accepts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -41,37 +52,6 @@ pub struct TsplibInstance {
     pub coords: Option<Vec<(f64, f64)>>,
 }
 
-/// Why a TSPLIB file cannot be used. Line numbers are 1-based.
-#[derive(Debug, thiserror::Error)]
-pub enum TsplibError {
-    /// The file could not be read.
-    #[error("{path}: cannot read: {error}")]
-    Io {
-        /// The file.
-        path: String,
-        /// Why (part of the message, so not also a `source()`).
-        error: std::io::Error,
-    },
-    /// A line is malformed.
-    #[error("{path}:{line}: {message}")]
-    Syntax {
-        /// The file.
-        path: String,
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong.
-        message: String,
-    },
-    /// The file as a whole is unusable (a required key is missing, …).
-    #[error("{path}: {message}")]
-    Invalid {
-        /// The file.
-        path: String,
-        /// What is wrong.
-        message: String,
-    },
-}
-
 /// Reads a `.tsp` / `.atsp` file.
 pub fn read_tsplib(path: impl AsRef<Path>) -> Result<TsplibInstance, TsplibError> {
     let path = path.as_ref();
@@ -98,18 +78,6 @@ fn read_text(path: &Path) -> Result<String, TsplibError> {
         error,
     })?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
-}
-
-/// How distances are computed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum WeightType {
-    Explicit,
-    Euc2d,
-    Ceil2d,
-    Man2d,
-    Max2d,
-    Geo,
-    Att,
 }
 
 /// Layout of an `EDGE_WEIGHT_SECTION` (column-wise formats are read as their row-wise
@@ -152,111 +120,6 @@ impl WeightFormat {
             }
             WeightFormat::Function => Box::new(std::iter::empty()),
         }
-    }
-}
-
-/// A number of a section and the line it is on.
-type Located = (f64, usize);
-
-/// The lines of a file with a cursor; errors carry the file and line.
-pub(crate) struct Cursor<'a> {
-    path: &'a str,
-    lines: Vec<&'a str>,
-    next: usize,
-}
-
-impl<'a> Cursor<'a> {
-    fn new(text: &'a str, path: &'a str) -> Self {
-        Self {
-            path,
-            lines: text.lines().collect(),
-            next: 0,
-        }
-    }
-
-    pub(crate) fn syntax(&self, line: usize, message: impl Into<String>) -> TsplibError {
-        TsplibError::Syntax {
-            path: self.path.to_string(),
-            line,
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn invalid(&self, message: impl Into<String>) -> TsplibError {
-        TsplibError::Invalid {
-            path: self.path.to_string(),
-            message: message.into(),
-        }
-    }
-
-    /// The next non-blank line and its number, as `(KEY, value)`.
-    fn next_entry(&mut self) -> Option<(usize, String, &'a str)> {
-        while let Some(line) = self.lines.get(self.next).copied() {
-            self.next += 1;
-            let line = line.trim();
-            if line.is_empty() {
-                continue;
-            }
-            let (key, value) = match line.split_once(':') {
-                Some((key, value)) => (key.trim(), value.trim()),
-                None => match line.split_once(char::is_whitespace) {
-                    Some((key, value)) => (key, value.trim()),
-                    None => (line, ""),
-                },
-            };
-            return Some((self.next, key.to_ascii_uppercase(), value));
-        }
-        None
-    }
-
-    /// The whitespace-separated tokens of the next line and its number, `None` at the end.
-    pub(crate) fn next_tokens(&mut self) -> Option<(usize, std::str::SplitWhitespace<'a>)> {
-        let line = self.lines.get(self.next).copied()?;
-        self.next += 1;
-        Some((self.next, line.split_whitespace()))
-    }
-
-    /// The next `count` numbers, which may span any number of lines. `what` names the
-    /// section in errors.
-    fn numbers(&mut self, count: usize, what: &str) -> Result<Vec<Located>, TsplibError> {
-        let mut out = Vec::with_capacity(count.min(1 << 20));
-        let start_line = self.next;
-        while out.len() < count {
-            let Some(line) = self.lines.get(self.next).copied() else {
-                return Err(self.syntax(
-                    self.next.max(start_line),
-                    format!(
-                        "{what}: the file ends after {} of {count} numbers",
-                        out.len()
-                    ),
-                ));
-            };
-            self.next += 1;
-            let line_no = self.next;
-            for token in line.split_whitespace() {
-                if out.len() == count {
-                    return Err(self.syntax(
-                        line_no,
-                        format!("{what}: unexpected `{token}` after the {count} expected numbers"),
-                    ));
-                }
-                let value = token
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| {
-                        self.syntax(
-                            line_no,
-                            format!(
-                                "{what}: `{token}` is not a number (found {} of {count})",
-                                out.len()
-                            ),
-                        )
-                    })?;
-                out.push((value, line_no));
-            }
-        }
-        Ok(out)
     }
 }
 
@@ -345,29 +208,6 @@ fn parse_problem(cursor: &Cursor, line: usize, value: &str) -> Result<ProblemTyp
         "ATSP" | "AGTSP" => Ok(ProblemType::Atsp),
         other => Err(cursor.syntax(line, format!("TYPE {other} is not supported (TSP or ATSP)"))),
     }
-}
-
-/// Largest `DIMENSION` accepted: the matrix is dense (20 000 nodes take 3.2 GB).
-pub const MAX_DIMENSION: usize = 20_000;
-
-fn parse_dimension(cursor: &Cursor, line: usize, value: &str) -> Result<usize, TsplibError> {
-    let n = value
-        .parse::<usize>()
-        .ok()
-        .filter(|&n| n >= 1)
-        .ok_or_else(|| {
-            cursor.syntax(
-                line,
-                format!("DIMENSION `{value}` is not a positive integer"),
-            )
-        })?;
-    if n > MAX_DIMENSION {
-        return Err(cursor.syntax(
-            line,
-            format!("DIMENSION {n} is above the {MAX_DIMENSION} nodes a dense matrix allows here"),
-        ));
-    }
-    Ok(n)
 }
 
 fn parse_weight_type(cursor: &Cursor, line: usize, value: &str) -> Result<WeightType, TsplibError> {
@@ -533,126 +373,6 @@ fn check_tour_costs_finite(cursor: &Cursor, n: usize, data: &[f64]) -> Result<()
     Err(cursor.invalid(format!(
         "a weight of {largest} times {n} nodes overflows: a tour's cost must stay finite"
     )))
-}
-
-fn coordinate_matrix(kind: WeightType, coords: &[(f64, f64)]) -> Vec<f64> {
-    let n = coords.len();
-    (0..n * n)
-        .map(|k| {
-            let (i, j) = (k / n, k % n);
-            if i == j {
-                0.0
-            } else {
-                distance(kind, coords[i], coords[j])
-            }
-        })
-        .collect()
-}
-
-/// TSPLIB's `nint`: round half up.
-fn nint(x: f64) -> f64 {
-    (x + 0.5).floor()
-}
-
-/// The TSPLIB distance between two nodes.
-fn distance(kind: WeightType, a: (f64, f64), b: (f64, f64)) -> f64 {
-    let (dx, dy) = (a.0 - b.0, a.1 - b.1);
-    match kind {
-        WeightType::Euc2d => nint(dx.hypot(dy)),
-        WeightType::Ceil2d => dx.hypot(dy).ceil(),
-        WeightType::Man2d => nint(dx.abs() + dy.abs()),
-        WeightType::Max2d => nint(dx.abs()).max(nint(dy.abs())),
-        WeightType::Att => {
-            let r = ((dx * dx + dy * dy) / 10.0).sqrt();
-            let t = nint(r);
-            if t < r {
-                t + 1.0
-            } else {
-                t
-            }
-        }
-        WeightType::Geo => geo_distance(a, b),
-        WeightType::Explicit => 0.0,
-    }
-}
-
-/// TSPLIB GEO: coordinates are `DDD.MM` (degrees and minutes) latitude, longitude; the
-/// distance is in whole kilometres on the TSPLIB sphere (degrees truncated, as TSPLIB's
-/// reference code does).
-fn geo_distance(a: (f64, f64), b: (f64, f64)) -> f64 {
-    // TSPLIB's truncated π, on purpose: the published GEO optima depend on it.
-    #[allow(clippy::approx_constant)]
-    const PI: f64 = 3.141592;
-    const RRR: f64 = 6378.388;
-    let radians = |x: f64| {
-        let degrees = x.trunc();
-        PI * (degrees + 5.0 * (x - degrees) / 3.0) / 180.0
-    };
-    let (lat_a, lon_a, lat_b, lon_b) = (radians(a.0), radians(a.1), radians(b.0), radians(b.1));
-    let q1 = (lon_a - lon_b).cos();
-    let q2 = (lat_a - lat_b).cos();
-    let q3 = (lat_a + lat_b).cos();
-    let cosine = (0.5 * ((1.0 + q1) * q2 - (1.0 - q1) * q3)).clamp(-1.0, 1.0);
-    (RRR * cosine.acos() + 1.0).trunc()
-}
-
-/// Parses the text of a `.tour` file (`TOUR_SECTION` of 1-based ids ended by -1):
-/// the order as 0-based indices.
-pub fn parse_tour(text: &str, path: &str) -> Result<Vec<usize>, TsplibError> {
-    let mut cursor = Cursor::new(text, path);
-    let mut dimension = None;
-    while let Some((line, key, value)) = cursor.next_entry() {
-        match key.as_str() {
-            "DIMENSION" => dimension = Some(parse_dimension(&cursor, line, value)?),
-            "TOUR_SECTION" => return read_tour_section(&mut cursor, dimension),
-            "EOF" => break,
-            _ => {}
-        }
-    }
-    Err(cursor.invalid("TOUR_SECTION is missing"))
-}
-
-fn read_tour_section(
-    cursor: &mut Cursor,
-    dimension: Option<usize>,
-) -> Result<Vec<usize>, TsplibError> {
-    let mut order = Vec::new();
-    while let Some(line) = cursor.lines.get(cursor.next).copied() {
-        cursor.next += 1;
-        let line_no = cursor.next;
-        for token in line.split_whitespace() {
-            let id: i64 = token
-                .parse()
-                .map_err(|_| cursor.syntax(line_no, format!("`{token}` is not a node id")))?;
-            if id == -1 {
-                return check_permutation(cursor, order, dimension);
-            }
-            let index = usize::try_from(id)
-                .ok()
-                .filter(|&i| i >= 1)
-                .ok_or_else(|| cursor.syntax(line_no, format!("node id {id} is not positive")))?;
-            order.push(index - 1);
-        }
-    }
-    Err(cursor.invalid("TOUR_SECTION is not ended by -1"))
-}
-
-fn check_permutation(
-    cursor: &Cursor,
-    order: Vec<usize>,
-    dimension: Option<usize>,
-) -> Result<Vec<usize>, TsplibError> {
-    let n = dimension.unwrap_or(order.len());
-    let mut seen = vec![false; n];
-    let is_permutation = order.len() == n
-        && order
-            .iter()
-            .all(|&v| v < n && !std::mem::replace(&mut seen[v], true));
-    if is_permutation {
-        Ok(order)
-    } else {
-        Err(cursor.invalid(format!("the tour is not a permutation of the {n} nodes")))
-    }
 }
 
 #[cfg(test)]
