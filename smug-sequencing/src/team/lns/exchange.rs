@@ -239,46 +239,101 @@ impl<'a> Without<'a> {
     }
 }
 
+/// Two visits in two routes about to trade targets: each route with its visit taken
+/// out, the robots' costs, and the cost change of taking both out.
+struct Trade<'a> {
+    a: Side<'a>,
+    b: Side<'a>,
+    /// The cost change of taking both visits out.
+    removal: f64,
+}
+
+/// One route of a [`Trade`].
+struct Side<'a> {
+    /// The route's robot, and the index of its visit.
+    robot: usize,
+    index: usize,
+    /// The route as it is, and without the visit.
+    route: &'a [Visit],
+    without: Without<'a>,
+    /// The visit's target.
+    target: usize,
+    /// The robot's costs.
+    costs: &'a CostMatrix,
+}
+
+impl<'a> Side<'a> {
+    fn new(setting: &'a Setting, state: &'a State, (robot, index): (usize, usize)) -> Self {
+        let route = &state.routes[robot];
+        Self {
+            robot,
+            index,
+            route,
+            without: Without::new(setting, robot, route, index),
+            target: route[index].target,
+            costs: &setting.problem.robots()[robot].costs,
+        }
+    }
+}
+
+impl<'a> Trade<'a> {
+    /// Visit `a` (route, index) and visit `b` about to trade targets; `None` when a
+    /// target may not be served by the other route's robot.
+    fn new(
+        setting: &'a Setting,
+        state: &'a State,
+        a: (usize, usize),
+        b: (usize, usize),
+    ) -> Option<Self> {
+        let (a, b) = (Side::new(setting, state, a), Side::new(setting, state, b));
+        if !setting.problem.allows(a.target, b.robot) || !setting.problem.allows(b.target, a.robot)
+        {
+            return None;
+        }
+        let removal = removal_delta(setting, a.robot, a.route, a.index)
+            + removal_delta(setting, b.robot, b.route, b.index);
+        Some(Self { a, b, removal })
+    }
+
+    /// The move that puts `b`'s target into route `a` at `(gap, node)` and `a`'s into
+    /// route `b` at theirs (`None` as the gap: in the taken-out visit's slot).
+    fn into_move(
+        self,
+        into_a: (Option<usize>, usize),
+        into_b: (Option<usize>, usize),
+        delta: f64,
+    ) -> Move {
+        let place = |side: &Side, (gap, node): (Option<usize>, usize), target: usize| {
+            let mut route = side.route.to_vec();
+            let visit = Visit { target, node };
+            match gap {
+                None => route[side.index] = visit,
+                Some(gap) => {
+                    route.remove(side.index);
+                    route.insert(gap, visit);
+                }
+            }
+            (side.robot, route)
+        };
+        Move {
+            a: place(&self.a, into_a, self.b.target),
+            b: place(&self.b, into_b, self.a.target),
+            delta,
+        }
+    }
+}
+
 /// The two targets trade slots (each at the best of its nodes).
 fn swap(setting: &Setting, state: &State, a: (usize, usize), b: (usize, usize)) -> Option<Move> {
-    let ((ra, ia), (rb, ib)) = (a, b);
-    let (route_a, route_b) = (&state.routes[ra], &state.routes[rb]);
-    let (ta, tb) = (route_a[ia].target, route_b[ib].target);
-    if !setting.problem.allows(ta, rb) || !setting.problem.allows(tb, ra) {
-        return None;
-    }
-    let (seq_a, seq_b) = (
-        Without::new(setting, ra, route_a, ia),
-        Without::new(setting, rb, route_b, ib),
-    );
-    let (ca, cb) = (
-        &setting.problem.robots()[ra].costs,
-        &setting.problem.robots()[rb].costs,
-    );
-    let (into_a, node_b) = cheapest_node(setting, ca, &seq_a, ia, tb);
-    let (into_b, node_a) = cheapest_node(setting, cb, &seq_b, ib, ta);
-    let delta = removal_delta(setting, ra, route_a, ia)
-        + removal_delta(setting, rb, route_b, ib)
-        + into_a
-        + into_b;
+    let trade = Trade::new(setting, state, a, b)?;
+    let (ta, tb) = (&trade.a, &trade.b);
+    let (into_a, node_b) = cheapest_node(setting, ta.costs, &ta.without, ta.index, tb.target);
+    let (into_b, node_a) = cheapest_node(setting, tb.costs, &tb.without, tb.index, ta.target);
+    let delta = trade.removal + into_a + into_b;
     if !improves(delta) {
         return None;
     }
-    let mut new_a = route_a.clone();
-    new_a[ia] = Visit {
-        target: tb,
-        node: node_b,
-    };
-    let mut new_b = route_b.clone();
-    new_b[ib] = Visit {
-        target: ta,
-        node: node_a,
-    };
-    Some(Move {
-        a: (ra, new_a),
-        b: (rb, new_b),
-        delta,
-    })
+    Some(trade.into_move((None, node_b), (None, node_a), delta))
 }
 
 /// The cheapest of `target`'s nodes in gap `k` of `nodes` (after its `k`-th node): its cost change and node.
@@ -322,52 +377,15 @@ fn swap_star(
     a: (usize, usize),
     b: (usize, usize),
 ) -> Option<Move> {
-    let ((ra, ia), (rb, ib)) = (a, b);
-    let (route_a, route_b) = (&state.routes[ra], &state.routes[rb]);
-    let (ta, tb) = (route_a[ia].target, route_b[ib].target);
-    if !setting.problem.allows(ta, rb) || !setting.problem.allows(tb, ra) {
-        return None;
-    }
-    let (seq_a, seq_b) = (
-        Without::new(setting, ra, route_a, ia),
-        Without::new(setting, rb, route_b, ib),
-    );
-    let (ca, cb) = (
-        &setting.problem.robots()[ra].costs,
-        &setting.problem.robots()[rb].costs,
-    );
-    let (into_a, ka, node_b) = cheapest_gap(setting, ca, &seq_a, tb);
-    let (into_b, kb, node_a) = cheapest_gap(setting, cb, &seq_b, ta);
-    let delta = removal_delta(setting, ra, route_a, ia)
-        + removal_delta(setting, rb, route_b, ib)
-        + into_a
-        + into_b;
+    let trade = Trade::new(setting, state, a, b)?;
+    let (ta, tb) = (&trade.a, &trade.b);
+    let (into_a, ka, node_b) = cheapest_gap(setting, ta.costs, &ta.without, tb.target);
+    let (into_b, kb, node_a) = cheapest_gap(setting, tb.costs, &tb.without, ta.target);
+    let delta = trade.removal + into_a + into_b;
     if !improves(delta) {
         return None;
     }
-    let mut new_a = route_a.clone();
-    new_a.remove(ia);
-    new_a.insert(
-        ka,
-        Visit {
-            target: tb,
-            node: node_b,
-        },
-    );
-    let mut new_b = route_b.clone();
-    new_b.remove(ib);
-    new_b.insert(
-        kb,
-        Visit {
-            target: ta,
-            node: node_a,
-        },
-    );
-    Some(Move {
-        a: (ra, new_a),
-        b: (rb, new_b),
-        delta,
-    })
+    Some(trade.into_move((Some(ka), node_b), (Some(kb), node_a), delta))
 }
 
 #[cfg(test)]
