@@ -87,6 +87,13 @@ impl Caches {
         f32::from_bits(self.edge[slot].load(Relaxed))
     }
 
+    /// Fetches a primitive's entry into the cache early ([`super::buffers::prefetch`]).
+    pub(crate) fn prefetch_edge(&self, slot: usize) {
+        if let Some(entry) = self.edge.get(slot) {
+            super::buffers::prefetch(entry);
+        }
+    }
+
     /// Records a primitive's validity (its cost, or infinity).
     pub(crate) fn set_edge(&self, slot: usize, value: f32) {
         self.edge[slot].store(value.to_bits(), Relaxed);

@@ -1,11 +1,13 @@
 //! The search's priority queue: a two-level bucket queue over the entries' keys that
 //! pops in exactly the order of a binary heap of the same entries.
 //!
-//! Entries are filed into buckets of keys `width` wide; only the lowest non-empty
-//! bucket is a heap (ordered by the entries' own total order), the others are plain
-//! vectors, so a push beyond the current bucket is an append and a pop sifts through
-//! one bucket's entries, not the whole queue's. Keys at or below the current bucket
-//! (an A* search's keys never fall by much) join its heap.
+//! Entries are filed into buckets of keys `width` wide; the buckets after the current
+//! one are plain vectors, so a push beyond the current bucket is an append. When a
+//! bucket becomes the current one it is sorted once (by the entries' own total order)
+//! and popped from its end; keys pushed at or below the current bucket (an A*
+//! search's keys never fall by much) join a small heap, and a pop takes the lesser of
+//! the two fronts. The sorted run also tells the search which entries pop next
+//! ([`BucketQueue::ahead`]), so their data can be fetched early.
 //! `key / width` rounds monotonically, so a key below another never lands in a later
 //! bucket: the lowest non-empty bucket holds the queue's least entry, and the pops are
 //! the same as one heap's, ties included.
@@ -95,9 +97,12 @@ pub(super) struct BucketQueue {
     width: f64,
     /// The entries of the buckets after the current one (index: bucket).
     buckets: Vec<Vec<Entry>>,
-    /// The current bucket's index: entries filed at or below it are in `heap`.
+    /// The current bucket's index: entries filed at or below it are in `sorted` or
+    /// `heap`.
     current: usize,
-    /// The current bucket's entries.
+    /// The current bucket's entries as it became current, sorted: the least last.
+    sorted: Vec<Entry>,
+    /// The entries pushed at or below the current bucket since it became current.
     heap: Heap<Entry>,
     /// Entries in the buckets after the current one.
     later: usize,
@@ -111,6 +116,7 @@ impl BucketQueue {
             width,
             buckets: Vec::new(),
             current: 0,
+            sorted: Vec::new(),
             heap: Heap::new(),
             later: 0,
         }
@@ -144,10 +150,24 @@ impl BucketQueue {
 
     /// Takes the least entry.
     pub(super) fn pop(&mut self) -> Option<Entry> {
-        if self.heap.is_empty() && !self.advance() {
+        if self.sorted.is_empty() && self.heap.is_empty() && !self.advance() {
             return None;
         }
-        self.heap.pop()
+        // `Ord` is reversed (the least key is the greatest entry).
+        match (self.sorted.last(), self.heap.peek()) {
+            (Some(run), Some(pushed)) if pushed > run => self.heap.pop(),
+            (Some(_), _) => self.sorted.pop(),
+            (None, _) => self.heap.pop(),
+        }
+    }
+
+    /// An entry of the current bucket that pops `n` pops after the next one, or soon
+    /// after (entries pushed since the bucket became current may pop before it).
+    pub(super) fn ahead(&self, n: usize) -> Option<&Entry> {
+        self.sorted
+            .len()
+            .checked_sub(n + 1)
+            .map(|k| &self.sorted[k])
     }
 
     /// Makes the next non-empty bucket the current one; false when none is left.
@@ -159,18 +179,18 @@ impl BucketQueue {
             .find(|&b| !self.buckets[b].is_empty())
             .expect("a later bucket holds the later entries");
         self.current = next;
-        let entries = std::mem::take(&mut self.buckets[next]);
+        let mut entries = std::mem::take(&mut self.buckets[next]);
         self.later -= entries.len();
-        // Keep the emptied heap's allocation for the bucket just taken.
-        let spare = std::mem::replace(&mut self.heap, Heap::from(entries)).into_vec();
-        self.buckets[next] = spare;
+        entries.sort_unstable();
+        // Keep the emptied run's allocation for the bucket just taken.
+        self.buckets[next] = std::mem::replace(&mut self.sorted, entries);
         true
     }
 
     /// How many entries are queued.
     #[cfg(test)]
     pub(super) fn len(&self) -> usize {
-        self.heap.len() + self.later
+        self.sorted.len() + self.heap.len() + self.later
     }
 }
 

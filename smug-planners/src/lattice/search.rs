@@ -16,6 +16,10 @@ pub(super) const START: u32 = u32::MAX;
 /// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
 const QUEUE_BUCKET_CELLS: f64 = 1.0 / 32.0;
 
+/// How many pops ahead the search fetches the data of the entry that pops then (the
+/// pose's search data and primitives): enough for the fetch to land in time.
+const FETCH_AHEAD: usize = 6;
+
 /// One goal of a search.
 pub(super) struct Goal {
     /// Where it is.
@@ -232,6 +236,7 @@ impl Worker<'_> {
         };
         let mut expansions = 0u64;
         while let Some(entry) = run.heap.pop() {
+            self.fetch_ahead(&run.heap);
             if expansions.is_multiple_of(256) {
                 if expansions >= max {
                     return (run.goals, End::Budget(Budget::Expansions));
@@ -275,6 +280,36 @@ impl Worker<'_> {
         }
         self.keep_proof(&run);
         (run.goals, End::Exhausted)
+    }
+
+    /// Fetches the data of the node entry that pops [`FETCH_AHEAD`] pops from now (its
+    /// search data, its primitives, and the motion that reached it when unchecked).
+    fn fetch_ahead(&self, heap: &BucketQueue) {
+        let Some(Entry {
+            item:
+                Item::Node {
+                    id,
+                    parent,
+                    prim,
+                    verified,
+                    ..
+                },
+            ..
+        }) = heap.ahead(FETCH_AHEAD)
+        else {
+            return;
+        };
+        if *id == START {
+            return;
+        }
+        let stride = self.sh.primitives.stride;
+        super::buffers::prefetch(&self.me.buffers.nodes[*id as usize]);
+        self.sh.caches.prefetch_edge(*id as usize * stride);
+        if !verified && *parent != START {
+            self.sh
+                .caches
+                .prefetch_edge(*parent as usize * stride + *prim as usize);
+        }
     }
 
     /// Marks the goals an earlier exhausted search proved unreachable from every
@@ -407,6 +442,13 @@ impl Worker<'_> {
         let sh = self.sh;
         let (ix, iy, k) = sh.lattice.decode(id);
         let stride = sh.primitives.stride;
+        // The successors' search data first, fetched side by side.
+        for prim in &sh.primitives.by_heading[k] {
+            if let Some((jx, jy)) = sh.lattice.offset(ix, iy, prim.di, prim.dj) {
+                let to = sh.lattice.id(jx, jy, prim.to_heading);
+                super::buffers::prefetch(&self.me.buffers.nodes[to as usize]);
+            }
+        }
         for (p, prim) in sh.primitives.by_heading[k].iter().enumerate() {
             let Some((jx, jy)) = sh.lattice.offset(ix, iy, prim.di, prim.dj) else {
                 continue;

@@ -164,6 +164,9 @@ impl DiscreteMotionValidator {
     /// rejected, conservatively, in a bounded number of steps). `None` when the checker
     /// has no clearance.
     fn swept(&self, a: &Pose2, b: &Pose2) -> Option<Swept> {
+        // The start's clearance first: a checker without one (a box robot) answers
+        // `None` before the motion's curve is solved for its length.
+        let mut at_start = Some(self.states.clearance(a)?);
         // Straight motions are traced on their segment; a curved model's along its own
         // curve, whose fractions are fractions of its planar length (a step of the
         // clearance along the curve moves the disc at most that far).
@@ -181,13 +184,19 @@ impl DiscreteMotionValidator {
             } else {
                 0.0
             };
-            let point = if straight {
-                Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.yaw)
-            } else {
-                self.space.interpolate(a, b, t)
-            };
             self.states_checked.increment();
-            let clearance = self.states.clearance(&point)?;
+            // The first point is the start (`t` = 0), whose clearance is known.
+            let clearance = match at_start.take() {
+                Some(clearance) => clearance,
+                None => {
+                    let point = if straight {
+                        Pose2::new(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.yaw)
+                    } else {
+                        self.space.interpolate(a, b, t)
+                    };
+                    self.states.clearance(&point)?
+                }
+            };
             if clearance.is_nan() || clearance < min_step {
                 return Some(Swept::Contact { last_clear });
             }
