@@ -19,6 +19,8 @@ impl Problem<'_> {
         };
         let mut gain = 0.0;
         let mut improved = true;
+        let mut legs = self.legs(order);
+        let mut cluster: Vec<usize> = order.iter().map(|&v| self.clusters.of(v)).collect();
         while improved {
             improved = false;
             for i in 0..last_leg {
@@ -26,13 +28,27 @@ impl Problem<'_> {
                     if i == 0 && j + 1 == len {
                         continue; // the same two legs of a closed tour
                     }
+                    // A move gains only if d(a, c) < d(a, b) or d(b, d) < d(c, d) (else
+                    // its delta is ≥ 0 up to rounding far below eps): the clusters'
+                    // cheapest legs rule most pairs out without reading the matrix.
+                    if let Some(bounds) = &self.bounds {
+                        let (ca, cb) = (cluster[i], cluster[i + 1]);
+                        if bounds.cheapest_out_of(ca)[cluster[j]] >= legs[i]
+                            && bounds.cheapest_out_of(cb)[cluster[(j + 1) % len]] >= legs[j]
+                        {
+                            continue;
+                        }
+                    }
                     let (a, b) = (order[i], order[i + 1]);
                     let (c, d) = (order[j], order[(j + 1) % len]);
-                    let delta = self.dist.d(a, c) + self.dist.d(b, d)
-                        - self.dist.d(a, b)
-                        - self.dist.d(c, d);
+                    // legs[i] = d(a, b), legs[j] = d(c, d).
+                    let delta = self.dist.d(a, c) + self.dist.d(b, d) - legs[i] - legs[j];
                     if delta < -eps {
                         order[i + 1..=j].reverse();
+                        cluster[i + 1..=j].reverse();
+                        for (k, leg) in legs.iter_mut().enumerate().take(j + 1).skip(i) {
+                            *leg = self.leg(order, k);
+                        }
                         gain -= delta;
                         improved = true;
                     }
@@ -48,6 +64,7 @@ impl Problem<'_> {
         let eps = self.dist.eps();
         let mut gain = 0.0;
         let mut improved = true;
+        let mut legs = self.legs(order);
         while improved {
             improved = false;
             let mut p = self.movable(order.len()).start;
@@ -55,14 +72,15 @@ impl Problem<'_> {
                 let len = order.len();
                 let (a, v, b) = (order[(p + len - 1) % len], order[p], order[(p + 1) % len]);
                 let saved = self.dist.d(a, v) + self.dist.d(v, b) - self.dist.d(a, b);
-                order.remove(p);
-                let (q, w, added) = self.best_insertion(order, self.clusters.of(v), 0.0, rng);
-                if added < saved - eps {
-                    order.insert(q, w);
-                    gain += saved - added;
-                    improved = true;
-                } else {
-                    order.insert(p, v);
+                self.remove_at(order, &mut legs, p);
+                let c = self.clusters.of(v);
+                match self.insertion_below(order, &legs, c, saved - eps, rng) {
+                    Some((q, w, added)) => {
+                        self.insert_at(order, &mut legs, q, w);
+                        gain += saved - added;
+                        improved = true;
+                    }
+                    None => self.insert_at(order, &mut legs, p, v),
                 }
                 p += 1;
             }
