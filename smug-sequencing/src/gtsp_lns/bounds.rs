@@ -18,6 +18,8 @@ pub(crate) struct ClusterBounds {
     between: Vec<f64>,
     /// `between` transposed: `between_into[e · m + c]` is `between[c · m + e]`.
     between_into: Vec<f64>,
+    /// `nearest[c · m..(c + 1) · m]`: the clusters by their cheapest leg from `c`.
+    nearest: Vec<u32>,
 }
 
 impl ClusterBounds {
@@ -53,6 +55,13 @@ impl ClusterBounds {
                 between_into[e * m + c] = lo;
             }
         }
+        let mut nearest = Vec::with_capacity(m * m);
+        for c in 0..m {
+            let row = &between[c * m..(c + 1) * m];
+            let mut by_cost: Vec<u32> = (0..m as u32).collect();
+            by_cost.sort_by(|&e, &f| row[e as usize].total_cmp(&row[f as usize]));
+            nearest.extend(by_cost);
+        }
         Some(Self {
             n,
             m,
@@ -60,6 +69,7 @@ impl ClusterBounds {
             leaving,
             between,
             between_into,
+            nearest,
         })
     }
 
@@ -76,6 +86,12 @@ impl ClusterBounds {
     #[inline]
     pub(crate) fn cluster_detour(&self, ca: usize, c: usize, cb: usize, removed: f64) -> f64 {
         self.between_into[c * self.m + ca] + self.between[c * self.m + cb] - removed
+    }
+
+    /// Every cluster, by the cheapest leg from a member of `c` to one of its own.
+    #[inline]
+    pub(crate) fn nearest_out_of(&self, c: usize) -> &[u32] {
+        &self.nearest[c * self.m..(c + 1) * self.m]
     }
 
     /// The cheapest leg from a member of `c` to one of each cluster.
