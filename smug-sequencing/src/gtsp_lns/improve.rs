@@ -156,14 +156,24 @@ impl Problem<'_> {
         }
     }
 
-    /// 2-opt (symmetric costs) and the sweep, alternated until neither gains.
+    /// 2-opt (symmetric costs) and the sweep, alternated until neither gains. A sweep
+    /// right after a sweep of the same cluster order (2-opt moved nothing) is skipped:
+    /// its nodes are already that order's best, so it could not gain.
     pub(crate) fn polish(&self, order: &mut Vec<usize>) {
+        let mut swept = false;
         loop {
             let mut gain = 0.0;
             if self.dist.is_symmetric() {
-                gain += self.two_opt(order);
+                let moved = self.two_opt(order);
+                if moved > 0.0 {
+                    swept = false;
+                }
+                gain += moved;
             }
-            gain += self.sweep_in_place(order);
+            if !swept {
+                gain += self.sweep_in_place(order);
+                swept = true;
+            }
             if gain <= 0.0 {
                 return;
             }
