@@ -4,6 +4,7 @@
 //! skips legs and moves these bounds rule out, and finds what a full scan would find.
 
 use crate::costs::Dist;
+use rayon::prelude::*;
 use smug_core::Clusters;
 
 /// The bounds of one matrix and clustering.
@@ -30,19 +31,24 @@ impl ClusterBounds {
         if m == 0 || 2 * m > n {
             return None;
         }
+        // One cluster's rows per task (on the caller's rayon pool).
         let mut entering = vec![f64::INFINITY; m * n];
         let mut leaving = vec![f64::INFINITY; m * n];
-        for a in 0..n {
-            for c in 0..m {
+        entering
+            .par_chunks_mut(n)
+            .zip(leaving.par_chunks_mut(n))
+            .enumerate()
+            .for_each(|(c, (into_c, out_of_c))| {
                 let members = clusters.members(c);
-                entering[c * n + a] = members
-                    .iter()
-                    .fold(f64::INFINITY, |lo, &v| lo.min(dist.d(a, v)));
-                leaving[c * n + a] = members
-                    .iter()
-                    .fold(f64::INFINITY, |lo, &v| lo.min(dist.d_into(v, a)));
-            }
-        }
+                for (a, (lo_in, lo_out)) in into_c.iter_mut().zip(out_of_c.iter_mut()).enumerate() {
+                    *lo_in = members
+                        .iter()
+                        .fold(f64::INFINITY, |lo, &v| lo.min(dist.d(a, v)));
+                    *lo_out = members
+                        .iter()
+                        .fold(f64::INFINITY, |lo, &v| lo.min(dist.d_into(v, a)));
+                }
+            });
         let mut between = vec![f64::INFINITY; m * m];
         let mut between_into = vec![f64::INFINITY; m * m];
         for e in 0..m {
