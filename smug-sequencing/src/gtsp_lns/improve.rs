@@ -117,6 +117,9 @@ impl Problem<'_> {
     /// Takes each movable cluster out in turn and puts it back at its cheapest place
     /// with its cheapest node, until a pass changes nothing; returns the gain.
     pub(crate) fn move_opt(&self, order: &mut Vec<usize>, rng: &mut StageRng) -> f64 {
+        if order.len() < 2 {
+            return 0.0;
+        }
         let eps = self.dist.eps();
         let mut gain = 0.0;
         let mut improved = true;
@@ -126,9 +129,11 @@ impl Problem<'_> {
             let mut p = self.movable(order.len()).start;
             while p < self.movable(order.len()).end {
                 let len = order.len();
-                let (a, v, b) = (order[(p + len - 1) % len], order[p], order[(p + 1) % len]);
-                let saved = self.dist.d(a, v) + self.dist.d(v, b) - self.dist.d(a, b);
-                self.remove_at(order, &mut legs, p);
+                // d(a, v) and d(v, b) before the removal, d(a, b) after it.
+                let before = (p + len - 1) % len;
+                let (into_v, out_of_v) = (legs.cost[before], legs.cost[p]);
+                let v = self.remove_at(order, &mut legs, p);
+                let saved = into_v + out_of_v - legs.cost[(p + len - 2) % (len - 1)];
                 let c = self.clusters.of(v);
                 match self.insertion_below(order, &legs, c, saved - eps, rng) {
                     Some((q, w, added)) => {
