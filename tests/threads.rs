@@ -1,7 +1,7 @@
 //! The number of threads never changes a plan: the stages that run side by side
 //! (traversability and terrain grids, cost-matrix rows and DP layers of one-to-many
-//! searches, post-processing, the lattice's rows) give the plan one thread gives, bit
-//! for bit.
+//! searches, post-processing, the lattice's rows, the GTSP search's matrix copy and
+//! cluster bounds) give the plan one thread gives, bit for bit.
 
 use smug_core::{LoadedConfig, Pipeline, Plan, PlanOptions};
 use smug_mission::plan_mission;
@@ -15,7 +15,7 @@ struct Case {
     set: &'static [&'static str],
 }
 
-const CASES: [Case; 4] = [
+const CASES: [Case; 5] = [
     // LazyPRM*'s one-to-many rows: the full matrix and the IDP layers.
     Case {
         config: "lunar.toml",
@@ -35,6 +35,19 @@ const CASES: [Case; 4] = [
             "planner.params.one_to_many=true",
             "plan.mode=\"joint\"",
             "plan.refine_legs=true",
+        ],
+    },
+    // The joint mode on the GTSP large-neighbourhood search (its matrix copy and
+    // cluster bounds are filled side by side).
+    Case {
+        config: "lunar.toml",
+        set: &[
+            "world.params.targets=24",
+            "world.params.pois_per_target=5",
+            "planner.params.one_to_many=true",
+            "plan.mode=\"joint\"",
+            "sequencer.type=\"gtsp-lns\"",
+            "sequencer.params.max_iterations=300",
         ],
     },
     // The default lazy order, settled.

@@ -2,6 +2,7 @@
 //! and turning an order into a [`Tour`] with its true cost.
 
 use crate::error::SequencingError;
+use rayon::prelude::*;
 use smug_core::{Clusters, CostMatrix, Tour, TourKind};
 
 /// Checks that `kind` makes sense for `n` nodes: at least one node, and an open path's end
@@ -54,6 +55,9 @@ pub(crate) fn tour_of(costs: &CostMatrix, order: Vec<usize>, kind: TourKind) -> 
 pub(crate) fn trivial_tour(costs: &CostMatrix, kind: TourKind) -> Option<Tour> {
     (costs.len() <= 2).then(|| tour_of(costs, (0..costs.len()).collect(), kind))
 }
+
+/// Rows of a matrix one parallel task copies at least.
+pub(crate) const ROWS_PER_TASK: usize = 64;
 
 /// Side of the square tiles in which [`symmetry`] and [`transposed`] walk an `n × n`
 /// matrix, so that the transposed reads stay in cache.
@@ -117,20 +121,27 @@ impl Dist {
     /// The working copy of `costs`.
     pub(crate) fn new(costs: &CostMatrix) -> Self {
         let n = costs.len();
-        let mut max_finite = 0.0_f64;
-        let mut missing = false;
-        let mut data = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let c = if i == j { 0.0 } else { costs.get(i, j) };
-                if c.is_finite() {
-                    max_finite = max_finite.max(c);
-                } else {
-                    missing = true;
+        let mut data = vec![0.0; n * n];
+        // Rows side by side (on the caller's rayon pool); the maximum and whether a leg
+        // is missing do not depend on the order the rows are looked at.
+        let (max_finite, missing) = data
+            .par_chunks_mut(n.max(1))
+            .with_min_len(ROWS_PER_TASK)
+            .enumerate()
+            .map(|(i, row)| {
+                let (mut max_finite, mut missing) = (0.0_f64, false);
+                for (j, slot) in row.iter_mut().enumerate() {
+                    let c = if i == j { 0.0 } else { costs.get(i, j) };
+                    if c.is_finite() {
+                        max_finite = max_finite.max(c);
+                    } else {
+                        missing = true;
+                    }
+                    *slot = c;
                 }
-                data.push(c);
-            }
-        }
+                (max_finite, missing)
+            })
+            .reduce(|| (0.0, false), |a, b| (a.0.max(b.0), a.1 || b.1));
         if missing {
             let penalty = missing_leg_penalty(n, max_finite);
             for c in data.iter_mut().filter(|c| !c.is_finite()) {

@@ -2,6 +2,7 @@
 //! cluster to its best place and node (GLNS's "move-opt"), the cluster sweep, and a
 //! reorder of the chosen nodes by the TSP local search.
 
+use super::insertion::Legs;
 use super::tour::Problem;
 use crate::local_search::{LocalSearch, LocalSearchParams};
 use smug_core::rng::StageRng;
@@ -10,6 +11,12 @@ use smug_core::{CostMatrix, Sequencer, TourKind};
 impl Problem<'_> {
     /// First-improvement 2-opt until no reversal gains; returns the gain. Only for
     /// symmetric costs (a reversal keeps every leg's cost).
+    ///
+    /// A reversal of the legs `(a, b)` and `(c, d)` gains only if `d(a, c) < d(a, b)` or
+    /// `d(b, d) < d(c, d)` (else its delta is ≥ 0 up to rounding far below `eps`). With
+    /// the cluster bounds and a tour of every cluster, only the positions of the
+    /// clusters near `a` or `b` are tried, in the order of the plain scan, so the moves
+    /// made are the same.
     pub(crate) fn two_opt(&self, order: &mut [usize]) -> f64 {
         let len = order.len();
         let eps = self.dist.eps();
@@ -17,24 +24,89 @@ impl Problem<'_> {
             None => len,
             Some(_) => len.saturating_sub(1),
         };
+        let Legs {
+            cost: mut legs,
+            mut cluster,
+        } = self.legs(order);
+        let near = self.bounds.as_ref().filter(|_| len == self.len());
+        let mut position = vec![0; if near.is_some() { len } else { 0 }];
+        if near.is_some() {
+            for (p, &c) in cluster.iter().enumerate() {
+                position[c as usize] = p;
+            }
+        }
         let mut gain = 0.0;
         let mut improved = true;
+        let mut candidates = Vec::new();
         while improved {
             improved = false;
-            for i in 0..last_leg {
-                for j in i + 2..last_leg {
-                    if i == 0 && j + 1 == len {
-                        continue; // the same two legs of a closed tour
+            let mut longest = legs[..last_leg]
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max);
+            // No pair of legs two apart starts at the last two positions.
+            for i in 0..last_leg.saturating_sub(2) {
+                let mut after = i + 1;
+                loop {
+                    let (ca, cb) = (cluster[i] as usize, cluster[i + 1] as usize);
+                    let valid = |j: usize| j > after && j < last_leg && !(i == 0 && j + 1 == len);
+                    candidates.clear();
+                    match near {
+                        Some(bounds) => {
+                            for &cc in bounds.nearest_out_of(ca) {
+                                if bounds.cheapest_out_of(ca)[cc as usize] >= legs[i] {
+                                    break;
+                                }
+                                let j = position[cc as usize];
+                                if valid(j) {
+                                    candidates.push(j);
+                                }
+                            }
+                            for &cd in bounds.nearest_out_of(cb) {
+                                let lo = bounds.cheapest_out_of(cb)[cd as usize];
+                                if lo >= longest {
+                                    break;
+                                }
+                                let j = (position[cd as usize] + len - 1) % len;
+                                if valid(j) && lo < legs[j] {
+                                    candidates.push(j);
+                                }
+                            }
+                            candidates.sort_unstable();
+                            candidates.dedup();
+                        }
+                        None => candidates.extend((after + 1..last_leg).filter(|&j| valid(j))),
                     }
-                    let (a, b) = (order[i], order[i + 1]);
-                    let (c, d) = (order[j], order[(j + 1) % len]);
-                    let delta = self.dist.d(a, c) + self.dist.d(b, d)
-                        - self.dist.d(a, b)
-                        - self.dist.d(c, d);
-                    if delta < -eps {
-                        order[i + 1..=j].reverse();
-                        gain -= delta;
-                        improved = true;
+                    let mut moved = None;
+                    for &j in &candidates {
+                        let (a, b) = (order[i], order[i + 1]);
+                        let (c, d) = (order[j], order[(j + 1) % len]);
+                        // legs[i] = d(a, b), legs[j] = d(c, d).
+                        let delta = self.dist.d(a, c) + self.dist.d(b, d) - legs[i] - legs[j];
+                        if delta < -eps {
+                            order[i + 1..=j].reverse();
+                            cluster[i + 1..=j].reverse();
+                            for k in i..=j {
+                                legs[k] = self.leg(order, k);
+                                if near.is_some() {
+                                    position[cluster[k] as usize] = k;
+                                }
+                            }
+                            longest = legs[..last_leg]
+                                .iter()
+                                .copied()
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            gain -= delta;
+                            moved = Some(j);
+                            break;
+                        }
+                    }
+                    match moved {
+                        Some(j) => {
+                            improved = true;
+                            after = j;
+                        }
+                        None => break,
                     }
                 }
             }
@@ -45,24 +117,31 @@ impl Problem<'_> {
     /// Takes each movable cluster out in turn and puts it back at its cheapest place
     /// with its cheapest node, until a pass changes nothing; returns the gain.
     pub(crate) fn move_opt(&self, order: &mut Vec<usize>, rng: &mut StageRng) -> f64 {
+        if order.len() < 2 {
+            return 0.0;
+        }
         let eps = self.dist.eps();
         let mut gain = 0.0;
         let mut improved = true;
+        let mut legs = self.legs(order);
         while improved {
             improved = false;
             let mut p = self.movable(order.len()).start;
             while p < self.movable(order.len()).end {
                 let len = order.len();
-                let (a, v, b) = (order[(p + len - 1) % len], order[p], order[(p + 1) % len]);
-                let saved = self.dist.d(a, v) + self.dist.d(v, b) - self.dist.d(a, b);
-                order.remove(p);
-                let (q, w, added) = self.best_insertion(order, self.clusters.of(v), 0.0, rng);
-                if added < saved - eps {
-                    order.insert(q, w);
-                    gain += saved - added;
-                    improved = true;
-                } else {
-                    order.insert(p, v);
+                // d(a, v) and d(v, b) before the removal, d(a, b) after it.
+                let before = (p + len - 1) % len;
+                let (into_v, out_of_v) = (legs.cost[before], legs.cost[p]);
+                let v = self.remove_at(order, &mut legs, p);
+                let saved = into_v + out_of_v - legs.cost[(p + len - 2) % (len - 1)];
+                let c = self.clusters.of(v);
+                match self.insertion_below(order, &legs, c, saved - eps, rng) {
+                    Some((q, w, added)) => {
+                        self.insert_at(order, &mut legs, q, w);
+                        gain += saved - added;
+                        improved = true;
+                    }
+                    None => self.insert_at(order, &mut legs, p, v),
                 }
                 p += 1;
             }
@@ -82,14 +161,24 @@ impl Problem<'_> {
         }
     }
 
-    /// 2-opt (symmetric costs) and the sweep, alternated until neither gains.
+    /// 2-opt (symmetric costs) and the sweep, alternated until neither gains. A sweep
+    /// right after a sweep of the same cluster order (2-opt moved nothing) is skipped:
+    /// its nodes are already that order's best, so it could not gain.
     pub(crate) fn polish(&self, order: &mut Vec<usize>) {
+        let mut swept = false;
         loop {
             let mut gain = 0.0;
             if self.dist.is_symmetric() {
-                gain += self.two_opt(order);
+                let moved = self.two_opt(order);
+                if moved > 0.0 {
+                    swept = false;
+                }
+                gain += moved;
             }
-            gain += self.sweep_in_place(order);
+            if !swept {
+                gain += self.sweep_in_place(order);
+                swept = true;
+            }
             if gain <= 0.0 {
                 return;
             }

@@ -16,7 +16,9 @@
 //! The start cluster is cluster 0 and stays first; an open tour's end cluster stays
 //! last. With `time_limit_s = 0` a seed and `max_iterations` give bit-identical tours.
 
+mod bounds;
 mod improve;
+mod insertion;
 mod params;
 mod search;
 mod tour;

@@ -1,13 +1,9 @@
 //! A GTSP tour as the list of its nodes, and what the search does to it: cost,
-//! cluster removal and cheapest insertion.
+//! cluster removal and the cluster sweep.
 
+use super::bounds::ClusterBounds;
 use crate::costs::Dist;
-use rand::Rng;
-use smug_core::rng::StageRng;
-use smug_core::{Clusters, SelectionProblem, TourKind};
-
-/// A stand-in node index for "anywhere": the end of an open tour's sweep.
-const ANYWHERE: usize = usize::MAX;
+use smug_core::{Clusters, TourKind};
 
 /// The instance as the search sees it: the working matrix, the clusters and whether
 /// the last position is fixed (an open tour's end cluster).
@@ -18,6 +14,8 @@ pub(crate) struct Problem<'a> {
     pub(crate) clusters: &'a Clusters,
     /// The end cluster of an open tour.
     pub(crate) end: Option<usize>,
+    /// Bounds on the legs into and out of each cluster (none for single-node clusters).
+    pub(crate) bounds: Option<ClusterBounds>,
 }
 
 impl<'a> Problem<'a> {
@@ -26,10 +24,12 @@ impl<'a> Problem<'a> {
             TourKind::OpenTo(c) if clusters.len() > 1 => Some(c),
             _ => None,
         };
+        let bounds = ClusterBounds::new(&dist, clusters);
         Self {
             dist,
             clusters,
             end,
+            bounds,
         }
     }
 
@@ -71,7 +71,7 @@ impl<'a> Problem<'a> {
     }
 
     /// The legs a node may be inserted into, as the position of their first node.
-    fn insertion_legs(&self, len: usize) -> std::ops::Range<usize> {
+    pub(crate) fn insertion_legs(&self, len: usize) -> std::ops::Range<usize> {
         match self.end {
             None => 0..len,
             Some(_) => 0..len.saturating_sub(1),
@@ -83,52 +83,9 @@ impl<'a> Problem<'a> {
         self.dist.d(order[p], order[(p + 1) % order.len()])
     }
 
-    /// The cheapest node of cluster `c` and position to insert it at, with each
-    /// insertion cost raised by a random amount in `[0, noise)`: `(position, node,
-    /// true added cost)`.
-    pub(crate) fn best_insertion(
-        &self,
-        order: &[usize],
-        c: usize,
-        noise: f64,
-        rng: &mut StageRng,
-    ) -> (usize, usize, f64) {
-        let mut best = (1, self.clusters.members(c)[0], f64::INFINITY, f64::INFINITY);
-        for p in self.insertion_legs(order.len()) {
-            let (a, b) = (order[p], order[(p + 1) % order.len()]);
-            let removed = self.dist.d(a, b);
-            for &v in self.clusters.members(c) {
-                let added = self.dist.d(a, v) + self.dist.d_into(v, b) - removed;
-                let noisy = if noise > 0.0 {
-                    added + noise * rng.random::<f64>()
-                } else {
-                    added
-                };
-                if noisy < best.3 {
-                    best = (p + 1, v, added, noisy);
-                }
-            }
-        }
-        (best.0, best.1, best.2)
-    }
-
-    /// Inserts every cluster of `removed`, in that order, at its cheapest place.
-    pub(crate) fn insert_all(
-        &self,
-        order: &mut Vec<usize>,
-        removed: &[usize],
-        noise: f64,
-        rng: &mut StageRng,
-    ) {
-        for &c in removed {
-            let (p, v, _) = self.best_insertion(order, c, noise, rng);
-            order.insert(p, v);
-        }
-    }
-
     /// The best choice of node per cluster for the order of `order`'s clusters (one
-    /// layered DP per node of the first cluster; a closed tour is rotated so that its
-    /// smallest cluster comes first), and its cost.
+    /// layered DP per node of the first cluster, the `dp` selector's; a closed tour is
+    /// rotated so that its smallest cluster comes first), and its cost.
     pub(crate) fn sweep(&self, order: &[usize]) -> (Vec<usize>, f64) {
         let len = order.len();
         if len < 2 {
@@ -141,28 +98,60 @@ impl<'a> Problem<'a> {
                 .unwrap_or(0),
         };
         let cluster_at = |p: usize| self.clusters.of(order[(p + shift) % len]);
-        let groups: Vec<Vec<usize>> = (1..len)
-            .map(|p| self.clusters.members(cluster_at(p)).to_vec())
+        let layers: Vec<&[usize]> = (1..len)
+            .map(|p| self.clusters.members(cluster_at(p)))
             .collect();
+        // back[offsets[g] + q]: position in layer g − 1 of the best predecessor of layer
+        // g's node q (as `SelectionProblem::solve_layers`, whose ties and sums it keeps).
+        let mut offsets = Vec::with_capacity(layers.len());
+        let mut total_nodes = 0;
+        for layer in &layers {
+            offsets.push(total_nodes);
+            total_nodes += layer.len();
+        }
+        let mut back = vec![0_usize; total_nodes];
+        let (mut reach, mut next) = (Vec::new(), Vec::new());
         let mut best = (Vec::new(), f64::INFINITY);
         for &s in self.clusters.members(cluster_at(0)) {
-            let problem = SelectionProblem {
-                start: s,
-                groups: groups.clone(),
-                end: if self.end.is_some() { ANYWHERE } else { s },
-            };
-            let solved = problem.solve_layers(|i, j| {
-                Ok(if j == ANYWHERE {
+            reach.clear();
+            reach.extend(layers[0].iter().map(|&p| self.dist.d(s, p)));
+            for g in 1..layers.len() {
+                next.clear();
+                for (q_at, &q) in layers[g].iter().enumerate() {
+                    let mut arg = (0, f64::INFINITY);
+                    for (k, &p) in layers[g - 1].iter().enumerate() {
+                        let via = reach[k] + self.dist.d_into(p, q);
+                        if via < arg.1 {
+                            arg = (k, via);
+                        }
+                    }
+                    next.push(arg.1);
+                    back[offsets[g] + q_at] = arg.0;
+                }
+                std::mem::swap(&mut reach, &mut next);
+            }
+            let mut arg = (0, f64::INFINITY);
+            for (k, &p) in layers[layers.len() - 1].iter().enumerate() {
+                let leg = if self.end.is_some() {
                     0.0
                 } else {
-                    self.dist.d(i, j)
-                })
-            });
-            // The cost closure never fails.
-            if let Ok((chosen, cost)) = solved {
-                if cost < best.1 || best.0.is_empty() {
-                    best = (std::iter::once(s).chain(chosen).collect(), cost);
+                    self.dist.d(p, s)
+                };
+                let total = reach[k] + leg;
+                if total < arg.1 {
+                    arg = (k, total);
                 }
+            }
+            if arg.1 < best.1 || best.0.is_empty() {
+                let mut nodes = vec![s; len];
+                let mut k = arg.0;
+                for g in (0..layers.len()).rev() {
+                    nodes[g + 1] = layers[g][k];
+                    if g > 0 {
+                        k = back[offsets[g] + k];
+                    }
+                }
+                best = (nodes, arg.1);
             }
         }
         let (mut nodes, cost) = best;
