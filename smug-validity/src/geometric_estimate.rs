@@ -17,15 +17,17 @@ impl GeometricEstimator {
         features.map_or(f32::NAN, |f| self.score(&f) as f32)
     }
 
-    /// Gives `set` the layer's value of every cell of `rect`.
+    /// Gives `set` the layer's value of every cell of `rect`: from the window's row
+    /// runs (`runs`, [`RowRuns::new`] of `window`) where it has them.
     fn fill(
         &self,
         window: &Window,
+        runs: Option<&RowRuns>,
         elevation: &GridLayer,
         rect: CellRect,
         mut set: impl FnMut(usize, usize, f32),
     ) {
-        match RowRuns::new(window) {
+        match runs {
             Some(runs) => runs.rect_features(window, elevation, rect, |i, j, f| {
                 set(i, j, self.layer_value(f))
             }),
@@ -44,6 +46,7 @@ impl TraversabilityEstimator for GeometricEstimator {
     fn estimate(&self, world: &World) -> Result<GridLayer, Error> {
         let elevation = &world.elevation;
         let window = Window::new(self.window_radius, elevation.geometry.resolution);
+        let runs = RowRuns::new(&window);
         let mut layer = GridLayer::filled(elevation.geometry, f32::NAN);
         let nx = elevation.geometry.size[0];
         if nx > 0 {
@@ -59,7 +62,7 @@ impl TraversabilityEstimator for GeometricEstimator {
                         j0,
                         j1: j0 + values.len() / nx,
                     };
-                    self.fill(&window, elevation, rect, |i, j, v| {
+                    self.fill(&window, runs.as_ref(), elevation, rect, |i, j, v| {
                         values[(j - j0) * nx + i] = v
                     });
                 });
@@ -87,7 +90,10 @@ impl TraversabilityEstimator for GeometricEstimator {
         }
         let window = Window::new(self.window_radius, elevation.geometry.resolution);
         let area = changed.grown(window.reach.max(0) as usize, elevation.geometry.size);
-        self.fill(&window, elevation, area, |i, j, v| layer.set(i, j, v));
+        let runs = RowRuns::new(&window);
+        self.fill(&window, runs.as_ref(), elevation, area, |i, j, v| {
+            layer.set(i, j, v)
+        });
         Ok(true)
     }
 }

@@ -25,6 +25,8 @@ pub(super) struct RowRuns {
     /// Per run of the window (in its order): row offset, `y` offset and the index of
     /// its half-width in `half_widths`.
     runs: Vec<(isize, f64, usize)>,
+    /// The window's plane solver (`None`: too few cells for a plane).
+    solver: Option<ShapeSolver>,
 }
 
 impl RowRuns {
@@ -48,7 +50,11 @@ impl RowRuns {
                 Some((run.dj, run.y, h))
             })
             .collect::<Option<_>>()?;
-        Some(Self { half_widths, runs })
+        Some(Self {
+            half_widths,
+            runs,
+            solver: ShapeSolver::new(window),
+        })
     }
 
     /// The features of every cell of `rect`: the row-sum fit where the window lies
@@ -66,7 +72,6 @@ impl RowRuns {
         // Cells whose window lies inside the grid.
         let (inner_i0, inner_i1) = (r, nx.saturating_sub(r));
         let (inner_j0, inner_j1) = (r, ny.saturating_sub(r));
-        let solver = ShapeSolver::new(window);
         let mut tile = Tile::default();
         let mut row = RowFits::default();
         let mut i0 = rect.i0;
@@ -86,7 +91,7 @@ impl RowRuns {
                 for i in i0..i1 {
                     let fit = fitted && (columns.0..columns.1).contains(&i);
                     let features = fit
-                        .then(|| row.features(window, solver.as_ref(), i - columns.0))
+                        .then(|| row.features(window, self.solver.as_ref(), i - columns.0))
                         .flatten()
                         .unwrap_or_else(|| window.features(elevation, i, j));
                     emit(i, j, features);

@@ -150,12 +150,7 @@ impl Window {
         if i < r || j < r || i + r >= nx as isize || j + r >= ny as isize {
             return None;
         }
-        let mut fit = PlaneFit {
-            low: f64::INFINITY,
-            high: f64::NEG_INFINITY,
-            ..self.shape
-        };
-        (fit.sz, fit.sxz, fit.syz, fit.szz) = (0.0, 0.0, 0.0, 0.0);
+        let mut fit = self.fit_from_heights(0.0, 0.0, 0.0, 0.0, f64::INFINITY, f64::NEG_INFINITY);
         for run in &self.runs {
             let row = &elevation.data[(j + run.dj) as usize * nx..][..nx];
             let cells = &row[(i + run.di_lo) as usize..=(i + run.di_hi) as usize];
