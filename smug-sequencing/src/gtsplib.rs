@@ -5,7 +5,7 @@
 //! Tolerated quirks of the published files: `TYPE: GTSP (M.~Hofmeister)` (or `TSP …`
 //! with sets), `GTSP_SET_SECTION:` with a colon.
 
-use crate::tsplib::{parse_with, Cursor, ProblemType, TsplibError};
+use crate::tsplib::{file_stem, parse_with, read_text, Cursor, ProblemType, TsplibError};
 use smug_core::{Clusters, CostMatrix};
 use std::path::Path;
 
@@ -29,17 +29,10 @@ pub struct GtspInstance {
 /// Reads a `.gtsp` file.
 pub fn read_gtsplib(path: impl AsRef<Path>) -> Result<GtspInstance, TsplibError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|error| TsplibError::Io {
-        path: path.display().to_string(),
-        error,
-    })?;
-    let text = String::from_utf8_lossy(&bytes);
+    let text = read_text(path)?;
     let mut instance = parse_gtsplib(&text, &path.display().to_string())?;
     if instance.name.is_empty() {
-        instance.name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        instance.name = file_stem(path);
     }
     Ok(instance)
 }

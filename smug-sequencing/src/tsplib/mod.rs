@@ -58,12 +58,17 @@ pub fn read_tsplib(path: impl AsRef<Path>) -> Result<TsplibInstance, TsplibError
     let text = read_text(path)?;
     let mut instance = parse_tsplib(&text, &path.display().to_string())?;
     if instance.name.is_empty() {
-        instance.name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        instance.name = file_stem(path);
     }
     Ok(instance)
+}
+
+/// The file's name without its extension: the name of an instance whose file has no
+/// `NAME`.
+pub(crate) fn file_stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 /// Reads a `.tour` file: the order as 0-based node indices.
@@ -72,7 +77,8 @@ pub fn read_tour(path: impl AsRef<Path>) -> Result<Vec<usize>, TsplibError> {
     parse_tour(&read_text(path)?, &path.display().to_string())
 }
 
-fn read_text(path: &Path) -> Result<String, TsplibError> {
+/// The file's text (bytes that are not UTF-8 replaced).
+pub(crate) fn read_text(path: &Path) -> Result<String, TsplibError> {
     let bytes = std::fs::read(path).map_err(|error| TsplibError::Io {
         path: path.display().to_string(),
         error,
