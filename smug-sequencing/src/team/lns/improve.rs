@@ -198,6 +198,54 @@ fn near_places(
     places
 }
 
+/// A route's cost change by a move: the infinite legs (no path) it adds, negative when
+/// it removes them, and the change of its finite legs. One infinite leg outweighs any
+/// finite sum, so every accepted move lowers the pair lexicographically and the
+/// improvement loop ends (a single `added − removed` number cannot order moves between
+/// infinite legs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Change {
+    infinite: i32,
+    finite: f64,
+}
+
+impl Change {
+    /// Two legs `added` (their sum `sum`, as the caller adds them) in place of `removed`.
+    fn of(sum: f64, added: &[f64; 2], removed: f64) -> Self {
+        let infinite = added.iter().filter(|c| !c.is_finite()).count() as i32
+            - i32::from(!removed.is_finite());
+        let added = if sum.is_finite() {
+            sum
+        } else {
+            added.iter().filter(|c| c.is_finite()).sum()
+        };
+        let removed = if removed.is_finite() { removed } else { 0.0 };
+        Self {
+            infinite,
+            finite: added - removed,
+        }
+    }
+
+    /// This change less `other`: `self − other`, part by part.
+    fn minus(self, other: Self) -> Self {
+        Self {
+            infinite: self.infinite - other.infinite,
+            finite: self.finite - other.finite,
+        }
+    }
+
+    /// Whether the move lowers the route's cost (beyond floating-point noise).
+    fn improves(self) -> bool {
+        self.infinite < 0 || (self.infinite == 0 && self.finite < -EPSILON)
+    }
+
+    /// Whether the move lowers the cost more than `other` does.
+    fn beats(self, other: Self) -> bool {
+        self.infinite < other.infinite
+            || (self.infinite == other.infinite && self.finite < other.finite)
+    }
+}
+
 /// The best place among `places` (sequence positions `k`: between `k` and `k + 1`) to
 /// move the segment at sequence positions `i..i+seg` (position 0 is the start): the
 /// route index it goes before (numbered before its removal) and whether reversed, if
@@ -216,8 +264,12 @@ fn best_move(
     let at = |k: usize| node_at(route, start, end, k);
     let (p, s0, s1, n) = (at(i - 1), at(i), at(i + seg - 1), at(i + seg));
     // What taking the segment out saves.
-    let gain = leg_delta(c.get(p, s0) + c.get(s1, n), c.get(p, n));
-    let mut best: Option<(f64, usize, bool)> = None;
+    let gain = Change::of(
+        c.get(p, s0) + c.get(s1, n),
+        &[c.get(p, s0), c.get(s1, n)],
+        c.get(p, n),
+    );
+    let mut best: Option<(Change, usize, bool)> = None;
     // Insert between sequence positions k and k+1, outside the segment.
     for &k in places {
         if k + 1 >= i && k < i + seg {
@@ -225,13 +277,15 @@ fn best_move(
         }
         let (u, v) = (at(k), at(k + 1));
         let old = c.get(u, v);
-        let forward = leg_delta(c.get(u, s0) + c.get(s1, v), old) - gain;
-        if forward < -EPSILON && best.is_none_or(|b| forward < b.0) {
+        let (us0, s1v) = (c.get(u, s0), c.get(s1, v));
+        let forward = Change::of(us0 + s1v, &[us0, s1v], old).minus(gain);
+        if forward.improves() && best.is_none_or(|b| forward.beats(b.0)) {
             best = Some((forward, k, false));
         }
         if reverse && seg > 1 {
-            let backward = leg_delta(c.get(u, s1) + c.get(s0, v), old) - gain;
-            if backward < -EPSILON && best.is_none_or(|b| backward < b.0) {
+            let (us1, s0v) = (c.get(u, s1), c.get(s0, v));
+            let backward = Change::of(us1 + s0v, &[us1, s0v], old).minus(gain);
+            if backward.improves() && best.is_none_or(|b| backward.beats(b.0)) {
                 best = Some((backward, k, true));
             }
         }
@@ -274,5 +328,61 @@ fn choose_nodes(setting: &Setting, r: usize, route: &mut [Visit]) {
     for i in (0..route.len()).rev() {
         route[i].node = targets[route[i].target].nodes[pick];
         pick = layers[i][pick].1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The route's legs without a path and the sum of the others.
+    fn route_cost(c: &CostMatrix, start: usize, end: usize, route: &[Visit]) -> (usize, f64) {
+        let nodes: Vec<usize> = std::iter::once(start)
+            .chain(route.iter().map(|v| v.node))
+            .chain(std::iter::once(end))
+            .collect();
+        let legs: Vec<f64> = nodes.windows(2).map(|w| c.get(w[0], w[1])).collect();
+        let infinite = legs.iter().filter(|l| !l.is_finite()).count();
+        (infinite, legs.iter().filter(|l| l.is_finite()).sum())
+    }
+
+    #[test]
+    fn or_opt_ends_on_routes_with_legs_that_have_no_path() {
+        // Many pairs without a path: a single `added − removed` number let moves between
+        // infinite legs count as improvements and Or-opt cycled forever.
+        for seed in 0..300 {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let n = 9;
+            let mut cost = vec![0.0; n * n];
+            for i in 0..n {
+                for j in i + 1..n {
+                    let value = if rng.random_bool(0.4) {
+                        f64::INFINITY
+                    } else {
+                        rng.random_range(1.0..10.0)
+                    };
+                    cost[i * n + j] = value;
+                    cost[j * n + i] = value;
+                }
+            }
+            let c = CostMatrix::from_fn(n, |i, j| cost[i * n + j]).unwrap();
+            let mut route: Vec<Visit> = (1..n).map(|k| Visit { target: k, node: k }).collect();
+            let before = route_cost(&c, 0, 0, &route);
+            let mut passes = 0;
+            while or_opt(&c, 0, 0, &mut route, true, None) {
+                passes += 1;
+                assert!(passes < 200, "seed {seed}: Or-opt did not end");
+            }
+            let after = route_cost(&c, 0, 0, &route);
+            assert!(
+                after.0 < before.0 || (after.0 == before.0 && after.1 <= before.1 + 1e-9),
+                "seed {seed}: {before:?} -> {after:?}"
+            );
+            let mut targets: Vec<usize> = route.iter().map(|v| v.target).collect();
+            targets.sort_unstable();
+            assert_eq!(targets, (1..n).collect::<Vec<_>>(), "seed {seed}");
+        }
     }
 }
