@@ -14,11 +14,14 @@
 //!    moves between near targets; for the total, the closest ones also get granular
 //!    relocate / swap / SWAP* between routes, see `exchange`). Annealing decides. For
 //!    the total, a ruin removes at most `sum_removed_per_route` of a mean route, and
-//!    recreate fills routes below their minimum size only when it must. For the total
-//!    (routes of at most `split_above` targets on average) the budget is shared by a
-//!    small population (see `population`): `sum_elite` searches from their own first
-//!    solutions, then `sum_offspring` (or more) searches from crossovers of two of the
-//!    best; a child whose search stalls (`sum_stall_per_target`) leaves its budget to more.
+//!    recreate fills routes below their minimum size only when it must.
+//!    On routes of at most `split_above` targets on average, the budget is shared by a
+//!    small population (see `population`), for the makespan only on problems of at most
+//!    `makespan_pool_max_targets` targets: `sum_elite` (for the makespan
+//!    `makespan_elite`) searches from their own first solutions, then
+//!    `sum_offspring` (`makespan_offspring`) or more searches from crossovers of two of
+//!    the best; a child whose search stalls (`sum_stall_per_target`,
+//!    `makespan_stall_per_target`) leaves its budget to more.
 //! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
@@ -36,13 +39,13 @@ mod split;
 mod state;
 
 use crate::local_search::{LocalSearch, LocalSearchParams};
+use params::Pool;
 use population::evolve;
 use rand::Rng;
 use search::{better, construct, search, Budget};
 use smug_core::rng::{stage_rng, StageRng};
 use smug_core::{
-    CostMatrix, Deadline, Sequencer, TeamObjective, TeamProblem, TeamSequencer, TeamSolution,
-    TourKind, Visit,
+    CostMatrix, Deadline, Sequencer, TeamProblem, TeamSequencer, TeamSolution, TourKind, Visit,
 };
 use split::{split_tour, TourBudget};
 use state::{Setting, State};
@@ -120,11 +123,9 @@ impl TeamLns {
             max_iterations: self.params.max_iterations,
             deadline: &self.deadline,
         };
-        let pooled = self.pooled(&setting);
-        let (best, iterations) = if pooled {
-            evolve(&setting, start, &self.params, &budget, &mut rng)
-        } else {
-            search(&setting, start, &self.params, &budget, 0, &mut rng)
+        let (best, iterations) = match self.pool(&setting) {
+            Some(pool) => evolve(&setting, start, &self.params, pool, &budget, &mut rng),
+            None => search(&setting, start, &self.params, &budget, 0, &mut rng),
         };
         let routes = best.routes.iter().filter(|r| r.len() > 2).count().max(1);
         let per_route = self.params.time_limit_s * polish / routes as f64;
@@ -137,13 +138,14 @@ impl TeamLns {
         Ok((best.solution(&setting), iterations))
     }
 
-    /// Whether the search keeps a population: for the total, with a pool, on routes
-    /// short enough for insertion to start well (no route-first construction).
-    fn pooled(&self, setting: &Setting) -> bool {
-        let per_robot = setting.problem.targets().len() / setting.problem.robots().len();
-        self.params.sum_elite > 0
-            && setting.problem.objective() == TeamObjective::Sum
-            && per_robot <= self.params.split_above
+    /// The population the search keeps, if any: the objective's pool when it has
+    /// members, on routes short enough for insertion to start well (no route-first
+    /// construction).
+    fn pool(&self, setting: &Setting) -> Option<Pool> {
+        let targets = setting.problem.targets().len();
+        let per_robot = targets / setting.problem.robots().len();
+        let pool = self.params.pool(setting.problem.objective(), targets);
+        (pool.elite > 0 && per_robot <= self.params.split_above).then_some(pool)
     }
 
     /// The better of insertion and the route-first construction (when it has a budget

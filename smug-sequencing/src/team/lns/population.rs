@@ -1,15 +1,16 @@
-//! A small population for the total (HGS-style, with the LNS as the education): a few
+//! A small population (HGS-style, with the LNS as the education): a few
 //! independent searches fill an elite pool, then children of two members — the order
 //! crossover (OX) of their giant tours, cut by the size-bounded split, routes improved
 //! and exchanged — are searched in turn, each result replacing the pool's worst member
 //! when it is better and new. Every search gets an equal share of what is left of the
 //! budget, so the wall time is kept and iteration budgets stay reproducible. A child's
-//! search whose best has stalled (`sum_stall_per_target`) ends early and leaves the rest
-//! of its share to the next ones; children are searched until the budget is spent. The
-//! pool's first members search their whole shares (on rat99 m=7 they improve until late
-//! in their cooling).
+//! search whose best has stalled (`sum_stall_per_target`, `makespan_stall_per_target`)
+//! ends early and leaves the rest of its share to the next ones; children are searched
+//! until the budget is spent. The pool's first members search their whole shares (on
+//! rat99 m=7 they improve until late in their cooling).
 
 use super::improve::improve_route;
+use super::params::Pool;
 use super::search::{better, construct, exchange_and_improve, search, Budget};
 use super::split::best_cuts;
 use super::state::{Setting, State};
@@ -20,24 +21,25 @@ use std::time::Instant;
 /// Two totals closer than this (relative) count as the same solution in the pool.
 const SAME: f64 = 1e-9;
 
-/// Searches with a pool of `params.sum_elite` members and at least
-/// `params.sum_offspring` children (more while stalled searches leave budget); returns the best state and the iterations of every search together
-/// (`start` itself, after no iteration, when the deadline has already passed).
+/// Searches with a pool of `pool.elite` members and at least `pool.offspring`
+/// children (more while stalled searches leave budget); returns the best state and the
+/// iterations of every search together (`start` itself, after no iteration, when the
+/// deadline has already passed).
 pub(super) fn evolve(
     setting: &Setting,
     start: State,
     params: &TeamLnsParams,
+    pool_size: Pool,
     budget: &Budget,
     rng: &mut impl Rng,
 ) -> (State, u64) {
     let started = Instant::now();
-    let elite = params.sum_elite.max(1);
-    let planned = elite + params.sum_offspring;
+    let elite = pool_size.elite.max(1);
+    let planned = elite + pool_size.offspring;
     let mut pool: Vec<State> = Vec::with_capacity(elite);
     let mut iterations = 0u64;
     let mut first = Some(start);
-    let stall =
-        (params.sum_stall_per_target * setting.problem.targets().len() as f64).ceil() as u64;
+    let stall = (pool_size.stall_per_target * setting.problem.targets().len() as f64).ceil() as u64;
     for run in 0.. {
         let out_of_iterations = budget.max_iterations > 0 && iterations >= budget.max_iterations;
         let share = share(budget, started, iterations, planned.saturating_sub(run));
@@ -261,7 +263,8 @@ mod tests {
         };
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let start = construct(&setting, &mut rng);
-        evolve(&setting, start, &params, &budget, &mut rng)
+        let pool = params.pool(TeamObjective::Sum, 30);
+        evolve(&setting, start, &params, pool, &budget, &mut rng)
     }
 
     #[test]
@@ -274,6 +277,64 @@ mod tests {
         // Six searches share the 600 iterations (each rounded up).
         assert!((600..=606).contains(&iterations), "{iterations}");
         assert_eq!(evolved(&problem, 3), (state, iterations));
+    }
+
+    #[test]
+    fn the_makespan_keeps_a_pool_on_small_problems_only() {
+        let params = TeamLnsParams::default();
+        let small = params.pool(TeamObjective::Makespan, params.makespan_pool_max_targets);
+        assert_eq!(small.elite, params.makespan_elite);
+        assert!(small.elite > 0);
+        let large = params.pool(
+            TeamObjective::Makespan,
+            params.makespan_pool_max_targets + 1,
+        );
+        assert_eq!(large.elite, 0, "one search with the whole budget");
+        // The total keeps its pool at any size.
+        assert_eq!(
+            params.pool(TeamObjective::Sum, 10_000).elite,
+            params.sum_elite
+        );
+    }
+
+    #[test]
+    fn a_makespan_population_is_reproducible_and_feasible() {
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        let xy: Vec<(f64, f64)> = (0..=40)
+            .map(|_| (rng.random_range(0.0..100.0), rng.random_range(0.0..100.0)))
+            .collect();
+        let costs =
+            CostMatrix::from_fn(41, |i, j| (xy[i].0 - xy[j].0).hypot(xy[i].1 - xy[j].1)).unwrap();
+        let problem = mtsp_problem(costs, 3, TeamObjective::Makespan, None).unwrap();
+        let setting = Setting::new(&problem, 0.02, 100);
+        let params = TeamLnsParams {
+            max_iterations: 900,
+            ..TeamLnsParams::default()
+        };
+        let run = |seed: u64| {
+            let deadline = Deadline::new();
+            let budget = Budget {
+                time_limit_s: 0.0,
+                max_iterations: params.max_iterations,
+                deadline: &deadline,
+            };
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let start = construct(&setting, &mut rng);
+            let pool = params.pool(TeamObjective::Makespan, 40);
+            (
+                start.clone(),
+                evolve(&setting, start, &params, pool, &budget, &mut rng),
+            )
+        };
+        let (start, (state, iterations)) = run(4);
+        problem.validate(&state.solution(&setting)).unwrap();
+        assert!(
+            !better(&setting, &start, &state),
+            "never worse than its start"
+        );
+        // Twelve searches share the 900 iterations (each rounded up).
+        assert!((900..=912).contains(&iterations), "{iterations}");
+        assert_eq!(run(4).1, (state, iterations));
     }
 
     #[test]
@@ -305,6 +366,7 @@ mod tests {
             &setting,
             start.clone(),
             &TeamLnsParams::default(),
+            TeamLnsParams::default().pool(TeamObjective::Sum, 12),
             &budget,
             &mut rng,
         );
