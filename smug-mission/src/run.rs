@@ -70,7 +70,9 @@ enum Step {
 
 /// One round of the sequential mode: the targets the start cannot reach when its legs
 /// show some (before ordering with full costs, after it once a leg had no path), else
-/// the order (sequencer) and the PoIs along it (selector), timed.
+/// the order (sequencer) and the PoIs along it (selector), timed (the start's legs
+/// asked first count as sequencing: they are the cost matrix's first row, or with a
+/// lattice on a closed tour the whole matrix).
 fn order_then_select(
     pipeline: &Pipeline,
     oracle: &mut PathOracle,
@@ -80,7 +82,11 @@ fn order_then_select(
     options: PlanOptions,
     times: &mut BTreeMap<String, f64>,
 ) -> Result<Step> {
-    let unreached = unreached_from_start_row(oracle, mission, layout, targets, options)?;
+    let t = Instant::now();
+    pipeline.run().progress.enter("sequencing");
+    let unreached = unreached_from_start_row(oracle, mission, layout, targets, options);
+    *times.entry("sequencing".to_string()).or_insert(0.0) += t.elapsed().as_secs_f64();
+    let unreached = unreached?;
     if !unreached.is_empty() {
         return Ok(Step::Unreached(unreached));
     }

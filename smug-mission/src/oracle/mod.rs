@@ -231,6 +231,12 @@ impl PathOracle {
         self.planner.answers_many()
     }
 
+    /// True when the planner answers many goals at once and searches rows side by
+    /// side (on threads): rows asked together then share the machine's cores.
+    pub fn plans_rows_side_by_side(&self) -> bool {
+        self.planner.answers_many() && self.planner.plans_rows_side_by_side()
+    }
+
     /// Plans the pairs `i → j` for every `j` of `js` not planned yet, with one call to
     /// the planner's `plan_many`, and caches them (served by [`path`](Self::path) and
     /// [`cost`](Self::cost) afterwards, as cache hits).
