@@ -175,6 +175,23 @@ impl Dist {
         self.data[i * self.n + j]
     }
 
+    /// The costs out of `i`: `row(i)[j] == d(i, j)`.
+    #[inline]
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
+        &self.data[i * self.n..(i + 1) * self.n]
+    }
+
+    /// The costs into `j`: `row_into(j)[i] == d(i, j)`.
+    #[inline]
+    pub(crate) fn row_into(&self, j: usize) -> &[f64] {
+        let data = if self.into.is_empty() {
+            &self.data
+        } else {
+            &self.into
+        };
+        &data[j * self.n..(j + 1) * self.n]
+    }
+
     /// Cost from `i` to `j` (the same as [`d`](Self::d)), read where the costs into
     /// `j` lie side by side: cheap when `i` runs over nearby nodes, e.g. a cluster.
     #[inline]

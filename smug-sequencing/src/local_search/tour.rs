@@ -1,13 +1,26 @@
 //! An array tour: the cycle as an array of nodes plus each node's position, with a
-//! journal of writes so that any sequence of moves can be rolled back exactly.
+//! journal of moves so that any sequence of moves can be rolled back exactly.
+
+/// One move as the journal keeps it: enough to apply its inverse.
+#[derive(Clone, Copy, Debug)]
+enum Undo {
+    /// `len` positions from `start` were reversed (its own inverse).
+    Reverse { start: usize, len: usize },
+    /// The blocks `[X][Y]` (`len_x`, `len_y` nodes from `start`) became `[Y][X]`.
+    Swap {
+        start: usize,
+        len_x: usize,
+        len_y: usize,
+    },
+}
 
 /// A cyclic tour over nodes `0..n` (n ≥ 3 for the moves to make sense).
 #[derive(Clone, Debug)]
 pub(crate) struct ArrayTour {
     order: Vec<usize>,
     pos: Vec<usize>,
-    /// `(position, node that was there)` for every write since the last commit.
-    journal: Vec<(usize, usize)>,
+    /// Every move since the last commit, oldest first.
+    journal: Vec<Undo>,
     scratch: Vec<usize>,
 }
 
@@ -92,12 +105,17 @@ impl ArrayTour {
         self.journal.len()
     }
 
-    /// Undoes every write made after `mark`.
+    /// Undoes every move made after `mark`, newest first.
     pub(crate) fn rollback(&mut self, mark: usize) {
         while self.journal.len() > mark {
-            if let Some((p, c)) = self.journal.pop() {
-                self.order[p] = c;
-                self.pos[c] = p;
+            match self.journal.pop() {
+                Some(Undo::Reverse { start, len }) => self.reverse_unlogged(start, len),
+                Some(Undo::Swap {
+                    start,
+                    len_x,
+                    len_y,
+                }) => self.swap_unlogged(start, len_y, len_x),
+                None => break,
             }
         }
     }
@@ -107,20 +125,22 @@ impl ArrayTour {
         self.journal.clear();
     }
 
-    fn set(&mut self, p: usize, c: usize) {
-        self.journal.push((p, self.order[p]));
-        self.order[p] = c;
-        self.pos[c] = p;
+    /// Reverses the `len` nodes starting at position `start` (cyclically), journaled.
+    fn reverse_positions(&mut self, start: usize, len: usize) {
+        self.journal.push(Undo::Reverse { start, len });
+        self.reverse_unlogged(start, len);
     }
 
-    /// Reverses the `len` nodes starting at position `start` (cyclically).
-    fn reverse_positions(&mut self, start: usize, len: usize) {
+    /// [`reverse_positions`](Self::reverse_positions) without the journal.
+    fn reverse_unlogged(&mut self, start: usize, len: usize) {
         let n = self.order.len();
         let (mut i, mut j) = (start, (start + len + n - 1) % n);
         for _ in 0..len / 2 {
             let (a, b) = (self.order[i], self.order[j]);
-            self.set(i, b);
-            self.set(j, a);
+            self.order[i] = b;
+            self.pos[b] = i;
+            self.order[j] = a;
+            self.pos[a] = j;
             i = if i + 1 == n { 0 } else { i + 1 };
             j = if j == 0 { n - 1 } else { j - 1 };
         }
@@ -160,15 +180,28 @@ impl ArrayTour {
         self.swap_adjacent_blocks(self.pos[first], len_first, len_second);
     }
 
-    /// Makes `[X][Y]` (X of `len_x` nodes at position `start`, Y after it) into `[Y][X]`.
+    /// Makes `[X][Y]` (X of `len_x` nodes at position `start`, Y after it) into `[Y][X]`,
+    /// journaled.
     fn swap_adjacent_blocks(&mut self, start: usize, len_x: usize, len_y: usize) {
+        self.journal.push(Undo::Swap {
+            start,
+            len_x,
+            len_y,
+        });
+        self.swap_unlogged(start, len_x, len_y);
+    }
+
+    /// [`swap_adjacent_blocks`](Self::swap_adjacent_blocks) without the journal.
+    fn swap_unlogged(&mut self, start: usize, len_x: usize, len_y: usize) {
         let n = self.order.len();
         let mut scratch = std::mem::take(&mut self.scratch);
         scratch.clear();
         scratch.extend((0..len_x + len_y).map(|k| self.order[(start + k) % n]));
         let rotated = scratch[len_x..].iter().chain(&scratch[..len_x]);
         for (k, &c) in rotated.enumerate() {
-            self.set((start + k) % n, c);
+            let p = (start + k) % n;
+            self.order[p] = c;
+            self.pos[c] = p;
         }
         self.scratch = scratch;
     }
@@ -229,6 +262,60 @@ mod tests {
         assert_eq!(t.path_from(2, None), vec![2, 3, 4, 5, 6, 7, 0, 1, 8, 9]);
         for c in 0..10 {
             assert_eq!(t.at(t.pos(c)), c);
+        }
+    }
+
+    #[test]
+    fn random_moves_roll_back_to_the_exact_original_tour() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(34);
+        for n in [3, 4, 5, 8, 13, 50] {
+            for _case in 0..40 {
+                let mut order: Vec<usize> = (0..n).collect();
+                for i in (1..n).rev() {
+                    order.swap(i, rng.random_range(0..=i));
+                }
+                let mut t = ArrayTour::new(&order);
+                // Some committed moves first: the marks count from the commit.
+                if n >= 5 {
+                    t.two_opt(
+                        order[0],
+                        t.next(order[0]),
+                        order[n / 2],
+                        t.next(order[n / 2]),
+                    );
+                    t.commit();
+                }
+                let original = t.order().to_vec();
+                let mut marks = Vec::new();
+                let mut states = Vec::new();
+                for _move in 0..rng.random_range(1..20) {
+                    marks.push(t.mark());
+                    states.push(t.order().to_vec());
+                    let (a, c) = (rng.random_range(0..n), rng.random_range(0..n));
+                    let (a, c) = (t.at(a), t.at(c));
+                    if rng.random_bool(0.5) {
+                        let (b, d) = (t.next(a), t.next(c));
+                        if a != c && b != c && d != a {
+                            t.two_opt(a, b, c, d);
+                        }
+                    } else {
+                        let b = t.at(t.pos(a) + rng.random_range(1..n));
+                        let c = t.at(t.pos(b) + rng.random_range(0..n - t.forward_distance(a, b)));
+                        if c != a && c != b {
+                            t.exchange(a, b, c);
+                        }
+                    }
+                    assert!((0..n).all(|c| t.at(t.pos(c)) == c));
+                }
+                // Back to each intermediate state, then to the committed tour.
+                let k = rng.random_range(0..marks.len());
+                t.rollback(marks[k]);
+                assert_eq!(t.order(), &states[k][..], "n = {n}");
+                t.rollback(0);
+                assert_eq!(t.order(), &original[..], "n = {n}");
+                assert!((0..n).all(|c| t.at(t.pos(c)) == c));
+            }
         }
     }
 
