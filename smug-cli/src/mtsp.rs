@@ -46,6 +46,10 @@ pub struct MtspArgs {
     /// Print one JSON object (with the routes) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Override a `team-lns` parameter (`KEY=VALUE`, e.g. `sum_elite=8`; `--time` and
+    /// `--iterations` set the budget).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
 }
 
 /// What `smug mtsp --json` prints.
@@ -97,7 +101,7 @@ pub fn run(args: MtspArgs) -> anyhow::Result<Outcome> {
     let lns = TeamLnsParams {
         time_limit_s: args.time,
         max_iterations: args.iterations.unwrap_or(0),
-        ..TeamLnsParams::default()
+        ..smug_bench::mtsp::lns_params(&args.set)?
     };
     let solver = TeamAuto::new(
         TeamAutoParams::default(),

@@ -123,6 +123,59 @@ fn bad_mtsp_input_is_named() {
     let out = smug(&["mtsp", file, "--salesmen", "2", "--objective", "fastest"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("fastest"), "{}", stderr(&out));
+    for (set, culprit) in [
+        ("sum_elit=8", "sum_elit"),
+        ("sum_elite=eight", "sum_elite=eight"),
+        ("sum_elite", "sum_elite"),
+        ("blink_rate=2.0", "blink_rate"),
+    ] {
+        let out = smug(&[
+            "mtsp",
+            file,
+            "--salesmen",
+            "2",
+            "--objective",
+            "minsum",
+            "--set",
+            set,
+        ]);
+        assert_bad_input(&out, &[culprit]);
+    }
+}
+
+#[test]
+fn set_overrides_team_lns_parameters() {
+    let dir = temp_dir("set");
+    let file = two_rays(&dir);
+    let file = file.to_str().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "mtsp",
+            file,
+            "--salesmen",
+            "3",
+            "--objective",
+            "minsum",
+            "--time",
+            "0",
+            "--iterations",
+            "400",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        let out = smug(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        json(&stdout(&out))
+    };
+    let plain = run(&[]);
+    // The default pool spelled out changes nothing (the overrides that do reach the
+    // search are checked above: an out-of-range value is refused).
+    let same = run(&["--set", "sum_elite=4", "--set", "sum_offspring=8"]);
+    assert_eq!(plain["routes"], same["routes"]);
+    assert!(
+        (same["total"].as_f64().unwrap() - 24.0).abs() < 1e-9,
+        "{same}"
+    );
 }
 
 #[test]

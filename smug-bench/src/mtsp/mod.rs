@@ -166,8 +166,9 @@ fn check_args(args: &BenchMtspArgs) -> crate::Result<()> {
     Ok(())
 }
 
-/// The `team-lns` parameters with the `--set KEY=VALUE` overrides.
-fn lns_params(overrides: &[String]) -> crate::Result<TeamLnsParams> {
+/// The `team-lns` parameters with `--set KEY=VALUE` overrides (keys are
+/// [`TeamLnsParams`] fields, values TOML), checked.
+pub fn lns_params(overrides: &[String]) -> crate::Result<TeamLnsParams> {
     let mut table = toml::Table::try_from(TeamLnsParams::default())
         .map_err(|e| crate::error::invalid!("team-lns parameters: {e}"))?;
     for item in overrides {
