@@ -15,44 +15,58 @@ pub const OUTPUT_FILES: [&str; 4] = ["plan.json", "plan.csv", "plan.svg", "plan.
 /// Writes `plan` (made by `pipeline`, in its world) into `dir` as the config's
 /// `[output]` asks; each file whole or not at all, so a killed run leaves the previous
 /// plan intact. `mcap` says whether plan.mcap starts anew (a plan) or gets the plan
-/// appended (a replan).
+/// appended (a replan). The text files, plan.mcap and plan.svg are made side by side
+/// (on the caller's rayon pool); the first error in that order is returned.
 pub fn write_outputs(plan: &Plan, pipeline: &Pipeline, dir: &Path, mcap: WriteMode) -> Result<()> {
     let output = &pipeline.config.output;
     let write = file_writer(dir)?;
-    if output.json {
-        write("plan.json", plan_json(plan)?)?;
-    }
-    if output.csv {
-        write("plan.csv", plan_csv(plan))?;
-    }
-    let world = pipeline.world.as_deref().ok_or(AppError::NoWorld)?;
+    let texts = || -> Result<()> {
+        if output.json {
+            write("plan.json", plan_json(plan)?)?;
+        }
+        if output.csv {
+            write("plan.csv", plan_csv(plan))?;
+        }
+        Ok(())
+    };
+    let world = pipeline.world.as_deref();
     let mission = pipeline
         .given_mission
         .as_ref()
-        .or(pipeline.mission.as_ref())
-        .ok_or(AppError::NoWorld)?;
-    if output.mcap {
-        let invalid: Vec<(String, usize)> = pipeline
-            .dropped_pois
-            .iter()
-            .map(|d| (d.target.clone(), d.index))
-            .collect();
-        let scene = PlanScene {
-            plan,
-            world,
-            mission,
-            invalid_pois: &invalid,
-        };
-        let run = run_info(pipeline, mcap);
-        write_plan_mcap(&dir.join("plan.mcap"), &scene, &run, mcap)?;
-    }
-    if output.svg {
-        write(
-            "plan.svg",
-            render_svg(world, Some(mission), &render_options(plan, world, mission)),
-        )?;
-    }
-    Ok(())
+        .or(pipeline.mission.as_ref());
+    let (Some(world), Some(mission)) = (world, mission) else {
+        texts()?;
+        return Err(AppError::NoWorld);
+    };
+    let write_mcap = || -> Result<()> {
+        if output.mcap {
+            let invalid: Vec<(String, usize)> = pipeline
+                .dropped_pois
+                .iter()
+                .map(|d| (d.target.clone(), d.index))
+                .collect();
+            let scene = PlanScene {
+                plan,
+                world,
+                mission,
+                invalid_pois: &invalid,
+            };
+            let run = run_info(pipeline, mcap);
+            write_plan_mcap(&dir.join("plan.mcap"), &scene, &run, mcap)?;
+        }
+        Ok(())
+    };
+    let write_svg = || -> Result<()> {
+        if output.svg {
+            write(
+                "plan.svg",
+                render_svg(world, Some(mission), &render_options(plan, world, mission)),
+            )?;
+        }
+        Ok(())
+    };
+    let (texts, (mcap, svg)) = rayon::join(texts, || rayon::join(write_mcap, write_svg));
+    texts.and(mcap).and(svg)
 }
 
 /// `plan.json`'s text: the plan with `"status": "planned"` first (what `smug plan

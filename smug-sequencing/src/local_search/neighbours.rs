@@ -3,6 +3,11 @@
 use crate::costs::{Dist, ROWS_PER_TASK};
 use rayon::prelude::*;
 
+/// Fewest nodes for which the rows are split between threads: below, one row costs
+/// less than handing it to another thread (the joint mode's LNS reorders a few hundred
+/// nodes many times a second).
+const PARALLEL_FROM: usize = 512;
+
 /// For every node, the `k` nodes with the cheapest legs out of it (`out`) and into it
 /// (`into`), cheapest first; for a symmetric matrix both lists are the same.
 #[derive(Clone, Debug)]
@@ -13,8 +18,9 @@ pub(crate) struct Neighbours {
 }
 
 impl Neighbours {
-    /// Lists of `k` (at most n − 1) candidates per node, rows side by side on the
-    /// caller's rayon pool (the same lists on any number of threads).
+    /// Lists of `k` (at most n − 1) candidates per node; from [`PARALLEL_FROM`] nodes
+    /// on, rows side by side on the caller's rayon pool (the same lists on any number of
+    /// threads).
     pub(crate) fn new(dist: &Dist, k: usize) -> Self {
         let n = dist.len();
         let k = k.min(n.saturating_sub(1));
@@ -27,6 +33,13 @@ impl Neighbours {
     fn cheapest<'d>(n: usize, k: usize, row: impl Fn(usize) -> &'d [f64] + Sync) -> Vec<usize> {
         let mut lists = vec![0; n * k];
         if k == 0 {
+            return lists;
+        }
+        if n < PARALLEL_FROM {
+            let mut best = Vec::with_capacity(k + 1);
+            for (i, list) in lists.chunks_mut(k).enumerate() {
+                nearest(row(i), i, &mut best, list);
+            }
             return lists;
         }
         lists
@@ -150,7 +163,7 @@ mod tests {
 
     #[test]
     fn one_thread_and_two_threads_make_the_same_lists() {
-        let costs = random_matrix(700, 50, false, 7);
+        let costs = random_matrix(PARALLEL_FROM + 100, 50, false, 7);
         let dist = Dist::new(&costs);
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
