@@ -10,7 +10,7 @@ pub(crate) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<Co
     let n = nodes.len();
     let mut costs = vec![0.0; n * n];
     if oracle.answers_many() {
-        plan_matrix_rows(oracle, nodes, n)?;
+        plan_matrix_rows(oracle, nodes)?;
     }
     for i in 0..n {
         for j in i + 1..n {
@@ -26,16 +26,12 @@ pub(crate) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<Co
     CostMatrix::from_rows(n, costs)
 }
 
-/// Plans the full matrix's first `rows` rows over `nodes` with one call to the
-/// oracle's [`plan_rows`](PathOracle::plan_rows): one search per row (the rest of the
-/// row for a symmetric oracle), side by side where the planner can. Pairs planned
-/// already are not asked again.
-pub(crate) fn plan_matrix_rows(
-    oracle: &mut PathOracle,
-    nodes: &[usize],
-    rows: usize,
-) -> Result<()> {
-    let rows: Vec<(usize, Vec<usize>)> = (0..rows.min(nodes.len()))
+/// Plans the full matrix's rows over `nodes` with one call to the oracle's
+/// [`plan_rows`](PathOracle::plan_rows): one search per row (the rest of the row for a
+/// symmetric oracle), side by side where the planner can. Pairs planned already are
+/// not asked again.
+pub(crate) fn plan_matrix_rows(oracle: &mut PathOracle, nodes: &[usize]) -> Result<()> {
+    let rows: Vec<(usize, Vec<usize>)> = (0..nodes.len())
         .map(|i| {
             let from = if oracle.is_symmetric() { i + 1 } else { 0 };
             (nodes[i], nodes[from..].to_vec())

@@ -72,7 +72,7 @@ enum Step {
 /// show some (before ordering with full costs, after it once a leg had no path), else
 /// the order (sequencer) and the PoIs along it (selector), timed (the start's legs
 /// asked first count as sequencing: they are the cost matrix's first row, or with a
-/// lattice on a closed tour with the next row).
+/// lattice on a closed tour the whole matrix).
 fn order_then_select(
     pipeline: &Pipeline,
     oracle: &mut PathOracle,
