@@ -255,6 +255,16 @@ mod tests {
             sum_stall_per_target: stall_per_target,
             ..TeamLnsParams::default()
         };
+        seeded_evolution(&setting, &params, params.pool(TeamObjective::Sum, 30), seed).1
+    }
+
+    /// A constructed start and its evolution with `params`' iteration budget.
+    fn seeded_evolution(
+        setting: &Setting,
+        params: &TeamLnsParams,
+        pool: Pool,
+        seed: u64,
+    ) -> (State, (State, u64)) {
         let deadline = Deadline::new();
         let budget = Budget {
             time_limit_s: 0.0,
@@ -262,9 +272,9 @@ mod tests {
             deadline: &deadline,
         };
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let start = construct(&setting, &mut rng);
-        let pool = params.pool(TeamObjective::Sum, 30);
-        evolve(&setting, start, &params, pool, &budget, &mut rng)
+        let start = construct(setting, &mut rng);
+        let evolved = evolve(setting, start.clone(), params, pool, &budget, &mut rng);
+        (start, evolved)
     }
 
     #[test]
@@ -311,21 +321,8 @@ mod tests {
             max_iterations: 900,
             ..TeamLnsParams::default()
         };
-        let run = |seed: u64| {
-            let deadline = Deadline::new();
-            let budget = Budget {
-                time_limit_s: 0.0,
-                max_iterations: params.max_iterations,
-                deadline: &deadline,
-            };
-            let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let start = construct(&setting, &mut rng);
-            let pool = params.pool(TeamObjective::Makespan, 40);
-            (
-                start.clone(),
-                evolve(&setting, start, &params, pool, &budget, &mut rng),
-            )
-        };
+        let pool = params.pool(TeamObjective::Makespan, 40);
+        let run = |seed: u64| seeded_evolution(&setting, &params, pool, seed);
         let (start, (state, iterations)) = run(4);
         problem.validate(&state.solution(&setting)).unwrap();
         assert!(
