@@ -50,8 +50,8 @@ fn representatives(
 /// matrix's nodes are then the start and the stand-ins, the start's row exactly the
 /// legs asked here). The searches are the same, so are the plans; the start's search
 /// no longer runs alone on one core (lunar rover, 2 cores: wall median 5.15 → 4.50 s,
-/// measured). A
-/// start cut off from some targets is then found after the whole matrix, not its row.
+/// measured). A start cut off from some targets is then found after the whole matrix,
+/// not its row.
 fn plans_matrix_with_start_row(oracle: &PathOracle, mission: &Mission) -> bool {
     oracle.plans_rows_side_by_side() && oracle.is_symmetric() && mission.end.is_none()
 }
@@ -64,7 +64,8 @@ fn plans_matrix_with_start_row(oracle: &PathOracle, mission: &Mission) -> bool {
 /// reaches every stand-in is planned exactly as before; a one-to-many planner plans
 /// the start's row on its own, then the other rows together (the same plans on every
 /// shipped config, measured), or, searching rows side by side on a closed tour, all
-/// rows in one batch ([`plans_matrix_with_start_row`]). Where a stand-in is missed, the target's other PoIs are
+/// rows in one batch ([`plans_matrix_with_start_row`]; a cut-off start is then found
+/// after the whole matrix). Where a stand-in is missed, the target's other PoIs are
 /// asked too: a target is unreachable only when none is reached. Only for `"full"`
 /// costs (lazy costs plan the start's legs the tour uses, first).
 pub(super) fn unreached_from_start_row(
