@@ -210,15 +210,11 @@ struct Change {
 }
 
 impl Change {
-    /// Two legs `added` (their sum `sum`, as the caller adds them) in place of `removed`.
-    fn of(sum: f64, added: &[f64; 2], removed: f64) -> Self {
+    /// Two legs `added` in place of the leg `removed`.
+    fn of(added: [f64; 2], removed: f64) -> Self {
         let infinite = added.iter().filter(|c| !c.is_finite()).count() as i32
             - i32::from(!removed.is_finite());
-        let added = if sum.is_finite() {
-            sum
-        } else {
-            added.iter().filter(|c| c.is_finite()).sum()
-        };
+        let added: f64 = added.iter().filter(|c| c.is_finite()).sum();
         let removed = if removed.is_finite() { removed } else { 0.0 };
         Self {
             infinite,
@@ -264,11 +260,7 @@ fn best_move(
     let at = |k: usize| node_at(route, start, end, k);
     let (p, s0, s1, n) = (at(i - 1), at(i), at(i + seg - 1), at(i + seg));
     // What taking the segment out saves.
-    let gain = Change::of(
-        c.get(p, s0) + c.get(s1, n),
-        &[c.get(p, s0), c.get(s1, n)],
-        c.get(p, n),
-    );
+    let gain = Change::of([c.get(p, s0), c.get(s1, n)], c.get(p, n));
     let mut best: Option<(Change, usize, bool)> = None;
     // Insert between sequence positions k and k+1, outside the segment.
     for &k in places {
@@ -277,14 +269,12 @@ fn best_move(
         }
         let (u, v) = (at(k), at(k + 1));
         let old = c.get(u, v);
-        let (us0, s1v) = (c.get(u, s0), c.get(s1, v));
-        let forward = Change::of(us0 + s1v, &[us0, s1v], old).minus(gain);
+        let forward = Change::of([c.get(u, s0), c.get(s1, v)], old).minus(gain);
         if forward.improves() && best.is_none_or(|b| forward.beats(b.0)) {
             best = Some((forward, k, false));
         }
         if reverse && seg > 1 {
-            let (us1, s0v) = (c.get(u, s1), c.get(s0, v));
-            let backward = Change::of(us1 + s0v, &[us1, s0v], old).minus(gain);
+            let backward = Change::of([c.get(u, s1), c.get(s0, v)], old).minus(gain);
             if backward.improves() && best.is_none_or(|b| backward.beats(b.0)) {
                 best = Some((backward, k, true));
             }
