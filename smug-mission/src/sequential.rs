@@ -44,11 +44,26 @@ fn representatives(
         .collect()
 }
 
+/// The sequencing matrix's nodes: the start, the stand-ins of `targets` in their
+/// order, and the end pose of an open tour.
+fn matrix_nodes(
+    mission: &Mission,
+    layout: &Layout,
+    targets: &[usize],
+    rule: Representative,
+) -> Vec<usize> {
+    let mut nodes = vec![layout.start];
+    nodes.extend(representatives(mission, layout, targets, rule));
+    if mission.end.is_some() {
+        nodes.push(layout.end);
+    }
+    nodes
+}
+
 /// Whether the start's row is planned in the same batch as the full matrix's other
 /// rows ([`plan_matrix_rows`]) instead of on its own: when the planner searches rows
 /// side by side (the lattice), the oracle is symmetric and the tour is closed (the
-/// matrix's nodes are then the start and the stand-ins, the start's row exactly the
-/// legs asked here). The searches are the same, so are the plans; the start's search
+/// start's row of [`matrix_nodes`] is then exactly the legs asked here). The searches are the same, so are the plans; the start's search
 /// no longer runs alone on one core (lunar rover, 2 cores: wall median 5.15 → 4.50 s,
 /// measured). A start cut off from some targets is then found after the whole matrix,
 /// not its row.
@@ -79,13 +94,7 @@ pub(super) fn unreached_from_start_row(
         return Ok(Vec::new());
     }
     if plans_matrix_with_start_row(oracle, mission) {
-        let mut nodes = vec![layout.start];
-        nodes.extend(representatives(
-            mission,
-            layout,
-            targets,
-            options.representative,
-        ));
+        let nodes = matrix_nodes(mission, layout, targets, options.representative);
         plan_matrix_rows(oracle, &nodes)?;
     }
     start_row_misses(
@@ -173,11 +182,7 @@ pub(super) fn sequence(
         needed: "sequencer",
     })?;
     let open = mission.end.is_some();
-    let mut nodes = vec![layout.start];
-    nodes.extend(representatives(mission, layout, targets, rule));
-    if open {
-        nodes.push(layout.end);
-    }
+    let nodes = matrix_nodes(mission, layout, targets, rule);
     let n = nodes.len();
     let kind = if open {
         TourKind::OpenTo(n - 1)
