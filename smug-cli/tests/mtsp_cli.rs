@@ -26,6 +26,20 @@ fn two_rays(dir: &Path) -> PathBuf {
     path
 }
 
+/// `smug mtsp FILE --salesmen SALESMEN --objective OBJECTIVE REST…`.
+fn mtsp(file: &str, salesmen: &str, objective: &str, rest: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "mtsp",
+        file,
+        "--salesmen",
+        salesmen,
+        "--objective",
+        objective,
+    ];
+    args.extend_from_slice(rest);
+    smug(&args)
+}
+
 fn json(text: &str) -> serde_json::Value {
     serde_json::from_str(text.trim()).unwrap_or_else(|e| panic!("{e}: {text}"))
 }
@@ -72,16 +86,7 @@ fn minmax_splits_the_rays_and_a_seed_fixes_the_routes() {
     assert_eq!(nodes, (2..=13).collect::<Vec<u64>>());
     assert_eq!(report["routes"], json(&stdout(&smug(&args)))["routes"]);
     // Text output: the costs and one line per salesman.
-    let text = smug(&[
-        "mtsp",
-        file,
-        "--salesmen",
-        "3",
-        "--objective",
-        "minsum",
-        "--time",
-        "0.2",
-    ]);
+    let text = mtsp(file, "3", "minsum", &["--time", "0.2"]);
     assert!(text.status.success(), "{}", stderr(&text));
     let text = stdout(&text);
     assert!(text.contains("total 24.0000"), "{text}");
@@ -129,17 +134,7 @@ fn bad_mtsp_input_is_named() {
         ("sum_elite", "sum_elite"),
         ("blink_rate=2.0", "blink_rate"),
     ] {
-        let out = smug(&[
-            "mtsp",
-            file,
-            "--salesmen",
-            "2",
-            "--objective",
-            "minsum",
-            "--set",
-            set,
-        ]);
-        assert_bad_input(&out, &[culprit]);
+        assert_bad_input(&mtsp(file, "2", "minsum", &["--set", set]), &[culprit]);
     }
 }
 
@@ -149,21 +144,9 @@ fn set_overrides_team_lns_parameters() {
     let file = two_rays(&dir);
     let file = file.to_str().unwrap();
     let run = |extra: &[&str]| {
-        let mut args = vec![
-            "mtsp",
-            file,
-            "--salesmen",
-            "3",
-            "--objective",
-            "minsum",
-            "--time",
-            "0",
-            "--iterations",
-            "400",
-            "--json",
-        ];
-        args.extend_from_slice(extra);
-        let out = smug(&args);
+        let mut rest = vec!["--time", "0", "--iterations", "400", "--json"];
+        rest.extend_from_slice(extra);
+        let out = mtsp(file, "3", "minsum", &rest);
         assert!(out.status.success(), "{}", stderr(&out));
         json(&stdout(&out))
     };
