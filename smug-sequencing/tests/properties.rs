@@ -147,6 +147,45 @@ proptest! {
         prop_assert!(stats.iterations <= 10);
         prop_assert_eq!(solver.solve_from(&costs, kind, &initial).unwrap(), tour);
     }
+
+    /// One solver asked again and again, as a lazy loop asks it (legs raised to their
+    /// planned costs or found missing, warm starts from the last tour), gives the tours
+    /// a fresh solver gives each time: what it keeps between solves changes nothing.
+    #[test]
+    fn a_solver_asked_again_solves_as_a_fresh_one(
+        (costs, symmetric) in matrix(40, true), open: bool, pick in 0usize..100,
+        rounds in proptest::collection::vec(
+            proptest::collection::vec((0usize..40, 0usize..40, 0u32..150, any::<bool>()), 0..8),
+            1..5),
+    ) {
+        let n = costs.len();
+        prop_assume!(n >= 13);
+        let kind = kind_for(n, open, pick);
+        let kept = local_search(20);
+        let mut costs = costs;
+        let mut tour = kept.solve(&costs, kind).unwrap();
+        prop_assert_eq!(&tour, &local_search(20).solve(&costs, kind).unwrap());
+        for legs in rounds {
+            let mut cells: Vec<f64> = (0..n * n).map(|k| costs.get(k / n, k % n)).collect();
+            for (i, j, raise, lost) in legs {
+                let (i, j) = (i % n, j % n);
+                let value = if lost { f64::INFINITY } else { cells[i * n + j] + f64::from(raise) };
+                cells[i * n + j] = value;
+                if symmetric {
+                    cells[j * n + i] = value;
+                }
+            }
+            costs = CostMatrix::from_fn(n, |i, j| if i == j { 0.0 } else { cells[i * n + j] })
+                .unwrap();
+            let again = kept.solve_from(&costs, kind, &tour).unwrap();
+            prop_assert_eq!(&again, &local_search(20).solve_from(&costs, kind, &tour).unwrap());
+            prop_assert_eq!(
+                kept.solve(&costs, kind).unwrap(),
+                local_search(20).solve(&costs, kind).unwrap()
+            );
+            tour = again;
+        }
+    }
 }
 
 #[test]

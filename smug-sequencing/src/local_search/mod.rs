@@ -18,6 +18,7 @@
 mod construct;
 mod kick;
 mod neighbours;
+mod prepared;
 mod search;
 mod tour;
 
@@ -28,6 +29,7 @@ use crate::error::ParamError;
 use crate::held_karp::{HeldKarp, HeldKarpParams};
 use kick::Kick;
 use neighbours::Neighbours;
+use prepared::PreparedCache;
 use search::Search;
 use serde::{Deserialize, Serialize};
 use smug_core::rng::{stage_rng, StageRng};
@@ -133,6 +135,8 @@ pub struct LocalSearch {
     rng: StageRng,
     /// The run's deadline: the search stops at it with its best tour.
     deadline: Deadline,
+    /// The working copy and candidate lists of the last search, for the next one.
+    prepared: PreparedCache,
 }
 
 impl LocalSearch {
@@ -145,6 +149,7 @@ impl LocalSearch {
             params,
             rng,
             deadline: Deadline::new(),
+            prepared: PreparedCache::default(),
         })
     }
 
@@ -200,8 +205,8 @@ impl LocalSearch {
             None => self.params.termination(),
         };
         let mut clock = rule.start_within(&self.deadline);
-        let dist = Dist::new(costs);
-        let neighbours = Neighbours::new(&dist, self.params.neighbours);
+        let prepared = self.prepared.take(costs, self.params.neighbours);
+        let (dist, neighbours) = (&prepared.dist, &prepared.neighbours);
         let end = match kind {
             TourKind::Closed => None,
             TourKind::OpenTo(end) => Some(end),
@@ -209,11 +214,11 @@ impl LocalSearch {
         let fixed = end.map(|end| (end, 0));
         let first = match initial {
             Some(tour) => tour.order.clone(),
-            None => construct::construct(self.params.construction, &dist, &neighbours, fixed),
+            None => construct::construct(self.params.construction, dist, neighbours, fixed),
         };
         let construction = tour_of(costs, rotate_to_start(&first, end), kind);
 
-        let mut search = Search::new(&dist, &neighbours, &first, fixed);
+        let mut search = Search::new(dist, neighbours, &first, fixed);
         search.activate_all();
         search.optimise();
         search.tour.commit();
@@ -226,6 +231,8 @@ impl LocalSearch {
         };
         let iterations = self.perturb_until_done(&mut search, kick, &mut clock);
         let tour = tour_of(costs, search.tour.path_from(0, end), kind);
+        drop(search);
+        self.prepared.keep(prepared);
         let stats = SearchStats {
             construction_cost: construction.cost,
             first_optimum_cost,

@@ -29,6 +29,26 @@ impl Neighbours {
         Self { k, out, into }
     }
 
+    /// The lists of a copy whose `rows` changed (as [`Dist::refill`] reports them),
+    /// brought up to date: the same lists as [`new`](Self::new) gives. Only for an
+    /// exactly symmetric copy (a changed leg changes both its rows).
+    pub(crate) fn refresh_rows(&mut self, dist: &Dist, rows: &[usize]) {
+        debug_assert!(self.into.is_none() && dist.is_symmetric());
+        if self.k == 0 {
+            return;
+        }
+        let mut best = Vec::with_capacity(self.k + 1);
+        for &i in rows {
+            let list = &mut self.out[i * self.k..(i + 1) * self.k];
+            nearest(dist.row(i), i, &mut best, list);
+        }
+    }
+
+    /// Number of candidates per node.
+    pub(crate) fn k(&self) -> usize {
+        self.k
+    }
+
     /// For each `i < n`, the `k` cheapest nodes of `row(i)` other than `i` itself.
     fn cheapest<'d>(n: usize, k: usize, row: impl Fn(usize) -> &'d [f64] + Sync) -> Vec<usize> {
         let mut lists = vec![0; n * k];
