@@ -577,3 +577,42 @@ fn a_proved_dead_end_is_never_a_pose_some_path_leaves_or_enters() {
     // searches come from the open poses); each one found is checked above.
     assert!(left > 0, "{left} left, {entered} entered");
 }
+
+proptest::proptest! {
+    /// The lattice's sideways bound never exceeds the Reeds–Shepp distance (the
+    /// shortest curve of bounded curvature with either gear), so shots queued at it are
+    /// queued at or below their cost.
+    #[test]
+    fn the_sideways_bound_stays_below_the_reeds_shepp_distance(
+        ax in -6.0f64..6.0, ay in -6.0f64..6.0, ayaw in -3.2f64..3.2,
+        bx in -6.0f64..6.0, by in -6.0f64..6.0, byaw in -3.2f64..3.2,
+        radius in 0.2f64..3.0,
+    ) {
+        use smug_core::StateSpace;
+        let space = smug_spaces::reeds_shepp::ReedsSheppSpace::new(radius).unwrap();
+        let (a, b) = (Pose2::new(ax, ay, ayaw), Pose2::new(bx, by, byaw));
+        let bound = smug_planners::lattice::sideways_bound(
+            radius,
+            (&a, ayaw.sin_cos()),
+            (&b, byaw.sin_cos()),
+        );
+        let length = space.distance(&a, &b);
+        proptest::prop_assert!(bound <= length * (1.0 + 1e-9) + 1e-9, "{bound} > {length}");
+    }
+}
+
+#[test]
+fn the_sideways_bound_is_tight_for_a_quarter_turn() {
+    // From (0, 0, 0) a quarter circle of radius 1 ends at (1, 1, π/2): 1 m beside the
+    // start's heading line, π/2 m long; the bound is √2.
+    let (a, b) = (
+        Pose2::new(0.0, 0.0, 0.0),
+        Pose2::new(1.0, 1.0, std::f64::consts::FRAC_PI_2),
+    );
+    let bound = smug_planners::lattice::sideways_bound(1.0, (&a, (0.0, 1.0)), (&b, (1.0, 0.0)));
+    assert!((bound - 2f64.sqrt()).abs() < 1e-12, "{bound}");
+    // Two metres beside, same heading: at least 2 + (π/2 − 1).
+    let c = Pose2::new(0.0, 2.0, 0.0);
+    let bound = smug_planners::lattice::sideways_bound(1.0, (&a, (0.0, 1.0)), (&c, (0.0, 1.0)));
+    assert!((bound - (1.0 + std::f64::consts::FRAC_PI_2)).abs() < 1e-12);
+}

@@ -35,6 +35,7 @@ mod shots;
 mod tests;
 
 pub use primitives::{Lattice, Primitive, Primitives, StateId};
+pub use shots::sideways_bound;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

@@ -24,6 +24,8 @@ const FETCH_AHEAD: usize = 6;
 pub(super) struct Goal {
     /// Where it is.
     pub(super) pose: Pose2,
+    /// The sine and cosine of its heading.
+    pub(super) dir: (f64, f64),
     /// Settled: the search's cost and the lattice pose (or start) its shot leaves from.
     pub(super) reached: Option<(f64, u32)>,
     /// Proved unreachable before the search (by an earlier search's exhaustion): the
@@ -141,6 +143,7 @@ impl Worker<'_> {
                 index.push(k);
                 asked.push(Goal {
                     pose: *goal,
+                    dir: goal.yaw.sin_cos(),
                     reached: None,
                     proved_out: false,
                     shots: self.sh.caches.shot_table(goal, || {
@@ -417,11 +420,13 @@ impl Worker<'_> {
     /// the way) and relaxes its successors.
     fn expand(&mut self, start: &Pose2, id: u32, g: f64, run: &mut Run) {
         let pose = self.pose_of(start, id);
+        let mut dir = None;
         for j in 0..run.goals.len() {
             let goal = &run.goals[j];
             let near = id == START || pose.xy_distance(&goal.pose) <= self.sh.shot_radius;
             if goal.reached.is_none() && near {
-                let bound = self.shot_bound(&pose, &goal.pose);
+                let dir = *dir.get_or_insert_with(|| pose.yaw.sin_cos());
+                let bound = self.shot_bound((&pose, dir), (&goal.pose, goal.dir));
                 if bound.is_finite() {
                     let item = Item::Shot {
                         from: id,

@@ -23,6 +23,31 @@ fn f32_below(cost: f64) -> f32 {
     }
 }
 
+/// A lower bound of the length of every curve of curvature at most `1 / radius`
+/// (either gear, any number of cusps) from `a` to `b` (each given with the sine and
+/// cosine of its heading), from how far each lies beside the other's heading line.
+/// Along such a curve the heading turns at most `s / radius` in its first `s` metres,
+/// and the curve moves sideways of `a`'s heading line at most `|sin|` of that turn per
+/// metre: after `L` metres it is at most `radius · (1 − cos(L / radius))` beside it
+/// while `L ≤ radius · π/2`, at most `radius + L − radius · π/2` beyond. So an offset
+/// `y ≤ radius` takes at least `radius · acos(1 − y / radius) ≥ √(2 · radius · y)`
+/// metres (`1 − cos t ≤ t²/2`; and a curve longer than `radius · π/2` is longer than
+/// that anyway), a larger one at least `y + radius · (π/2 − 1)`. The same curve driven
+/// backwards from `b` has the same length, so `a`'s offset beside `b`'s heading line
+/// bounds it too.
+pub fn sideways_bound(radius: f64, a: (&Pose2, (f64, f64)), b: (&Pose2, (f64, f64))) -> f64 {
+    let ((a, (a_sin, a_cos)), (b, (b_sin, b_cos))) = (a, b);
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let beside = (a_cos * dy - a_sin * dx)
+        .abs()
+        .max((b_cos * dy - b_sin * dx).abs());
+    if beside <= radius {
+        (2.0 * radius * beside).sqrt()
+    } else {
+        beside + radius * (std::f64::consts::FRAC_PI_2 - 1.0)
+    }
+}
+
 impl Worker<'_> {
     /// The slot of the shot from `from` in the goal's table `shots`: none from the
     /// start (off the lattice) or from beyond the table's box.
@@ -33,19 +58,22 @@ impl Worker<'_> {
     }
 
     /// The key a shot from `pose` to `goal` is queued at before it is costed, less
-    /// the cost of reaching `pose`: a lower bound of its cost. The objective's contract
-    /// bound, and, for an objective that costs the model's curves by their length
+    /// the cost of reaching `pose`: a lower bound of its cost (each pose given with
+    /// the sine and cosine of its heading). The objective's contract bound, and, for an
+    /// objective that costs the model's curves by their length
     /// (`Objective::is_translation_invariant`: path length, `w_t` per metre and `w_r`
-    /// per radian turned), `w_t` times the model's bound of the curve's length,
-    /// `max(‖Δxy‖, r·d(yaw))` (a curve turns at most `1/r` per metre, as
-    /// `StateSpace::distance_bound` says), plus `w_r·d(yaw)`. Shrunk by a millionth and rounded down to
-    /// an `f32`, it stays at or below the `f32` the shot is costed at
-    /// ([`Self::shot_cost_below`]): a shot popped uncosted at its cost is checked at
-    /// once, in the queue's order, where its costed entry would have been, so every
-    /// shot is checked where its cost puts it whichever bound queued it, and a search
-    /// finds the same paths; a tighter bound only leaves more shots unsolved (on lunar
-    /// with the rover, where most poses near a goal face away from it).
-    pub(super) fn shot_bound(&self, pose: &Pose2, goal: &Pose2) -> f64 {
+    /// per radian turned), `w_t` times a bound of the curve's length, the largest of
+    /// `‖Δxy‖`, `r·d(yaw)` (a curve turns at most `1/r` per metre, as
+    /// `StateSpace::distance_bound` says) and [`sideways_bound`], plus `w_r·d(yaw)`.
+    /// Shrunk by a millionth and rounded down to an `f32`, it stays at or below the
+    /// `f32` the shot is costed at ([`Self::shot_cost_below`]): a shot popped uncosted
+    /// at its cost is checked at once, in the queue's order, where its costed entry
+    /// would have been, so every shot is checked where its cost puts it whichever
+    /// bound queued it, and a search finds the same paths; a tighter bound only leaves
+    /// more shots unsolved (on lunar with the rover, where most poses near a goal face
+    /// away from it or lie beside it).
+    pub(super) fn shot_bound(&self, from: (&Pose2, (f64, f64)), to: (&Pose2, (f64, f64))) -> f64 {
+        let (pose, goal) = (from.0, to.0);
         let (w_t, w_r) = self.sh.objective.bound_weights();
         let (xy, yaw) = (pose.xy_distance(goal), angle_distance(pose.yaw, goal.yaw));
         // The objective's contract bound, as `cheap_bound` computes it.
@@ -54,7 +82,9 @@ impl Worker<'_> {
         if self.sh.primitive_costs.is_none() {
             return cheap;
         }
-        let curve = w_t * xy.max(self.sh.radius * yaw) + w_r * yaw;
+        let radius = self.sh.radius;
+        let length = xy.max(radius * yaw).max(sideways_bound(radius, from, to));
+        let curve = w_t * length + w_r * yaw;
         cheap.max(f64::from(f32_below(curve * (1.0 - 1e-6))))
     }
 
