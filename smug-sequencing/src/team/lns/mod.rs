@@ -31,6 +31,7 @@
 mod cross;
 mod exchange;
 mod improve;
+mod pairs;
 mod params;
 mod population;
 mod ruin;
@@ -39,6 +40,7 @@ mod split;
 mod state;
 
 use crate::local_search::{LocalSearch, LocalSearchParams};
+use pairs::{reoptimise_pairs, PairBudget};
 use params::Pool;
 use population::evolve;
 use rand::Rng;
@@ -111,12 +113,14 @@ impl TeamLns {
             None => self.first_state(&setting, &mut rng),
         };
         let polish = self.params.polish_fraction;
+        let pairs = self.pair_budget(&setting);
         let time_limit_s = self.params.time_limit_s;
         let budget = Budget {
             // What the construction used is taken from the search (at least a moment
             // left: a zero would mean no time limit).
             time_limit_s: if time_limit_s > 0.0 {
-                (time_limit_s * (1.0 - polish) - started.elapsed().as_secs_f64()).max(1e-3)
+                (time_limit_s * (1.0 - polish) - pairs.time_s - started.elapsed().as_secs_f64())
+                    .max(1e-3)
             } else {
                 0.0
             },
@@ -127,6 +131,20 @@ impl TeamLns {
             Some(pool) => evolve(&setting, start, &self.params, pool, &budget, &mut rng),
             None => search(&setting, start, &self.params, &budget, 0, &mut rng),
         };
+        let (best, paired) = match pairs.iterations {
+            0 => (best, 0),
+            _ => reoptimise_pairs(
+                &setting,
+                best,
+                pairs,
+                &self.deadline,
+                &mut rng,
+                &mut |sub, warm, budget, seed| {
+                    solve_pair_problem(&self.params, sub, warm, budget, seed, &self.deadline)
+                },
+            ),
+        };
+        let iterations = iterations + paired;
         let routes = best.routes.iter().filter(|r| r.len() > 2).count().max(1);
         let per_route = self.params.time_limit_s * polish / routes as f64;
         let polished = self.polish(&setting, &best, per_route, &mut rng)?;
@@ -141,6 +159,21 @@ impl TeamLns {
     /// The population the search keeps, if any: the objective's pool when it has
     /// members, on routes short enough for insertion to start well (no route-first
     /// construction).
+    /// What pair re-optimisation may spend (`iterations == 0`: none; always none
+    /// where it does not apply: see [`pairs::applies`]).
+    fn pair_budget(&self, setting: &Setting) -> PairBudget {
+        let p = &self.params;
+        let on = p.pair_iterations > 0 && pairs::applies(setting);
+        PairBudget {
+            iterations: if on { p.pair_iterations } else { 0 },
+            time_s: if on {
+                p.time_limit_s * p.pair_fraction
+            } else {
+                0.0
+            },
+        }
+    }
+
     fn pool(&self, setting: &Setting) -> Option<Pool> {
         let targets = setting.problem.targets().len();
         let per_robot = targets / setting.problem.robots().len();
@@ -253,6 +286,30 @@ impl TeamLns {
 }
 
 /// Whether the problem is a plain TSP for one robot.
+/// A pair's problem (see `pairs`) solved by `team-lns` with `params` but the budget
+/// `(seconds, iterations)` (seconds 0: iterations only) and no pair re-optimisation of
+/// its own, from `warm`; `None` when the solver refuses it.
+fn solve_pair_problem(
+    params: &TeamLnsParams,
+    problem: &TeamProblem,
+    warm: &TeamSolution,
+    (time_s, iterations): (f64, u64),
+    seed: u64,
+    deadline: &Deadline,
+) -> Option<(TeamSolution, u64)> {
+    let params = TeamLnsParams {
+        time_limit_s: time_s,
+        max_iterations: if time_s > 0.0 { 0 } else { iterations.max(1) },
+        pair_iterations: 0,
+        pair_fraction: 0.0,
+        ..params.clone()
+    };
+    let solver = TeamLns::with_seed(params, seed)
+        .ok()?
+        .with_deadline(deadline.clone());
+    solver.solve_with_iterations(problem, Some(warm)).ok()
+}
+
 fn is_single_tsp(setting: &Setting) -> bool {
     setting.problem.robots().len() == 1
         && setting.single_nodes

@@ -76,6 +76,13 @@ pub struct TeamLnsParams {
     /// Set I at 10 s: the pool wins on 75 targets, is mixed on 150–200 and loses from 318
     /// on, where one search needs all the time it can get).
     pub makespan_pool_max_targets: usize,
+    /// Total objective, three robots or more: after the search, each pair of near
+    /// routes is solved again as a two-robot problem from its routes, with this many
+    /// iterations per pair (iteration budgets; 0 = no pair re-optimisation).
+    pub pair_iterations: u64,
+    /// With a time budget: the fraction of it left for pair re-optimisation (shared
+    /// by the pairs; 0 = none).
+    pub pair_fraction: f64,
 }
 
 impl Default for TeamLnsParams {
@@ -103,6 +110,8 @@ impl Default for TeamLnsParams {
             makespan_offspring: 8,
             makespan_stall_per_target: 80.0,
             makespan_pool_max_targets: 100,
+            pair_iterations: 1000,
+            pair_fraction: 0.1,
         }
     }
 }
@@ -137,6 +146,11 @@ impl TeamLnsParams {
             ("sum_weight", self.sum_weight, 1.0),
             ("improve_within", self.improve_within, 10.0),
             ("polish_fraction", self.polish_fraction, 0.9),
+            (
+                "pair_fraction",
+                self.pair_fraction,
+                0.9 - self.polish_fraction,
+            ),
             ("split_fraction", self.split_fraction, 0.5),
             ("sum_removed_per_route", self.sum_removed_per_route, 10.0),
             ("sum_stall_per_target", self.sum_stall_per_target, 1e9),
