@@ -22,7 +22,11 @@
 //!    `sum_offspring` (`makespan_offspring`) or more searches from crossovers of two of
 //!    the best; a child whose search stalls (`sum_stall_per_target`,
 //!    `makespan_stall_per_target`) leaves its budget to more.
-//! 3. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
+//! 3. For the total on three robots or more, each pair of near routes of the best
+//!    solution is solved again as a two-robot problem of its own, from its routes
+//!    (`pair_iterations` per pair, or `pair_fraction` of a time budget; see `pairs`),
+//!    and kept when the pair costs less.
+//! 4. The best solution's routes are reordered by the TSP [`LocalSearch`] (their PoIs
 //!    fixed) and kept where shorter. One robot with one PoI per target and no size
 //!    bounds is a TSP: the local search gets the whole budget.
 //!
