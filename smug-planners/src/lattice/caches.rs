@@ -43,7 +43,7 @@ pub(crate) struct Caches {
     /// The shot tables of recent goals (by their poses as bits): [`SHOT_BYTES`]
     /// worth, at least 2.
     shots: Mutex<LruCache<[u64; 3], Arc<ShotTable>>>,
-    /// Obstacle-aware heuristics of recent goal sets (by the goals' positions as
+    /// Obstacle-aware heuristics of recent goal sets (by the goals' poses as
     /// bits): [`HEURISTIC_BYTES`] worth, at least 2.
     heuristics: Mutex<LruCache<Vec<u64>, Arc<Vec<f32>>>>,
     /// Proofs of unreachable goals from recent exhausted searches, the latest last.

@@ -6,6 +6,7 @@
 use super::heuristic;
 use super::primitives::{Lattice, Layout, Primitives, StateId};
 use super::search::Worker;
+use super::shots::sideways_bound;
 use smug_core::{Objective, Pose2};
 use std::sync::Arc;
 
@@ -208,7 +209,7 @@ impl Worker<'_> {
     pub(super) fn goal_heuristic(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
         let key: Vec<u64> = goals
             .iter()
-            .flat_map(|g| [g.x.to_bits(), g.y.to_bits()])
+            .flat_map(|g| [g.x.to_bits(), g.y.to_bits(), g.yaw.to_bits()])
             .collect();
         if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
@@ -230,15 +231,34 @@ impl Worker<'_> {
         values
     }
 
+    /// A lower bound of the length of every shot from the point `(x, y)`, whatever its
+    /// heading there, to `goal` (its heading's sine and cosine `dir`): the straight
+    /// distance, and for `curved` models also [`sideways_bound`]. Given the point with
+    /// the goal's own heading, that bound only sees how far the point lies beside the
+    /// goal's heading line, which holds for every heading at the point (the shot
+    /// driven backwards leaves the goal along that line).
+    fn seed_length(&self, x: f64, y: f64, goal: &Pose2, dir: (f64, f64), curved: bool) -> f64 {
+        let straight = (x - goal.x).hypot(y - goal.y);
+        if !curved {
+            return straight;
+        }
+        let at = Pose2::new(x, y, goal.yaw);
+        straight.max(sideways_bound(self.sh.radius, (&at, dir), (goal, dir)))
+    }
+
     /// The obstacle-aware distances to a goal set, computed.
     fn distances_to(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
         let sh = self.sh;
         let (w_t, _) = sh.objective.bound_weights();
+        // An objective that costs the model's curves by their length: a shot is at
+        // least as long as `sideways_bound` says.
+        let curved = sh.primitive_costs.is_some();
         let mut seeds = Vec::new();
         for goal in goals {
+            let dir = goal.yaw.sin_cos();
             for (ix, iy) in sh.lattice.points_near(goal.x, goal.y, sh.shot_radius) {
                 let [x, y] = sh.lattice.position(ix, iy);
-                seeds.push(((ix, iy), w_t * (x - goal.x).hypot(y - goal.y)));
+                seeds.push(((ix, iy), w_t * self.seed_length(x, y, goal, dir, curved)));
             }
         }
         let weighted: Vec<(i32, i32, f64)> = sh
