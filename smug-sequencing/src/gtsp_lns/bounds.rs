@@ -87,11 +87,38 @@ impl ClusterBounds {
         self.entering[c * self.n + a] + self.leaving[c * self.n + b] - removed
     }
 
-    /// A lower bound on [`detour`](Self::detour) from the clusters `ca` of `a` and `cb`
-    /// of `b` alone.
-    #[inline]
-    pub(crate) fn cluster_detour(&self, ca: usize, c: usize, cb: usize, removed: f64) -> f64 {
-        self.between_into[c * self.m + ca] + self.between[c * self.m + cb] - removed
+    /// Lower bounds on [`detour`](Self::detour) from the clusters `ca` of `a` and `cb` of
+    /// `b` alone, `between[ca → c] + between[c → cb] - removed`, of cluster `c` on each of
+    /// the first `count` legs of a tour whose positions hold the clusters `cluster` and
+    /// whose legs (the last wrapping to the first position) cost `cost`; written to `out`.
+    /// Returns the first leg with the lowest bound (by `total_cmp`), if any.
+    pub(crate) fn cluster_detours(
+        &self,
+        c: usize,
+        cluster: &[u32],
+        cost: &[f64],
+        count: usize,
+        out: &mut Vec<f64>,
+    ) -> Option<usize> {
+        let into_c = &self.between_into[c * self.m..(c + 1) * self.m];
+        let out_of_c = &self.between[c * self.m..(c + 1) * self.m];
+        let count = count.min(cluster.len()).min(cost.len());
+        out.clear();
+        out.reserve(count);
+        let mut lowest: Option<(usize, f64)> = None;
+        for p in 0..count {
+            let cb = if p + 1 == cluster.len() {
+                cluster[0]
+            } else {
+                cluster[p + 1]
+            };
+            let bound = into_c[cluster[p] as usize] + out_of_c[cb as usize] - cost[p];
+            out.push(bound);
+            if lowest.is_none_or(|(_, lo)| bound.total_cmp(&lo).is_lt()) {
+                lowest = Some((p, bound));
+            }
+        }
+        lowest.map(|(p, _)| p)
     }
 
     /// Every cluster, by the cheapest leg from a member of `c` to one of its own.

@@ -27,6 +27,7 @@ impl Problem<'_> {
         let Legs {
             cost: mut legs,
             mut cluster,
+            ..
         } = self.legs(order);
         let near = self.bounds.as_ref().filter(|_| len == self.len());
         let mut position = vec![0; if near.is_some() { len } else { 0 }];

@@ -8,6 +8,7 @@
 use super::tour::Problem;
 use rand::{Rng, RngCore};
 use smug_core::rng::StageRng;
+use std::cell::Cell;
 
 /// Random access to the noise draws of one insertion: draw `k` is the `k`-th `f64` the
 /// generator would give from where the insertion began, whichever draws are skipped.
@@ -125,7 +126,7 @@ impl Problem<'_> {
         let mut draws = (noise > 0.0).then(|| Draws::new(rng));
         let mut best = Best { found: None, below };
         let mut try_leg = |p: usize, best: &mut Best| {
-            let (a, b) = (order[p], order[(p + 1) % len]);
+            let (a, b) = (order[p], order[next_position(p, len)]);
             let removed = legs.cost[p];
             let first_draw = ((p - places.start) * members.len()) as u128;
             for (k, &v) in members.iter().enumerate() {
@@ -142,30 +143,28 @@ impl Problem<'_> {
         match &self.bounds {
             None => places.clone().for_each(|p| try_leg(p, &mut best)),
             Some(bounds) => {
-                // Per leg, the bound from its clusters (cached); the one from its nodes
-                // only where that does not rule the leg out.
-                let coarse = |p: usize| {
-                    let (ca, cb) = (legs.cluster[p], legs.cluster[(p + 1) % len]);
-                    bounds.cluster_detour(ca as usize, c, cb as usize, legs.cost[p])
-                };
+                // Per leg, the bound from its clusters (in one pass); the one from its
+                // nodes only where that does not rule the leg out.
+                let mut coarse = legs.coarse.take();
+                let lowest =
+                    bounds.cluster_detours(c, &legs.cluster, &legs.cost, places.end, &mut coarse);
                 if below == f64::INFINITY {
                     // The leg with the lowest bound first: its answer rules out most others.
-                    let lowest = places
-                        .clone()
-                        .min_by(|&p, &q| coarse(p).total_cmp(&coarse(q)));
                     if let Some(lowest) = lowest {
                         try_leg(lowest, &mut best);
                     }
                 }
-                for p in places.clone() {
-                    if best.rules_out(coarse(p), p) || best.found.is_some_and(|b| b.p == p) {
+                for (p, &bound) in coarse.iter().enumerate() {
+                    if best.rules_out(bound, p) || best.found.is_some_and(|b| b.p == p) {
                         continue;
                     }
-                    let fine = bounds.detour(order[p], c, order[(p + 1) % len], legs.cost[p]);
+                    let b = order[next_position(p, len)];
+                    let fine = bounds.detour(order[p], c, b, legs.cost[p]);
                     if !best.rules_out(fine, p) {
                         try_leg(p, &mut best);
                     }
                 }
+                legs.coarse.set(coarse);
             }
         }
         if let Some(draws) = draws.as_mut() {
@@ -195,6 +194,7 @@ impl Problem<'_> {
         Legs {
             cost: (0..order.len()).map(|p| self.leg(order, p)).collect(),
             cluster: order.iter().map(|&v| self.clusters.of(v) as u32).collect(),
+            coarse: Cell::new(Vec::new()),
         }
     }
 
@@ -226,6 +226,18 @@ pub(crate) struct Legs {
     pub(crate) cost: Vec<f64>,
     /// `cluster[p]`: the cluster of the node at position `p`.
     pub(crate) cluster: Vec<u32>,
+    /// Scratch space of the insertion scan (the cluster bound per leg), kept to be reused.
+    coarse: Cell<Vec<f64>>,
+}
+
+/// The position after `p` in a tour of `len` nodes (the last wraps to the first).
+#[inline]
+fn next_position(p: usize, len: usize) -> usize {
+    if p + 1 == len {
+        0
+    } else {
+        p + 1
+    }
 }
 
 #[cfg(test)]
