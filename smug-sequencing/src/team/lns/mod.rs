@@ -170,6 +170,7 @@ impl TeamLns {
         let on = p.pair_iterations > 0 && pairs::applies(setting);
         PairBudget {
             iterations: if on { p.pair_iterations } else { 0 },
+            total_iterations: p.max_iterations,
             time_s: if on {
                 p.time_limit_s * p.pair_fraction
             } else {

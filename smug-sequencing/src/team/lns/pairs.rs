@@ -19,11 +19,14 @@ const NEAR: usize = 5;
 const MAX_PASSES: usize = 3;
 
 /// What pair re-optimisation may spend: per pair, iterations (with no time budget) or
-/// seconds, and seconds in all (0: no time limit).
+/// seconds, and in all.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct PairBudget {
     /// Iterations of each pair's search when there is no time budget.
     pub iterations: u64,
+    /// Iterations of all the pairs together at most (0 = no limit): no more than the
+    /// search itself had, however many pairs.
+    pub total_iterations: u64,
     /// Seconds for all the pairs together (0 = iterations only).
     pub time_s: f64,
 }
@@ -62,7 +65,8 @@ pub(super) fn reoptimise_pairs(
             } else {
                 0.0
             };
-            if deadline.passed() {
+            let spent = budget.total_iterations > 0 && iterations >= budget.total_iterations;
+            if spent || deadline.passed() {
                 return (state, iterations);
             }
             let seed: u64 = rng.random();
@@ -247,6 +251,7 @@ mod tests {
         let start = State::of(&setting, &problem.solution(visits));
         let budget = PairBudget {
             iterations: 300,
+            total_iterations: 0,
             time_s: 0.0,
         };
         let mut rng = ChaCha8Rng::seed_from_u64(3);

@@ -78,7 +78,8 @@ pub struct TeamLnsParams {
     pub makespan_pool_max_targets: usize,
     /// Total objective, three robots or more: after the search, each pair of near
     /// routes is solved again as a two-robot problem from its routes, with this many
-    /// iterations per pair (iteration budgets; 0 = no pair re-optimisation).
+    /// iterations per pair (iteration budgets; all pairs together at most
+    /// `max_iterations`; 0 = no pair re-optimisation).
     pub pair_iterations: u64,
     /// With a time budget: the fraction of it left for pair re-optimisation (shared
     /// by the pairs; 0 = none).
