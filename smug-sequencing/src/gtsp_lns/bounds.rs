@@ -91,7 +91,6 @@ impl ClusterBounds {
     /// `b` alone, `between[ca → c] + between[c → cb] - removed`, of cluster `c` on each of
     /// the first `count` legs of a tour whose positions hold the clusters `cluster` and
     /// whose legs (the last wrapping to the first position) cost `cost`; written to `out`.
-    /// Returns the first leg with the lowest bound (by `total_cmp`), if any.
     pub(crate) fn cluster_detours(
         &self,
         c: usize,
@@ -99,26 +98,25 @@ impl ClusterBounds {
         cost: &[f64],
         count: usize,
         out: &mut Vec<f64>,
-    ) -> Option<usize> {
+    ) {
         let into_c = &self.between_into[c * self.m..(c + 1) * self.m];
         let out_of_c = &self.between[c * self.m..(c + 1) * self.m];
-        let count = count.min(cluster.len()).min(cost.len());
+        let bound =
+            |ca: u32, cb: u32, removed: f64| into_c[ca as usize] + out_of_c[cb as usize] - removed;
         out.clear();
-        out.reserve(count);
-        let mut lowest: Option<(usize, f64)> = None;
-        for p in 0..count {
-            let cb = if p + 1 == cluster.len() {
-                cluster[0]
-            } else {
-                cluster[p + 1]
-            };
-            let bound = into_c[cluster[p] as usize] + out_of_c[cb as usize] - cost[p];
-            out.push(bound);
-            if lowest.is_none_or(|(_, lo)| bound.total_cmp(&lo).is_lt()) {
-                lowest = Some((p, bound));
+        out.extend(
+            cluster
+                .windows(2)
+                .zip(cost)
+                .take(count)
+                .map(|(pair, &removed)| bound(pair[0], pair[1], removed)),
+        );
+        if count >= cluster.len() && cost.len() >= cluster.len() {
+            // The leg from the last position back to the first.
+            if let (Some(&last), Some(&first)) = (cluster.last(), cluster.first()) {
+                out.push(bound(last, first, cost[cluster.len() - 1]));
             }
         }
-        lowest.map(|(p, _)| p)
     }
 
     /// Every cluster, by the cheapest leg from a member of `c` to one of its own.

@@ -68,7 +68,10 @@ impl Problem<'_> {
                                 if lo >= longest {
                                     break;
                                 }
-                                let j = (position[cd as usize] + len - 1) % len;
+                                let j = match position[cd as usize] {
+                                    0 => len - 1,
+                                    q => q - 1,
+                                };
                                 if valid(j) && lo < legs[j] {
                                     candidates.push(j);
                                 }

@@ -146,11 +146,14 @@ impl Problem<'_> {
                 // Per leg, the bound from its clusters (in one pass); the one from its
                 // nodes only where that does not rule the leg out.
                 let mut coarse = legs.coarse.take();
-                let lowest =
-                    bounds.cluster_detours(c, &legs.cluster, &legs.cost, places.end, &mut coarse);
+                bounds.cluster_detours(c, &legs.cluster, &legs.cost, places.end, &mut coarse);
                 if below == f64::INFINITY {
                     // The leg with the lowest bound first: its answer rules out most others.
-                    if let Some(lowest) = lowest {
+                    let lowest = coarse
+                        .iter()
+                        .enumerate()
+                        .min_by(|(_, a), (_, b)| a.total_cmp(b));
+                    if let Some((lowest, _)) = lowest {
                         try_leg(lowest, &mut best);
                     }
                 }

@@ -118,9 +118,10 @@ impl<'a> Problem<'a> {
             for g in 1..layers.len() {
                 next.clear();
                 for (q_at, &q) in layers[g].iter().enumerate() {
+                    let into_q = self.dist.row_into(q);
                     let mut arg = (0, f64::INFINITY);
                     for (k, &p) in layers[g - 1].iter().enumerate() {
-                        let via = reach[k] + self.dist.d_into(p, q);
+                        let via = reach[k] + into_q[p];
                         if via < arg.1 {
                             arg = (k, via);
                         }
