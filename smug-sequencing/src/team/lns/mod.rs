@@ -160,9 +160,6 @@ impl TeamLns {
         Ok((best.solution(&setting), iterations))
     }
 
-    /// The population the search keeps, if any: the objective's pool when it has
-    /// members, on routes short enough for insertion to start well (no route-first
-    /// construction).
     /// What pair re-optimisation may spend (`iterations == 0`: none; always none
     /// where it does not apply: see [`pairs::applies`]).
     fn pair_budget(&self, setting: &Setting) -> PairBudget {
@@ -179,6 +176,9 @@ impl TeamLns {
         }
     }
 
+    /// The population the search keeps, if any: the objective's pool when it has
+    /// members, on routes short enough for insertion to start well (no route-first
+    /// construction).
     fn pool(&self, setting: &Setting) -> Option<Pool> {
         let targets = setting.problem.targets().len();
         let per_robot = targets / setting.problem.robots().len();
@@ -290,7 +290,6 @@ impl TeamLns {
     }
 }
 
-/// Whether the problem is a plain TSP for one robot.
 /// A pair's problem (see `pairs`) solved by `team-lns` with `params` but the budget
 /// `(seconds, iterations)` (seconds 0: iterations only) and no pair re-optimisation of
 /// its own, from `warm`; `None` when the solver refuses it.
@@ -315,6 +314,7 @@ fn solve_pair_problem(
     solver.solve_with_iterations(problem, Some(warm)).ok()
 }
 
+/// Whether the problem is a plain TSP for one robot.
 fn is_single_tsp(setting: &Setting) -> bool {
     setting.problem.robots().len() == 1
         && setting.single_nodes
