@@ -66,7 +66,8 @@ pub struct TeamLnsParams {
     /// `sum_elite` is for the total.
     pub makespan_elite: usize,
     /// Makespan objective, with a pool: children searched after the pool is filled (at
-    /// least), as `sum_offspring` is for the total.
+    /// least), as `sum_offspring` is for the total (16: on mTSPLib min-max at 1 s, idle,
+    /// every proven optimum on every seed where 8 missed eil76 m=2; docs/bench-mtsp.md).
     pub makespan_offspring: usize,
     /// Makespan objective, with a pool: a child's search stall, iterations per target,
     /// as `sum_stall_per_target` is for the total.
@@ -108,7 +109,7 @@ impl Default for TeamLnsParams {
             sum_offspring: 8,
             sum_stall_per_target: 80.0,
             makespan_elite: 4,
-            makespan_offspring: 8,
+            makespan_offspring: 16,
             makespan_stall_per_target: 80.0,
             makespan_pool_max_targets: 100,
             pair_iterations: 1000,
