@@ -63,10 +63,10 @@ fn matrix_nodes(
 /// Whether the start's row is planned in the same batch as the full matrix's other
 /// rows ([`plan_matrix_rows`]) instead of on its own: when the planner searches rows
 /// side by side (the lattice), the oracle is symmetric and the tour is closed (the
-/// start's row of [`matrix_nodes`] is then exactly the legs asked here). The searches are the same, so are the plans; the start's search
-/// no longer runs alone on one core (lunar rover, 2 cores: wall median 5.15 → 4.50 s,
-/// measured). A start cut off from some targets is then found after the whole matrix,
-/// not its row.
+/// start's row of [`matrix_nodes`] is then exactly the legs asked here). The searches
+/// are the same, so are the plans; the start's search no longer runs alone on one core
+/// (lunar rover, 2 cores: wall median 5.15 → 4.50 s, measured). A start cut off from
+/// some targets is then found after the whole matrix, not its row.
 fn plans_matrix_with_start_row(oracle: &PathOracle, mission: &Mission) -> bool {
     oracle.plans_rows_side_by_side() && oracle.is_symmetric() && mission.end.is_none()
 }

@@ -116,9 +116,8 @@ pub(crate) struct Dist {
     symmetric: bool,
     eps: f64,
     /// The largest finite leg (it sets the penalty and `eps`: [`refill`](Self::refill)
-    /// keeps it or starts afresh), and whether a leg is missing.
+    /// keeps it or starts afresh).
     max_finite: f64,
-    missing: bool,
 }
 
 impl Dist {
@@ -166,7 +165,6 @@ impl Dist {
             symmetric,
             eps,
             max_finite,
-            missing,
         }
     }
 
@@ -182,21 +180,20 @@ impl Dist {
         }
         let n = self.n;
         let penalty = missing_leg_penalty(n, self.max_finite);
-        // Per row: the largest finite leg, whether one is missing, the columns changed.
-        let rows: Vec<(f64, bool, Vec<usize>)> = self
+        // Per row: the largest finite leg and the columns changed.
+        let rows: Vec<(f64, Vec<usize>)> = self
             .data
             .par_chunks_mut(n.max(1))
             .with_min_len(ROWS_PER_TASK)
             .enumerate()
             .map(|(i, row)| {
-                let (mut max_finite, mut missing, mut changed) = (0.0_f64, false, Vec::new());
+                let (mut max_finite, mut changed) = (0.0_f64, Vec::new());
                 for (j, slot) in row.iter_mut().enumerate() {
                     let c = if i == j { 0.0 } else { costs.get(i, j) };
                     let value = if c.is_finite() {
                         max_finite = max_finite.max(c);
                         c
                     } else {
-                        missing = true;
                         penalty
                     };
                     if slot.to_bits() != value.to_bits() {
@@ -204,26 +201,24 @@ impl Dist {
                         changed.push(j);
                     }
                 }
-                (max_finite, missing, changed)
+                (max_finite, changed)
             })
             .collect();
         let max_finite = rows.iter().fold(0.0_f64, |m, r| m.max(r.0));
-        let missing = rows.iter().any(|r| r.1);
         // The penalty and `eps` follow from the largest finite leg alone.
         let same_penalty = max_finite.to_bits() == self.max_finite.to_bits();
         let mirrored = rows.iter().enumerate().all(|(i, r)| {
-            r.2.iter()
+            r.1.iter()
                 .all(|&j| self.data[i * n + j].to_bits() == self.data[j * n + i].to_bits())
         });
         if !same_penalty || !mirrored {
             *self = Self::new(costs);
             return None;
         }
-        self.missing = missing;
         Some(
             rows.iter()
                 .enumerate()
-                .filter(|(_, r)| !r.2.is_empty())
+                .filter(|(_, r)| !r.1.is_empty())
                 .map(|(i, _)| i)
                 .collect(),
         )
