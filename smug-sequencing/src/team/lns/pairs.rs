@@ -119,9 +119,9 @@ fn near_pairs(setting: &Setting, state: &State) -> Vec<(usize, usize)> {
 }
 
 /// Routes `a` and `b` of `state` solved by `solve` as a two-robot problem from their
-/// present routes, with `time_s` seconds (0: `iterations`); the state with the pair's new routes
-/// and the iterations spent, or `None` when the pair is not a problem of its own (too
-/// few targets, or one the checks refuse).
+/// present routes, with `time_s` seconds (0: `iterations`); the state with the pair's
+/// new routes and the iterations spent, or `None` when the pair is not a problem of its
+/// own (too few targets, or one the checks refuse).
 fn solve_pair(
     setting: &Setting,
     state: &State,
@@ -139,14 +139,17 @@ fn solve_pair(
         return None;
     }
     let sub = sub_problem(problem, &targets, [a, b])?;
-    let index_of = |target: usize| targets.iter().position(|&t| t == target);
-    let warm_routes: Vec<Vec<Visit>> = [a, b]
+    // `targets` lists route `a`'s targets, then route `b`'s: the sub-problem's target
+    // `k` is the `k`-th of them.
+    let first = state.routes[a].len();
+    let warm_routes: Vec<Vec<Visit>> = [(a, 0), (b, first)]
         .iter()
-        .map(|&r| {
+        .map(|&(r, offset)| {
             state.routes[r]
                 .iter()
-                .map(|v| Visit {
-                    target: index_of(v.target).expect("the pair's own target"),
+                .enumerate()
+                .map(|(k, v)| Visit {
+                    target: offset + k,
                     node: v.node,
                 })
                 .collect()
