@@ -51,6 +51,32 @@ impl LazyPrmStar {
         added
     }
 
+    /// Adds a sample as a vertex like [`insert_sample`](Self::insert_sample), but an
+    /// invalid one becomes a bridge attempt (see [`LazyPrmStarParams::bridge_sigma`]):
+    /// a valid pose halfway between it and an invalid partner is added instead.
+    pub(super) fn insert_or_bridge(&mut self, sample: Pose2) -> bool {
+        if self.params.lazy_vertices || !self.bridge.is_on() {
+            return self.insert_sample(sample);
+        }
+        if self.check_state(&sample) {
+            self.add_vertex(sample, Validity::Valid);
+            return true;
+        }
+        let started = Instant::now();
+        let partner = self.bridge.partner(&sample);
+        self.counts.breakdown.sampling_s += started.elapsed().as_secs_f64();
+        // Outside the bounds counts as blocked: a passage beside the map's edge.
+        if self.bounds.contains(partner.x, partner.y) && self.check_state(&partner) {
+            return false;
+        }
+        let middle = Bridge::midpoint(self.space.as_ref(), &sample, &partner);
+        if !self.bounds.contains(middle.x, middle.y) || !self.check_state(&middle) {
+            return false;
+        }
+        self.add_vertex(middle, Validity::Valid);
+        true
+    }
+
     /// Checks a state, counted and timed as vertex checking.
     pub(super) fn check_state(&mut self, state: &Pose2) -> bool {
         timed_state_check(self.states.as_ref(), &mut self.counts, state)

@@ -14,6 +14,7 @@
 //! ends with "no path", never a hang.
 
 mod attempts;
+mod bridge;
 mod checks;
 mod expansion;
 mod focus;
@@ -28,6 +29,7 @@ mod test_support;
 mod tests;
 mod warm;
 
+use self::bridge::Bridge;
 use self::checks::{timed_state_check, Checks, CountedMotions, Counts};
 use self::expansion::Expansion;
 use self::focus::{Focus, MIN_FOCUS_PERIOD};
@@ -68,6 +70,8 @@ pub struct LazyPrmStar {
     /// Vertices with ids from this one on were added after the latest search.
     fresh_from: u32,
     expansion: Expansion,
+    /// Bridge samples of queries without a path (see `bridge_sigma`).
+    bridge: Bridge,
     /// Endpoints of failed queries found in pockets (see `retry_cut_off`).
     cut_off: BTreeSet<u32>,
     counts: Counts,
@@ -145,6 +149,7 @@ impl LazyPrmStar {
             ("attempt_share", params.attempt_share),
             ("focus", params.focus),
             ("one_to_many_density", params.one_to_many_density),
+            ("bridge_sigma", params.bridge_sigma),
         ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(Error::invalid_param(
@@ -201,6 +206,7 @@ impl LazyPrmStar {
                 params.expand_reach,
                 params.expand_share,
             ),
+            bridge: Bridge::new(stage_rng(0, BRIDGE_STREAM), params.bridge_sigma),
             cut_off: BTreeSet::new(),
             counts: Counts::default(),
             warm: warm::Warm::default(),
@@ -215,6 +221,13 @@ impl LazyPrmStar {
     /// `rng` (by default a fixed stream of seed 0).
     pub fn with_expansion_rng(mut self, rng: StageRng) -> Self {
         self.expansion = Expansion::new(rng, self.params.expand_reach, self.params.expand_share);
+        self
+    }
+
+    /// Draws the bridge samples (see [`LazyPrmStarParams::bridge_sigma`]) from `rng`
+    /// (by default a fixed stream of seed 0).
+    pub fn with_bridge_rng(mut self, rng: StageRng) -> Self {
+        self.bridge = Bridge::new(rng, self.params.bridge_sigma);
         self
     }
 
@@ -316,6 +329,9 @@ impl PointToPointPlanner for LazyPrmStar {
 /// The random stream of the endpoint expansions.
 const EXPANSION_STREAM: &str = "planner-expansion";
 
+/// The random stream of the bridge samples.
+const BRIDGE_STREAM: &str = "planner-bridge";
+
 /// LazyPRM* for the pipeline of `ctx`.
 pub(crate) fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Result<LazyPrmStar> {
     let bounds = ctx.world()?.bounds();
@@ -328,7 +344,8 @@ pub(crate) fn build_planner(params: LazyPrmStarParams, ctx: &BuildContext) -> Re
         bounds,
         ctx.run(),
     )?
-    .with_expansion_rng(ctx.rng(EXPANSION_STREAM)))
+    .with_expansion_rng(ctx.rng(EXPANSION_STREAM))
+    .with_bridge_rng(ctx.rng(BRIDGE_STREAM)))
 }
 
 smug_core::register_plugin!(

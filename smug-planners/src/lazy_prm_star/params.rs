@@ -85,6 +85,13 @@ pub struct LazyPrmStarParams {
     /// How far an expansion sample reaches from its tree, metres (its curve's target
     /// is drawn within this distance).
     pub expand_reach: f64,
+    /// Once `expand_after` samples passed without a path, each invalid sample becomes
+    /// a bridge attempt ([`bridge`](super::bridge)): a second pose a Gaussian step of
+    /// this standard deviation away (metres; 0: no bridges), and when that is invalid
+    /// too, the pose halfway between them, kept when valid — the narrow passages
+    /// (a doorway, the gap a new rock leaves beside a wall) uniform samples seldom hit.
+    /// Queries that find a path sooner are unaffected.
+    pub bridge_sigma: f64,
     /// Retry query endpoints found cut off: when a query ends without a path, the
     /// endpoint whose roadmap component is the smaller one (less than half the roadmap:
     /// a pocket the robot could not leave or enter within the budget) is cut off, and
@@ -140,6 +147,7 @@ impl Default for LazyPrmStarParams {
             expand_after: 500,
             expand_share: 0.5,
             expand_reach: 3.0,
+            bridge_sigma: 1.0,
             retry_cut_off: false,
             one_to_many: true,
             one_to_many_density: 4.0,

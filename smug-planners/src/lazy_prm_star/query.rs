@@ -79,7 +79,13 @@ impl LazyPrmStar {
                 if widened {
                     focus.widen(self.focus_period());
                 }
-                (self.insert_sample(sample), widened)
+                let bridging = best.is_none() && clock.iterations() >= self.params.expand_after;
+                let inserted = if bridging {
+                    self.insert_or_bridge(sample)
+                } else {
+                    self.insert_sample(sample)
+                };
+                (inserted, widened)
             };
             if !inserted && !widened {
                 continue;
