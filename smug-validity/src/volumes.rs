@@ -360,9 +360,14 @@ fn voxelise(world: &World, geometry: VoxelGeometry) -> VoxelGrid<bool> {
 /// The signed distance field of `occupancy` in metres.
 pub fn signed_distance_field(occupancy: &VoxelGrid<bool>) -> VoxelGrid<f32> {
     let g = occupancy.geometry;
-    let outside = squared_edt_3d(&occupancy.data, g.size);
-    let free: Vec<bool> = occupancy.data.iter().map(|o| !o).collect();
-    let inside = squared_edt_3d(&free, g.size);
+    // The two transforms are independent: side by side.
+    let (outside, inside) = rayon::join(
+        || squared_edt_3d(&occupancy.data, g.size),
+        || {
+            let free: Vec<bool> = occupancy.data.iter().map(|o| !o).collect();
+            squared_edt_3d(&free, g.size)
+        },
+    );
     let data = occupancy
         .data
         .iter()

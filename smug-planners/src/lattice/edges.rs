@@ -7,6 +7,8 @@ use super::heuristic;
 use super::primitives::{Lattice, Layout, Primitives, StateId};
 use super::search::Worker;
 use super::shots::sideways_bound;
+use super::Shared;
+use rayon::prelude::*;
 use smug_core::{Objective, Pose2};
 use std::sync::Arc;
 
@@ -188,34 +190,18 @@ impl Worker<'_> {
 
     /// Whether a lattice pose is valid (cached).
     pub(super) fn state_valid(&mut self, id: StateId) -> bool {
-        if let Some(valid) = self.sh.caches.state(id) {
-            return valid;
-        }
-        self.me.counts.state_checks += 1;
-        let valid = self.sh.states.is_valid(&self.sh.lattice.pose(id));
-        self.sh.caches.set_state(id, valid);
-        valid
-    }
-
-    /// Whether some heading is valid at a lattice point (the 2D relaxation's nodes).
-    pub(super) fn point_open(&mut self, ix: usize, iy: usize) -> bool {
-        (0..self.sh.lattice.headings).any(|k| {
-            let id = self.sh.lattice.id(ix, iy, k);
-            self.state_valid(id)
-        })
+        state_valid(self.sh, id, &mut self.me.counts.state_checks)
     }
 
     /// The obstacle-aware distances to a goal set, from the cache or computed.
     pub(super) fn goal_heuristic(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
-        let key: Vec<u64> = goals
-            .iter()
-            .flat_map(|g| [g.x.to_bits(), g.y.to_bits(), g.yaw.to_bits()])
-            .collect();
+        let key = heuristic_key(goals);
         if let Some(values) = self.sh.caches.heuristic(&key) {
             return values;
         }
         let values = match goals {
             [first, rest @ ..] if !rest.is_empty() => {
+                self.keep_missing_heuristics(goals);
                 // The least of each goal's distances (kept for later sets): the set's
                 // own bit for bit, as `heuristic::least` says.
                 let mut least = (*self.goal_heuristic(std::slice::from_ref(first))).clone();
@@ -231,44 +217,119 @@ impl Worker<'_> {
         values
     }
 
-    /// A lower bound of the length of every shot from the point `(x, y)`, whatever its
-    /// heading there, to `goal` (its heading's sine and cosine `dir`): the straight
-    /// distance, and for `curved` models also [`sideways_bound`]. Given the point with
-    /// the goal's own heading, that bound only sees how far the point lies beside the
-    /// goal's heading line, which holds for every heading at the point (the shot
-    /// driven backwards leaves the goal along that line).
-    fn seed_length(&self, x: f64, y: f64, goal: &Pose2, dir: (f64, f64), curved: bool) -> f64 {
-        let straight = (x - goal.x).hypot(y - goal.y);
-        if !curved {
-            return straight;
+    /// Computes and keeps, side by side, the distances to each goal of `goals` not
+    /// kept yet (the same values as one at a time: each is a pure function of the
+    /// world and its goal). A mission's first search (the probe of its start, towards
+    /// every PoI) asks for all of them at once.
+    fn keep_missing_heuristics(&mut self, goals: &[Pose2]) {
+        let mut missing: Vec<&Pose2> = Vec::new();
+        for goal in goals {
+            let key = heuristic_key(std::slice::from_ref(goal));
+            let new = !missing
+                .iter()
+                .any(|m| heuristic_key(std::slice::from_ref(*m)) == key);
+            if new && self.sh.caches.heuristic(&key).is_none() {
+                missing.push(goal);
+            }
         }
-        let at = Pose2::new(x, y, goal.yaw);
-        straight.max(sideways_bound(self.sh.radius, (&at, dir), (goal, dir)))
+        if missing.len() < 2 {
+            return;
+        }
+        let sh = self.sh;
+        let computed: Vec<(Vec<f32>, u64)> = missing
+            .par_iter()
+            .with_max_len(1)
+            .map(|goal| {
+                let mut checks = 0;
+                let values = distances_to(sh, std::slice::from_ref(*goal), &mut checks);
+                (values, checks)
+            })
+            .collect();
+        for (goal, (values, checks)) in missing.into_iter().zip(computed) {
+            self.me.counts.state_checks += checks;
+            let key = heuristic_key(std::slice::from_ref(goal));
+            sh.caches.keep_heuristic(key, Arc::new(values));
+        }
     }
 
     /// The obstacle-aware distances to a goal set, computed.
     fn distances_to(&mut self, goals: &[Pose2]) -> Arc<Vec<f32>> {
-        let sh = self.sh;
-        let (w_t, _) = sh.objective.bound_weights();
-        // An objective that costs the model's curves by their length: a shot is at
-        // least as long as `sideways_bound` says.
-        let curved = sh.primitive_costs.is_some();
-        let mut seeds = Vec::new();
-        for goal in goals {
-            let dir = goal.yaw.sin_cos();
-            for (ix, iy) in sh.lattice.points_near(goal.x, goal.y, sh.shot_radius) {
-                let [x, y] = sh.lattice.position(ix, iy);
-                seeds.push(((ix, iy), w_t * self.seed_length(x, y, goal, dir, curved)));
-            }
-        }
-        let weighted: Vec<(i32, i32, f64)> = sh
-            .displacements
-            .iter()
-            .map(|&(di, dj, len)| (di, dj, w_t * len))
-            .collect();
-        let (nx, ny) = (sh.lattice.nx, sh.lattice.ny);
-        Arc::new(heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
-            self.point_open(ix, iy)
-        }))
+        Arc::new(distances_to(
+            self.sh,
+            goals,
+            &mut self.me.counts.state_checks,
+        ))
     }
+}
+
+/// The heuristic cache's key of a goal set: the goals' poses as bits.
+fn heuristic_key(goals: &[Pose2]) -> Vec<u64> {
+    goals
+        .iter()
+        .flat_map(|g| [g.x.to_bits(), g.y.to_bits(), g.yaw.to_bits()])
+        .collect()
+}
+
+/// Whether a lattice pose is valid (cached; `checks` counts the poses checked).
+fn state_valid(sh: &Shared, id: StateId, checks: &mut u64) -> bool {
+    if let Some(valid) = sh.caches.state(id) {
+        return valid;
+    }
+    *checks += 1;
+    let valid = sh.states.is_valid(&sh.lattice.pose(id));
+    sh.caches.set_state(id, valid);
+    valid
+}
+
+/// Whether some heading is valid at a lattice point (the 2D relaxation's nodes).
+fn point_open(sh: &Shared, ix: usize, iy: usize, checks: &mut u64) -> bool {
+    (0..sh.lattice.headings).any(|k| state_valid(sh, sh.lattice.id(ix, iy, k), checks))
+}
+
+/// A lower bound of the length of every shot from the point `(x, y)`, whatever its
+/// heading there, to `goal` (its heading's sine and cosine `dir`): the straight
+/// distance, and for `curved` models also [`sideways_bound`] with turning radius
+/// `radius`. Given the point with the goal's own heading, that bound only sees how far
+/// the point lies beside the goal's heading line, which holds for every heading at the
+/// point (the shot driven backwards leaves the goal along that line).
+fn seed_length(
+    radius: f64,
+    (x, y): (f64, f64),
+    goal: &Pose2,
+    dir: (f64, f64),
+    curved: bool,
+) -> f64 {
+    let straight = (x - goal.x).hypot(y - goal.y);
+    if !curved {
+        return straight;
+    }
+    let at = Pose2::new(x, y, goal.yaw);
+    straight.max(sideways_bound(radius, (&at, dir), (goal, dir)))
+}
+
+/// The obstacle-aware distances to a goal set, computed (`checks` counts the lattice
+/// poses checked for validity).
+fn distances_to(sh: &Shared, goals: &[Pose2], checks: &mut u64) -> Vec<f32> {
+    let (w_t, _) = sh.objective.bound_weights();
+    // An objective that costs the model's curves by their length: a shot is at
+    // least as long as `sideways_bound` says.
+    let curved = sh.primitive_costs.is_some();
+    let mut seeds = Vec::new();
+    for goal in goals {
+        let dir = goal.yaw.sin_cos();
+        for (ix, iy) in sh.lattice.points_near(goal.x, goal.y, sh.shot_radius) {
+            let [x, y] = sh.lattice.position(ix, iy);
+            let length = seed_length(sh.radius, (x, y), goal, dir, curved);
+            seeds.push(((ix, iy), w_t * length));
+        }
+    }
+    let weighted: Vec<(i32, i32, f64)> = sh
+        .displacements
+        .iter()
+        .map(|&(di, dj, len)| (di, dj, w_t * len))
+        .collect();
+    let (nx, ny) = (sh.lattice.nx, sh.lattice.ny);
+    heuristic::distances(nx, ny, &weighted, &seeds, |ix, iy| {
+        point_open(sh, ix, iy, checks)
+    })
 }
