@@ -422,6 +422,45 @@ fn a_goal_proved_unreachable_once_is_not_searched_for_again_from_the_same_region
 }
 
 #[test]
+fn a_start_beside_a_proved_region_searches_only_outside_it() {
+    // A forward-only car with its back to the first wall: the lattice poses it joins
+    // there cannot be driven to from elsewhere, so the kept proof of the first search
+    // (the goal in the closed box) does not cover it at once, but its search need not
+    // enter what that search closed: the same answer from a few expansions.
+    let boxed = Pose2::new(13.5, 2.5, 0.0);
+    let beside_the_wall = Pose2::new(5.75, 3.0, 0.0);
+    let expansions =
+        |planner: &dyn smug_core::PointToPointPlanner| planner.stats().counters["expansions"];
+    let proved = PlannerOutcome::NoPath(NoPathReason::Proved(Proof::Exhausted));
+
+    let mut fresh = pipeline(&[]);
+    let alone = fresh.planner.as_mut().unwrap();
+    assert_eq!(alone.plan(&beside_the_wall, &boxed).unwrap(), proved);
+    let searched_alone = expansions(alone.as_ref());
+
+    let mut p = pipeline(&[]);
+    let planner = p.planner.as_mut().unwrap();
+    assert_eq!(
+        planner.plan(&Pose2::new(1.5, 1.5, 0.0), &boxed).unwrap(),
+        proved
+    );
+    let first = expansions(planner.as_ref());
+    assert_eq!(planner.plan(&beside_the_wall, &boxed).unwrap(), proved);
+    let bounded = expansions(planner.as_ref()) - first;
+    assert!(
+        bounded > 0 && 20 * bounded < searched_alone,
+        "bounded by the proof: {bounded} expansions, alone: {searched_alone}"
+    );
+    // Its own proof now covers it at once, and a goal it can reach is still planned.
+    assert_eq!(planner.plan(&beside_the_wall, &boxed).unwrap(), proved);
+    assert_eq!(expansions(planner.as_ref()) - first, bounded);
+    let open = planner
+        .plan(&beside_the_wall, &Pose2::new(7.7, 3.0, 0.0))
+        .unwrap();
+    assert!(open.exact_path().is_some(), "{open:?}");
+}
+
+#[test]
 fn a_start_hemmed_in_joins_the_lattice_farther_out() {
     // In a corridor a few centimetres wider than the disc, between two rows of lattice
     // points: no lattice pose near the start is valid, the first ones out of the

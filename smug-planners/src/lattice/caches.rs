@@ -26,7 +26,7 @@ const PROOFS_KEPT: usize = 8;
 
 /// A proof that goals cannot be reached: the lattice poses an exhausted search closed
 /// (a bitmap) and the goals (poses as bits) it found no way to from any of them.
-type KeptProof = (Vec<u64>, Vec<[u64; 3]>);
+type KeptProof = (Arc<Vec<u64>>, Vec<[u64; 3]>);
 
 fn pose_bits(p: &Pose2) -> [u64; 3] {
     [p.x.to_bits(), p.y.to_bits(), p.yaw.to_bits()]
@@ -138,11 +138,19 @@ impl Caches {
         let bits = pose_bits(goal);
         let kept = self.proofs.lock().expect("proof cache");
         kept.iter().any(|(closed, goals)| {
-            goals.contains(&bits)
-                && joined
-                    .iter()
-                    .all(|&id| closed[id as usize / 64] & (1 << (id % 64)) != 0)
+            goals.contains(&bits) && joined.iter().all(|&id| holds(closed, id))
         })
+    }
+
+    /// The poses of a kept proof that every goal of `goals` is unreachable from (the
+    /// largest such set; `None` when no kept proof covers them all).
+    pub(crate) fn proof_covering(&self, goals: &[Pose2]) -> Option<Arc<Vec<u64>>> {
+        let bits: Vec<[u64; 3]> = goals.iter().map(pose_bits).collect();
+        let kept = self.proofs.lock().expect("proof cache");
+        kept.iter()
+            .filter(|(_, proved)| bits.iter().all(|b| proved.contains(b)))
+            .max_by_key(|(closed, _)| closed_count(closed))
+            .map(|(closed, _)| closed.clone())
     }
 
     /// Keeps the proof that `goals` cannot be reached from the poses of `closed`.
@@ -151,8 +159,18 @@ impl Caches {
         if kept.len() >= PROOFS_KEPT {
             kept.remove(0);
         }
-        kept.push((closed, goals.iter().map(pose_bits).collect()));
+        kept.push((Arc::new(closed), goals.iter().map(pose_bits).collect()));
     }
+}
+
+/// How many poses a bitmap of poses holds.
+fn closed_count(bits: &[u64]) -> u32 {
+    bits.iter().map(|w| w.count_ones()).sum()
+}
+
+/// True when pose `id` is in the bitmap `bits`.
+pub(crate) fn holds(bits: &[u64], id: StateId) -> bool {
+    bits[id as usize / 64] & (1 << (id % 64)) != 0
 }
 
 /// A validity kept in one byte (0 unknown, 1 valid, 2 invalid), if known.

@@ -3,7 +3,7 @@
 //! analytic shots, caches of state and primitive validity kept across queries.
 
 use super::buffers::{Node, Searcher};
-use super::caches::ShotTable;
+use super::caches::{holds, ShotTable};
 use super::queue::{BucketQueue, Entry, Item};
 use super::Shared;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
@@ -55,6 +55,9 @@ pub(super) struct Run {
     joins: Vec<(u32, f64, bool)>,
     /// How many times the heuristic was re-aimed (the focus of the keys computed now).
     pub(super) focus: u32,
+    /// Lattice poses a kept proof shows no goal left can be reached from (a bitmap):
+    /// never queued, as no path to those goals passes through them.
+    pruned: Option<Arc<Vec<u64>>>,
 }
 
 impl Run {
@@ -214,11 +217,13 @@ impl Worker<'_> {
             aimed: Vec::new(),
             joins,
             focus: 0,
+            pruned: None,
         };
         self.apply_kept_proofs(start, &mut run);
         if run.open_goals == 0 {
             return (run.goals, End::AllReached);
         }
+        run.pruned = self.proof_bound(&run);
         self.aim(&mut run);
         run.push(
             0.0,
@@ -339,8 +344,27 @@ impl Worker<'_> {
         }
     }
 
+    /// The poses of a kept proof that shows every goal the search waits for unreachable
+    /// from them: the search need not go there. (Its answers stay the same: no path to
+    /// those goals passes through such a pose, and the poses it does go to pop in the
+    /// same order.) A start beside an earlier start's dead end then proves the same
+    /// dead end by a search of the few poses its curves join outside that proof.
+    fn proof_bound(&self, run: &Run) -> Option<Arc<Vec<u64>>> {
+        let waited: Vec<Pose2> = run
+            .goals
+            .iter()
+            .filter(|g| g.reached.is_none() && !g.proved_out)
+            .map(|g| g.pose)
+            .collect();
+        if waited.is_empty() {
+            return None;
+        }
+        self.sh.caches.proof_covering(&waited)
+    }
+
     /// After an exhausted search: keeps the proof that its unreached goals cannot be
-    /// reached from any lattice pose it closed.
+    /// reached from any lattice pose it closed, nor from the poses of the proof it
+    /// was bounded by.
     fn keep_proof(&self, run: &Run) {
         let unreached: Vec<Pose2> = run
             .goals
@@ -351,7 +375,12 @@ impl Worker<'_> {
         if unreached.is_empty() {
             return;
         }
-        let closed = self.me.buffers.closed_set();
+        let mut closed = self.me.buffers.closed_set();
+        if let Some(pruned) = &run.pruned {
+            for (word, proved) in closed.iter_mut().zip(pruned.iter()) {
+                *word |= proved;
+            }
+        }
         self.sh.caches.keep_proof(closed, &unreached);
     }
 
@@ -495,6 +524,9 @@ impl Worker<'_> {
         let b = &self.me.buffers;
         let i = to as usize;
         if b.is_closed(i) || b.beaten(i, g, parent, prim, reverse) {
+            return;
+        }
+        if run.pruned.as_ref().is_some_and(|p| holds(p, to)) {
             return;
         }
         let h = self.heuristic(to, &run.aimed, run.h2d.as_deref());
