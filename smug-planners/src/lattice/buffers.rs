@@ -52,17 +52,6 @@ impl Buffers {
         (node.stamp == self.generation).then_some(node.g)
     }
 
-    /// The poses closed in this search, as a bitmap.
-    pub(super) fn closed_set(&self) -> Vec<u64> {
-        let mut bits = vec![0u64; self.nodes.len().div_ceil(64)];
-        for (i, node) in self.nodes.iter().enumerate() {
-            if node.closed == self.generation {
-                bits[i / 64] |= 1 << (i % 64);
-            }
-        }
-        bits
-    }
-
     /// True when a verified way to pose `i` is queued or closed that pops before a
     /// way from `parent` by `prim` and `reverse` at cost `g` would: by cost, then as the
     /// search's heap breaks ties (so that what is queued never changes what pops).

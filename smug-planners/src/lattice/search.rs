@@ -58,6 +58,9 @@ pub(super) struct Run {
     /// Lattice poses a kept proof shows no goal left can be reached from (a bitmap):
     /// never queued, as no path to those goals passes through them.
     pruned: Option<Arc<Vec<u64>>>,
+    /// The lattice poses closed so far, in order (what an exhausted search's proof
+    /// holds: listed, not found by a scan of the whole lattice).
+    closed: Vec<u32>,
 }
 
 impl Run {
@@ -218,6 +221,7 @@ impl Worker<'_> {
             joins,
             focus: 0,
             pruned: None,
+            closed: Vec::new(),
         };
         self.apply_kept_proofs(start, &mut run);
         if run.open_goals == 0 {
@@ -273,6 +277,9 @@ impl Worker<'_> {
                         continue;
                     }
                     if self.close(id, parent, g, reverse) {
+                        if id != START {
+                            run.closed.push(id);
+                        }
                         expansions += 1;
                         self.me.counts.expansions += 1;
                         self.expand(start, id, g, &mut run);
@@ -372,14 +379,17 @@ impl Worker<'_> {
             .filter(|g| g.reached.is_none() && !g.proved_out)
             .map(|g| g.pose)
             .collect();
-        if unreached.is_empty() {
+        // A search that closed no lattice pose (a start whose curves join none) proves
+        // nothing for any other start.
+        if unreached.is_empty() || run.closed.is_empty() {
             return;
         }
-        let mut closed = self.me.buffers.closed_set();
-        if let Some(pruned) = &run.pruned {
-            for (word, proved) in closed.iter_mut().zip(pruned.iter()) {
-                *word |= proved;
-            }
+        let mut closed = match &run.pruned {
+            Some(pruned) => pruned.as_ref().clone(),
+            None => vec![0u64; self.sh.lattice.len().div_ceil(64)],
+        };
+        for &id in &run.closed {
+            closed[id as usize / 64] |= 1 << (id % 64);
         }
         self.sh.caches.keep_proof(closed, &unreached);
     }
