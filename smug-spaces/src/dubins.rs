@@ -68,12 +68,14 @@ pub(crate) fn shortest(x: f64, y: f64, phi: f64) -> Curve {
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let cab = (alpha - beta).cos();
-    let mut best: Option<Curve> = None;
+    // The best word so far and its unit length (summed as `Curve::unit_length` sums
+    // it); only the winner is built into a curve.
+    let mut best: Option<([Steer; 3], [f64; 3], f64)> = None;
     let mut consider = |steers: [Steer; 3], lengths: Option<[f64; 3]>| {
         if let Some(lengths) = lengths {
-            let curve = Curve::from_word(&steers, &lengths);
-            if best.is_none_or(|b| curve.unit_length() < b.unit_length()) {
-                best = Some(curve);
+            let length: f64 = lengths.iter().map(|l| l.abs()).sum();
+            if best.is_none_or(|(_, _, b)| length < b) {
+                best = Some((steers, lengths, length));
             }
         }
     };
@@ -132,7 +134,8 @@ pub(crate) fn shortest(x: f64, y: f64, phi: f64) -> Curve {
             [t, p, mod2pi(beta - alpha - t + p)]
         }),
     );
-    best.expect("LSL or RSR always exists")
+    let (steers, lengths, _) = best.expect("LSL or RSR always exists");
+    Curve::from_word(&steers, &lengths)
 }
 
 smug_core::register_plugin!(
