@@ -95,6 +95,8 @@ pub(super) fn prefetch<T>(value: &T) {
 pub(crate) struct Searcher {
     pub(super) buffers: Buffers,
     pub(super) counts: Counts,
+    /// The states of the primitive being checked (reused).
+    pub(super) along: Vec<smug_core::Pose2>,
 }
 
 impl Searcher {
@@ -102,6 +104,7 @@ impl Searcher {
         Self {
             buffers: Buffers::new(n),
             counts: Counts::default(),
+            along: Vec::new(),
         }
     }
 }
