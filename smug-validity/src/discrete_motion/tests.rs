@@ -344,7 +344,7 @@ mod given_states {
             [Arc::new(Se2Space::default()), Arc::new(HalfCircle)];
         for space in spaces {
             let v = box_validator(space.clone(), &world);
-            let mut pose = |rng: &mut rand_chacha::ChaCha8Rng| {
+            let pose = |rng: &mut rand_chacha::ChaCha8Rng| {
                 Pose2::new(
                     rng.random_range(0.5..9.5),
                     rng.random_range(0.5..9.5),
