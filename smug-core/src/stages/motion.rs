@@ -41,6 +41,27 @@ pub trait MotionValidator: Send + Sync {
     /// before the first invalid one.
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck;
 
+    /// The states, ends included, that the validator checks along `a → b` when its
+    /// verdict is theirs alone (a fixed set of states at its resolution, from `a` to
+    /// `b`), so that a caller whose motions are translated copies of one another (a
+    /// lattice's primitives) can compute them once and translate them; `None` (the
+    /// default) when the validator checks motions otherwise.
+    fn check_states(&self, a: &Pose2, b: &Pose2) -> Option<Vec<Pose2>> {
+        let _ = (a, b);
+        None
+    }
+
+    /// The verdict of [`is_valid_motion_between_valid`](Self::is_valid_motion_between_valid)
+    /// on the motion through `states`: those [`check_states`](Self::check_states) gives
+    /// for it (possibly translated), its two ends known valid. The default asks for the
+    /// motion between the first and the last state (`true` for none).
+    fn states_valid_between_valid(&self, states: &[Pose2]) -> bool {
+        match (states.first(), states.last()) {
+            (Some(a), Some(b)) => self.is_valid_motion_between_valid(a, b),
+            _ => true,
+        }
+    }
+
     /// Counters accumulated so far.
     fn counters(&self) -> super::Counters {
         super::Counters::new()

@@ -84,6 +84,8 @@ pub(super) fn prefetch<T>(value: &T) {
 pub(crate) struct Searcher {
     pub(super) buffers: Buffers,
     pub(super) counts: Counts,
+    /// The states of the primitive being checked (reused).
+    pub(super) along: Vec<smug_core::Pose2>,
 }
 
 impl Searcher {
@@ -91,6 +93,7 @@ impl Searcher {
         Self {
             buffers: Buffers::new(n),
             counts: Counts::default(),
+            along: Vec::new(),
         }
     }
 }

@@ -178,14 +178,24 @@ impl Worker<'_> {
         motion_cost_f32(self.sh.objective.as_ref(), &a, &b)
     }
 
-    /// Whether the motion between two lattice poses is valid (its end state cached).
-    pub(super) fn edge_valid(&mut self, from: StateId, to: StateId) -> bool {
+    /// Whether primitive `prim` from lattice pose `from`, to `to`, is valid (its end
+    /// state cached): through its states computed once and translated here, when the
+    /// validator checks motions by their states ([`super::samples`]).
+    pub(super) fn edge_valid(&mut self, from: StateId, to: StateId, prim: usize) -> bool {
         if !self.state_valid(to) {
             return false;
         }
         self.me.counts.edge_checks += 1;
-        let (a, b) = (self.sh.lattice.pose(from), self.sh.lattice.pose(to));
-        self.sh.motions.is_valid_motion_between_valid(&a, &b)
+        let sh = self.sh;
+        let (a, b) = (sh.lattice.pose(from), sh.lattice.pose(to));
+        let k = from as usize % sh.lattice.headings;
+        let along = &mut self.me.along;
+        match &sh.primitive_states {
+            Some(states) if states.translated(k, prim, (&a, &b), along) => {
+                sh.motions.states_valid_between_valid(along)
+            }
+            _ => sh.motions.is_valid_motion_between_valid(&a, &b),
+        }
     }
 
     /// Whether a lattice pose is valid (cached).

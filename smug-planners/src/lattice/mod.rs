@@ -29,10 +29,13 @@ mod heuristic;
 mod primitives;
 mod prove;
 mod queue;
+mod samples;
 mod search;
 mod shots;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_samples;
 
 pub use primitives::{Lattice, Primitive, Primitives, StateId};
 pub use shots::sideways_bound;
@@ -144,6 +147,10 @@ pub(crate) struct Shared {
     /// Every primitive's cost (`k · stride + p`) when the objective's costs do not
     /// depend on where a motion is; `None`: each is costed where it is used.
     primitive_costs: Option<Vec<f32>>,
+    /// The states the motion validator checks along every primitive, from the
+    /// origin; `None` when it does not check motions by a fixed set of states (or the
+    /// model's curves depend on where they are).
+    primitive_states: Option<samples::PrimitiveStates>,
     /// The run's deadline: searches stop at it.
     deadline: smug_core::Deadline,
     /// The run's progress: rows searched side by side count their legs as they end.
@@ -244,6 +251,10 @@ impl LatticePlanner {
         let primitive_costs = objective
             .is_translation_invariant()
             .then(|| edges::primitive_costs(&lattice, &primitives, objective.as_ref()));
+        let primitive_states = space
+            .is_translation_invariant()
+            .then(|| samples::PrimitiveStates::new(&lattice, &primitives, motions.as_ref()))
+            .flatten();
         Ok(Self {
             shared: Shared {
                 caches: caches::Caches::new(&lattice, primitives.stride, shot_radius),
@@ -252,6 +263,7 @@ impl LatticePlanner {
                 primitives,
                 displacements,
                 primitive_costs,
+                primitive_states,
                 space,
                 objective,
                 states,

@@ -426,7 +426,7 @@ impl Worker<'_> {
         let slot = parent as usize * self.sh.primitives.stride + prim as usize;
         let mut cached = self.sh.caches.edge(slot);
         if cached < 0.0 {
-            let valid = self.edge_valid(parent, id);
+            let valid = self.edge_valid(parent, id, prim as usize);
             cached = if valid { -cached } else { f32::INFINITY };
             self.sh.caches.set_edge(slot, cached);
         }

@@ -72,6 +72,14 @@ impl MotionValidator for CountedMotions<'_> {
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {
         self.timed(|| self.inner.check_motion(a, b))
     }
+
+    fn check_states(&self, a: &Pose2, b: &Pose2) -> Option<Vec<Pose2>> {
+        self.inner.check_states(a, b)
+    }
+
+    fn states_valid_between_valid(&self, states: &[Pose2]) -> bool {
+        self.timed(|| self.inner.states_valid_between_valid(states))
+    }
 }
 
 /// The checks the searches run, with their counters.

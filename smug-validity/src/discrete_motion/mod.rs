@@ -134,14 +134,25 @@ impl DiscreteMotionValidator {
     /// not at all for a segment from a gentle cell ([`GentleCells`]: the same
     /// verdict).
     fn slopes_ok(&self, a: &Pose2, b: &Pose2, along: &mut Along) -> bool {
+        let n = along.segments();
+        self.slopes_ok_along(a, n, |k| along.state(self, a, b, k))
+    }
+
+    /// [`Self::slopes_ok`] for the states `state(1..=n)` after `start`, in turn.
+    fn slopes_ok_along(
+        &self,
+        start: &Pose2,
+        n: usize,
+        mut state: impl FnMut(usize) -> Pose2,
+    ) -> bool {
         let (Some((world, limit)), Some(gentle)) = (&self.terrain, &self.gentle) else {
             return true;
         };
-        let mut p = *a;
+        let mut p = *start;
         // `p`'s height, once looked up.
         let mut zp = None;
-        for k in 1..=along.segments() {
-            let q = along.state(self, a, b, k);
+        for k in 1..=n {
+            let q = state(k);
             let horizontal = p.xy_distance(&q);
             if gentle.vouches(&p, horizontal) {
                 (p, zp) = (q, None);
@@ -246,20 +257,39 @@ impl DiscreteMotionValidator {
         match self.swept_either_way(a, b) {
             Some(swept) => swept == Swept::Clear,
             None => {
-                // The states checked are counted here and added once (one counter
-                // bump per motion, not one per state).
-                let mut checked = 0u64;
-                let mut valid = |s: &Pose2| {
-                    checked += 1;
-                    self.states.is_valid(s)
-                };
+                let ends = (!ends_known_valid).then_some((a, b));
                 let n = along.segments();
-                let all_valid = (ends_known_valid || (valid(b) && valid(a)))
-                    && all_in_bisection_order(n, |k| valid(&along.state(self, a, b, k)));
-                self.states_checked.add(checked);
-                all_valid
+                self.resolution_states_valid(ends, n, |k| along.state(self, a, b, k))
             }
         }
+    }
+
+    /// True when the `ends` (when given: the end, then the start) and the inner
+    /// states `state(1..n)` of an `n`-segment motion are valid, the inner ones asked in
+    /// bisection order. The states checked are counted here and added once (one
+    /// counter bump per motion, not one per state).
+    fn resolution_states_valid(
+        &self,
+        ends: Option<(&Pose2, &Pose2)>,
+        n: usize,
+        mut state: impl FnMut(usize) -> Pose2,
+    ) -> bool {
+        let mut checked = 0u64;
+        let mut valid = |s: &Pose2| {
+            checked += 1;
+            self.states.is_valid(s)
+        };
+        let ends_valid = ends.is_none_or(|(a, b)| valid(b) && valid(a));
+        let all_valid = ends_valid && all_in_bisection_order(n, |k| valid(&state(k)));
+        self.states_checked.add(checked);
+        all_valid
+    }
+
+    /// True when the verdict on the motion `a → b` is its states' at the resolution
+    /// alone: the checker has no clearance to trace it with (a box robot) and no exact
+    /// verdict on it.
+    fn states_decide(&self, a: &Pose2, b: &Pose2) -> bool {
+        self.states.clearance(a).is_none() && self.exact_segment(a, b).is_none()
     }
 
     /// [`MotionValidator::is_valid_motion`], with the ends' checks skipped when
@@ -374,6 +404,35 @@ impl MotionValidator for DiscreteMotionValidator {
 
     fn is_valid_motion_between_valid(&self, a: &Pose2, b: &Pose2) -> bool {
         self.motion_valid(a, b, true)
+    }
+
+    /// The states at the resolution, `a` and `b` included, when they decide
+    /// ([`Self::states_decide`]): state `k` of `n` is the space's interpolation at
+    /// `k / n` (`a` itself at 0).
+    fn check_states(&self, a: &Pose2, b: &Pose2) -> Option<Vec<Pose2>> {
+        if !self.states_decide(a, b) {
+            return None;
+        }
+        let n = self.segment_count(a, b);
+        let inner = (1..=n).map(|k| self.state_at(a, b, k, n));
+        Some(std::iter::once(*a).chain(inner).collect())
+    }
+
+    /// [`Self::is_valid_motion_between_valid`]'s verdict and counts through the given
+    /// states: the inner ones in bisection order, then the slopes between consecutive
+    /// ones. States the validator would not check this way (a clearance to trace them
+    /// with) are judged by the motion between the first and the last.
+    fn states_valid_between_valid(&self, states: &[Pose2]) -> bool {
+        let (Some(a), Some(b)) = (states.first(), states.last()) else {
+            return true;
+        };
+        if states.len() < 2 || !self.states_decide(a, b) {
+            return self.motion_valid(a, b, true);
+        }
+        self.motions_checked.increment();
+        let n = states.len() - 1;
+        self.resolution_states_valid(None, n, |k| states[k])
+            && self.slopes_ok_along(a, n, |k| states[k])
     }
 
     fn check_motion(&self, a: &Pose2, b: &Pose2) -> MotionCheck {

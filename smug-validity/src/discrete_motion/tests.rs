@@ -274,3 +274,136 @@ mod continuous {
         assert!(!v.is_valid_motion(&a, &b));
     }
 }
+
+/// The states the validator checks, given back by `check_states`, get the verdict of
+/// `is_valid_motion_between_valid` through `states_valid_between_valid`.
+mod given_states {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// A 0.6 × 0.4 m box on the terrain: valid when its centre and corners stand
+    /// lower than 0.2 m (so its heading matters).
+    struct LowBox(Arc<World>);
+
+    impl StateValidityChecker for LowBox {
+        fn is_valid(&self, s: &Pose2) -> bool {
+            let (sin, cos) = s.yaw.sin_cos();
+            [
+                (0.0, 0.0),
+                (0.3, 0.2),
+                (0.3, -0.2),
+                (-0.3, 0.2),
+                (-0.3, -0.2),
+            ]
+            .iter()
+            .all(|&(u, v)| {
+                let (x, y) = (s.x + u * cos - v * sin, s.y + u * sin + v * cos);
+                self.0.height_at(x, y).is_some_and(|z| z < 0.2)
+            })
+        }
+    }
+
+    /// A 10 × 10 m world with tall boxes (obstacles) and low ones (too steep to
+    /// climb at the inclination limit, not too tall to stand on).
+    fn terrain() -> Arc<World> {
+        let mission: Mission = smug_core::toml::from_str("start = { x = 1.0, y = 1.0 }").unwrap();
+        let boxes = [
+            ([2.0, 2.0], [3.0, 4.0], 1.0),
+            ([6.0, 1.0], [7.5, 2.0], 1.0),
+            ([4.0, 6.0], [8.0, 6.5], 1.0),
+            ([1.0, 6.5], [3.0, 8.5], 0.15),
+            ([5.0, 3.0], [6.5, 4.5], 0.15),
+        ];
+        let params = FlatParams {
+            obstacles: boxes
+                .iter()
+                .map(|&(min, max, height)| BoxObstacle { min, max, height })
+                .collect(),
+            ..FlatParams::default()
+        };
+        Arc::new(flat_world(&params, mission).unwrap().world)
+    }
+
+    fn box_validator(space: Arc<dyn StateSpace>, world: &Arc<World>) -> DiscreteMotionValidator {
+        let states = Arc::new(LowBox(world.clone()));
+        DiscreteMotionValidator::new(states, space, Some((world.clone(), 0.3)), 0.25).unwrap()
+    }
+
+    fn counts(v: &DiscreteMotionValidator) -> (u64, u64) {
+        (v.motions_checked.total(), v.states_checked.total())
+    }
+
+    /// Random motions between valid poses up to 4 m apart: the same verdicts and
+    /// counts both ways, for a straight and a curved model; every kind of verdict
+    /// (valid, a blocked state, only too steep) turns up.
+    #[test]
+    fn the_given_states_get_the_motions_verdict_and_counts() {
+        let world = terrain();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let spaces: [Arc<dyn StateSpace>; 2] =
+            [Arc::new(Se2Space::default()), Arc::new(HalfCircle)];
+        for space in spaces {
+            let v = box_validator(space.clone(), &world);
+            let pose = |rng: &mut rand_chacha::ChaCha8Rng| {
+                Pose2::new(
+                    rng.random_range(0.5..9.5),
+                    rng.random_range(0.5..9.5),
+                    rng.random_range(-3.1..3.1),
+                )
+            };
+            let (mut valid, mut blocked, mut steep) = (0, 0, 0);
+            while valid + blocked + steep < 2000 {
+                let a = pose(&mut rng);
+                let mut b = pose(&mut rng);
+                (b.x, b.y) = (a.x + (b.x - a.x) * 0.4, a.y + (b.y - a.y) * 0.4);
+                if !(v.states.is_valid(&a) && v.states.is_valid(&b)) {
+                    continue;
+                }
+                let states = v.check_states(&a, &b).expect("a box robot's states decide");
+                let n = v.segment_count(&a, &b);
+                assert_eq!(states.len(), n + 1);
+                assert_eq!(states[0], a);
+                assert_eq!(states[n], space.interpolate(&a, &b, 1.0));
+                let before = counts(&v);
+                let given = v.states_valid_between_valid(&states);
+                let between = counts(&v);
+                let direct = v.is_valid_motion_between_valid(&a, &b);
+                let after = counts(&v);
+                assert_eq!(given, direct, "{a:?} → {b:?}");
+                assert_eq!(
+                    (between.0 - before.0, between.1 - before.1),
+                    (after.0 - between.0, after.1 - between.1),
+                    "{a:?} → {b:?}"
+                );
+                let states_ok = states.iter().all(|s| v.states.is_valid(s));
+                match (direct, states_ok) {
+                    (true, _) => valid += 1,
+                    (false, false) => blocked += 1,
+                    (false, true) => steep += 1,
+                }
+            }
+            assert!(
+                valid > 200 && blocked > 200 && steep > 50,
+                "{valid} {blocked} {steep}"
+            );
+        }
+    }
+
+    /// A checker with a clearance traces motions: no fixed states, and states given
+    /// anyway are judged by the motion between the first and the last.
+    #[test]
+    fn a_traced_motion_has_no_fixed_states() {
+        let v = DiscreteMotionValidator::new(
+            Arc::new(ClearDisc),
+            Arc::new(Se2Space::default()),
+            None,
+            0.5,
+        )
+        .unwrap();
+        let (a, b) = (Pose2::new(1.0, 5.0, 0.0), Pose2::new(9.0, 5.0, 0.0));
+        assert_eq!(v.check_states(&a, &b), None);
+        assert!(!v.states_valid_between_valid(&[a, b]));
+        let (c, d) = (Pose2::new(1.0, 1.0, 0.0), Pose2::new(9.0, 1.0, 0.0));
+        assert!(v.states_valid_between_valid(&[c, d]));
+    }
+}
