@@ -406,9 +406,10 @@ impl MotionValidator for DiscreteMotionValidator {
         self.motion_valid(a, b, true)
     }
 
-    /// The states at the resolution, `a` and `b` included, when they decide
-    /// ([`Self::states_decide`]): state `k` of `n` is the space's interpolation at
-    /// `k / n` (`a` itself at 0).
+    /// The states at the resolution when they decide (the checker has no clearance to
+    /// trace the motion with and no exact verdict on it): `a`, then state `k` of `n`,
+    /// the space's interpolation at `k / n` (the last: at 1, `b` for the shipped
+    /// models).
     fn check_states(&self, a: &Pose2, b: &Pose2) -> Option<Vec<Pose2>> {
         if !self.states_decide(a, b) {
             return None;
