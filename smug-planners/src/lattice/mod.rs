@@ -12,7 +12,7 @@
 //! pipeline's objective, validity its state checker and motion validator (any robot:
 //! boxes on terrain as well as discs on grids). The heuristic is the larger of the
 //! objective's bound (the model's obstacle-free curve) and a 2D obstacle-aware
-//! distance ([`heuristic`]); both are admissible, so the search is optimal for its
+//! distance (module `heuristic`); both are admissible, so the search is optimal for its
 //! lattice, and a search that runs out of lattice poses proves that no path exists at
 //! this resolution ([`smug_core::Proof::Exhausted`]).
 //!
@@ -449,7 +449,7 @@ impl PointToPointPlanner for LatticePlanner {
     }
 
     /// The rows' searches run side by side on rayon's threads, sharing the caches;
-    /// each search's answer is the same as alone (see [`caches`]).
+    /// each search's answer is the same as alone (see module `caches`).
     fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
         if rows.len() < 2 || !self.plans_rows_side_by_side() {
             return rows.iter().map(|(s, g)| self.plan_many(s, g)).collect();

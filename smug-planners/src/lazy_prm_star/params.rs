@@ -86,7 +86,7 @@ pub struct LazyPrmStarParams {
     /// is drawn within this distance).
     pub expand_reach: f64,
     /// Once `expand_after` samples passed without a path, each invalid sample becomes
-    /// a bridge attempt ([`bridge`](super::bridge)): a second pose a Gaussian step of
+    /// a bridge attempt (module `bridge`): a second pose a Gaussian step of
     /// this standard deviation away (metres; 0: no bridges), and when that is invalid
     /// too, the pose halfway between them, kept when valid — the narrow passages
     /// (a doorway, the gap a new rock leaves beside a wall) uniform samples seldom hit.
