@@ -168,6 +168,11 @@ fn closed_count(bits: &[u64]) -> u32 {
     bits.iter().map(|w| w.count_ones()).sum()
 }
 
+/// Adds pose `id` to the bitmap `bits`.
+pub(crate) fn insert(bits: &mut [u64], id: StateId) {
+    bits[id as usize / 64] |= 1 << (id % 64);
+}
+
 /// True when pose `id` is in the bitmap `bits`.
 pub(crate) fn holds(bits: &[u64], id: StateId) -> bool {
     bits[id as usize / 64] & (1 << (id % 64)) != 0

@@ -21,16 +21,8 @@ pub(super) fn primitive_costs(
     objective: &dyn Objective,
 ) -> Vec<f32> {
     let mut costs = vec![0.0; lattice.headings * primitives.stride];
-    for (k, prims) in primitives.by_heading.iter().enumerate() {
-        let from = Pose2::new(0.0, 0.0, lattice.heading(k));
-        for (p, prim) in prims.iter().enumerate() {
-            let to = Pose2::new(
-                prim.di as f64 * lattice.cell,
-                prim.dj as f64 * lattice.cell,
-                lattice.heading(prim.to_heading),
-            );
-            costs[k * primitives.stride + p] = motion_cost_f32(objective, &from, &to);
-        }
+    for (slot, from, to) in primitives.from_origin(lattice) {
+        costs[slot] = motion_cost_f32(objective, &from, &to);
     }
     costs
 }

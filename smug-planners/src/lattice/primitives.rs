@@ -160,6 +160,31 @@ pub struct Primitives {
     pub stride: usize,
 }
 
+impl Primitives {
+    /// Every primitive as the motion it is from the origin: its slot (`k · stride + p`:
+    /// primitive `p` of heading `k`), the pose `(0, 0, heading(k))` and its end pose
+    /// (a primitive is the same curve from every lattice point, translated).
+    pub fn from_origin<'a>(
+        &'a self,
+        lattice: &'a Lattice,
+    ) -> impl Iterator<Item = (usize, Pose2, Pose2)> + 'a {
+        self.by_heading
+            .iter()
+            .enumerate()
+            .flat_map(move |(k, prims)| {
+                let from = Pose2::new(0.0, 0.0, lattice.heading(k));
+                prims.iter().enumerate().map(move |(p, prim)| {
+                    let to = Pose2::new(
+                        prim.di as f64 * lattice.cell,
+                        prim.dj as f64 * lattice.cell,
+                        lattice.heading(prim.to_heading),
+                    );
+                    (k * self.stride + p, from, to)
+                })
+            })
+    }
+}
+
 /// Shapes of the primitives: straight ahead, full lock left, full lock right, at a
 /// nominal length and twice it.
 const TIERS: [f64; 2] = [1.0, 2.0];

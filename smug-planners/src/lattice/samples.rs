@@ -33,21 +33,13 @@ impl PrimitiveStates {
         let stride = primitives.stride;
         let mut states = vec![Vec::new(); lattice.headings * stride];
         let mut offsets = vec![[0.0; 2]; lattice.headings * stride];
-        for (k, prims) in primitives.by_heading.iter().enumerate() {
-            let from = Pose2::new(0.0, 0.0, lattice.heading(k));
-            for (p, prim) in prims.iter().enumerate() {
-                let to = Pose2::new(
-                    prim.di as f64 * lattice.cell,
-                    prim.dj as f64 * lattice.cell,
-                    lattice.heading(prim.to_heading),
-                );
-                let along = motions.check_states(&from, &to)?;
-                if along.len() < 2 {
-                    return None;
-                }
-                states[k * stride + p] = along;
-                offsets[k * stride + p] = [to.x, to.y];
+        for (slot, from, to) in primitives.from_origin(lattice) {
+            let along = motions.check_states(&from, &to)?;
+            if along.len() < 2 {
+                return None;
             }
+            states[slot] = along;
+            offsets[slot] = [to.x, to.y];
         }
         Some(Self {
             stride,

@@ -47,23 +47,33 @@ pub(super) struct Run {
     pub(super) heap: BucketQueue,
     pub(super) goals: Vec<Goal>,
     /// Goals neither settled nor proved unreachable.
-    open_goals: usize,
+    pub(super) open_goals: usize,
     pub(super) h2d: Option<Arc<Vec<f32>>>,
     /// The goals the heuristic aims at: those not settled when it was last focused.
     pub(super) aimed: Vec<Pose2>,
     /// The start's curves onto the lattice (taken when the start is expanded).
-    joins: Vec<(u32, f64, bool)>,
+    pub(super) joins: Vec<(u32, f64, bool)>,
     /// How many times the heuristic was re-aimed (the focus of the keys computed now).
     pub(super) focus: u32,
     /// Lattice poses a kept proof shows no goal left can be reached from (a bitmap):
     /// never queued, as no path to those goals passes through them.
-    pruned: Option<Arc<Vec<u64>>>,
+    pub(super) pruned: Option<Arc<Vec<u64>>>,
     /// The lattice poses closed so far, in order (what an exhausted search's proof
     /// holds: listed, not found by a scan of the whole lattice).
-    closed: Vec<u32>,
+    pub(super) closed: Vec<u32>,
 }
 
 impl Run {
+    /// The poses of the goals the search waits for: neither settled nor proved
+    /// unreachable before it.
+    pub(super) fn awaited(&self) -> Vec<Pose2> {
+        self.goals
+            .iter()
+            .filter(|g| g.reached.is_none() && !g.proved_out)
+            .map(|g| g.pose)
+            .collect()
+    }
+
     fn push(&mut self, key: f64, item: Item) {
         self.heap.push(Entry { key, item });
     }
@@ -325,73 +335,6 @@ impl Worker<'_> {
                 .caches
                 .prefetch_edge(*parent as usize * stride + *prim as usize);
         }
-    }
-
-    /// Marks the goals an earlier exhausted search proved unreachable from every
-    /// lattice pose the start joins (and that no direct shot from the start reaches):
-    /// everything this search can reach, that one reached, and it found no way to
-    /// them. The search still orders its expansions by every goal (so its answers for
-    /// the others are the same), it only stops without waiting for these.
-    fn apply_kept_proofs(&mut self, start: &Pose2, run: &mut Run) {
-        let joined: Vec<u32> = run.joins.iter().map(|j| j.0).collect();
-        if joined.is_empty() {
-            return;
-        }
-        for k in 0..run.goals.len() {
-            let pose = run.goals[k].pose;
-            if !self.sh.caches.proved_unreachable(&joined, &pose) {
-                continue;
-            }
-            let direct = start.xy_distance(&pose) <= self.sh.shot_radius
-                && self.shot_valid(START, start, &pose, &run.goals[k].shots);
-            if !direct {
-                run.goals[k].proved_out = true;
-                run.open_goals -= 1;
-            }
-        }
-    }
-
-    /// The poses of a kept proof that shows every goal the search waits for unreachable
-    /// from them: the search need not go there. (Its answers stay the same: no path to
-    /// those goals passes through such a pose, and the poses it does go to pop in the
-    /// same order.) A start beside an earlier start's dead end then proves the same
-    /// dead end by a search of the few poses its curves join outside that proof.
-    fn proof_bound(&self, run: &Run) -> Option<Arc<Vec<u64>>> {
-        let waited: Vec<Pose2> = run
-            .goals
-            .iter()
-            .filter(|g| g.reached.is_none() && !g.proved_out)
-            .map(|g| g.pose)
-            .collect();
-        if waited.is_empty() {
-            return None;
-        }
-        self.sh.caches.proof_covering(&waited)
-    }
-
-    /// After an exhausted search: keeps the proof that its unreached goals cannot be
-    /// reached from any lattice pose it closed, nor from the poses of the proof it
-    /// was bounded by.
-    fn keep_proof(&self, run: &Run) {
-        let unreached: Vec<Pose2> = run
-            .goals
-            .iter()
-            .filter(|g| g.reached.is_none() && !g.proved_out)
-            .map(|g| g.pose)
-            .collect();
-        // A search that closed no lattice pose (a start whose curves join none) proves
-        // nothing for any other start.
-        if unreached.is_empty() || run.closed.is_empty() {
-            return;
-        }
-        let mut closed = match &run.pruned {
-            Some(pruned) => pruned.as_ref().clone(),
-            None => vec![0u64; self.sh.lattice.len().div_ceil(64)],
-        };
-        for &id in &run.closed {
-            closed[id as usize / 64] |= 1 << (id % 64);
-        }
-        self.sh.caches.keep_proof(closed, &unreached);
     }
 
     /// Closes a popped node (its cost and parent final); false when it was already
