@@ -20,6 +20,8 @@ pub struct PlacedBox {
     pub yaw: f64,
     /// Half extents (body frame).
     pub half: [f64; 3],
+    /// The heading's sine and cosine (every corner and sub-box centre turns by them).
+    sin_cos: (f64, f64),
 }
 
 impl RobotBox {
@@ -39,6 +41,7 @@ impl RobotBox {
             center: [state.x, state.y, ground + self.base_height],
             yaw: state.yaw,
             half: self.half,
+            sin_cos: state.yaw.sin_cos(),
         })
     }
 
@@ -51,7 +54,7 @@ impl RobotBox {
 impl PlacedBox {
     /// Axis-aligned bounds `(min, max)`.
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
-        let (s, c) = self.yaw.sin_cos();
+        let (s, c) = self.sin_cos;
         let hx = self.half[0] * c.abs() + self.half[1] * s.abs();
         let hy = self.half[0] * s.abs() + self.half[1] * c.abs();
         let h = [hx, hy, self.half[2]];
@@ -63,7 +66,7 @@ impl PlacedBox {
 
     /// The point at body-frame offset `local` from the centre.
     pub fn to_world(&self, local: [f64; 3]) -> [f64; 3] {
-        let (s, c) = self.yaw.sin_cos();
+        let (s, c) = self.sin_cos;
         [
             self.center[0] + c * local[0] - s * local[1],
             self.center[1] + s * local[0] + c * local[1],

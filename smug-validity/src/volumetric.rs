@@ -38,7 +38,8 @@ pub struct VolumetricChecker {
     world: Arc<World>,
     volumes: SharedVolumes,
     robot: RobotBox,
-    params: VolumetricParams,
+    /// The subdivision's levels, the whole box first.
+    levels: Vec<Level>,
     checks: Counter,
     /// Distance-field queries of this checker (the volumes may be shared).
     esdf_queries: Counter,
@@ -73,8 +74,8 @@ impl VolumetricChecker {
         Ok(Self {
             world,
             volumes,
+            levels: levels(robot.half, &params),
             robot,
-            params,
             checks: Counter::new(),
             esdf_queries: Counter::new(),
         })
@@ -85,40 +86,74 @@ impl VolumetricChecker {
         self.volumes.volumes()
     }
 
-    /// True when the sub-box with half extents `half` at body offset `offset` is free.
+    /// True when the sub-box of subdivision level `depth` at body offset `offset` is
+    /// free.
     fn sub_box_free(
         &self,
         volumes: &Volumes,
         placed: &PlacedBox,
         offset: [f64; 3],
-        half: [f64; 3],
-        depth: u32,
+        depth: usize,
     ) -> bool {
+        let level = &self.levels[depth];
         let center = placed.to_world(offset);
         self.esdf_queries.increment();
         let Some(distance) = volumes.distance_lower_bound(center) else {
             return false;
         };
-        let outer = (half[0] * half[0] + half[1] * half[1] + half[2] * half[2]).sqrt();
-        if distance > outer {
+        if distance > level.outer {
             return true;
         }
-        let inner = half[0].min(half[1]).min(half[2]);
-        if distance < inner {
+        if distance < level.inner {
             return false;
         }
-        let axis = longest_axis(half);
-        if depth >= self.params.max_depth || 2.0 * half[axis] < self.params.min_size {
+        let Some(axis) = level.split else {
             return false;
-        }
-        let mut sub = half;
-        sub[axis] /= 2.0;
+        };
+        let step = self.levels[depth + 1].half[axis];
         [-1.0, 1.0].iter().all(|side| {
             let mut o = offset;
-            o[axis] += side * sub[axis];
-            self.sub_box_free(volumes, placed, o, sub, depth + 1)
+            o[axis] += side * step;
+            self.sub_box_free(volumes, placed, o, depth + 1)
         })
     }
+}
+
+/// The sub-boxes of one subdivision level: all the same size, as each level halves
+/// its parent along the parent's longest side.
+#[derive(Clone, Copy, Debug)]
+struct Level {
+    /// Half extents.
+    half: [f64; 3],
+    /// The outer sphere's radius (half diagonal): a centre farther from every occupied
+    /// voxel leaves the sub-box free.
+    outer: f64,
+    /// The inner sphere's radius (least half extent): a centre nearer to an occupied
+    /// voxel puts it inside the sub-box.
+    inner: f64,
+    /// The axis the level is split along, `None` at the last level (depth or size).
+    split: Option<usize>,
+}
+
+/// The subdivision levels of a box with half extents `half` under `params`.
+fn levels(half: [f64; 3], params: &VolumetricParams) -> Vec<Level> {
+    let mut levels = Vec::new();
+    let mut half = half;
+    for depth in 0.. {
+        let axis = longest_axis(half);
+        let split = depth < params.max_depth && 2.0 * half[axis] >= params.min_size;
+        levels.push(Level {
+            half,
+            outer: (half[0] * half[0] + half[1] * half[1] + half[2] * half[2]).sqrt(),
+            inner: half[0].min(half[1]).min(half[2]),
+            split: split.then_some(axis),
+        });
+        if !split {
+            break;
+        }
+        half[axis] /= 2.0;
+    }
+    levels
 }
 
 fn longest_axis(half: [f64; 3]) -> usize {
@@ -133,8 +168,7 @@ impl StateValidityChecker for VolumetricChecker {
         };
         let (min, max) = placed.aabb();
         let volumes = self.volumes.volumes();
-        volumes.contains_box(min, max)
-            && self.sub_box_free(volumes, &placed, [0.0; 3], placed.half, 0)
+        volumes.contains_box(min, max) && self.sub_box_free(volumes, &placed, [0.0; 3], 0)
     }
 
     fn counters(&self) -> Counters {
