@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 /// How the context's world came from the one the stages were built for before: that
 /// world with obstacles added (set while a
-/// [`MissionSession`](crate::mission::MissionSession) rebuilds the stages). A plugin may
+/// `smug_mission::MissionSession` rebuilds the stages). A plugin may
 /// update what it derived from the previous world instead of deriving it again, as
 /// long as the result is the same.
 #[derive(Clone, Debug)]

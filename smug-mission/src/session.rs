@@ -31,7 +31,7 @@ use smug_core::world::World;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// A pipeline kept in memory across replans (see the [module](self) documentation).
+/// A pipeline kept in memory across replans (see the module documentation).
 pub struct MissionSession {
     pipeline: Pipeline,
     options: PlanOptions,
@@ -88,7 +88,7 @@ impl MissionSession {
         })
     }
 
-    /// Plans the whole mission, as [`plan_mission`] (the same plan as `smug plan`, bit
+    /// Plans the whole mission, as [`plan_mission`](crate::plan_mission) (the same plan as `smug plan`, bit
     /// for bit, when called first); the paths it plans are kept for the replans. After
     /// replans it plans the mission as assembled again, from its start, on the updated
     /// world.
@@ -99,11 +99,11 @@ impl MissionSession {
     }
 
     /// Replans the rest of the mission from `state` (checked against the mission and the
-    /// map, its obstacles as the [module](self) documentation says) on the session's
-    /// world with the state's new obstacles applied; the same plan as [`replan_mission`]
+    /// map, its obstacles as the module documentation says) on the session's
+    /// world with the state's new obstacles applied; the same plan as [`replan_mission`](crate::replan_mission)
     /// on a pipeline assembled from scratch for the state, up to the paths reused (and,
     /// with `"full"` sequencing costs, the matrix filled lazily: see the
-    /// [module](self) documentation).
+    /// module documentation).
     pub fn replan(&mut self, state: &MissionState) -> Result<Plan> {
         let world = self.world()?.clone();
         state

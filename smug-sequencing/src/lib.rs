@@ -10,7 +10,7 @@
 //!
 //! Plugins of the `team_sequencer` stage ([`team`]): `team-exact`, `team-lns`, `team-auto`.
 //!
-//! The GTSP solvers answer [`Sequencer::solve_clusters`] (one node per cluster) and
+//! The GTSP solvers answer [`Sequencer::solve_clusters`](smug_core::Sequencer::solve_clusters) (one node per cluster) and
 //! plain TSPs as singleton clusters; [`read_gtsplib`] reads GTSP-LIB files.
 //!
 //! All of them accept asymmetric matrices, `INFINITY` legs (a tour still comes back,

@@ -76,7 +76,7 @@ pub struct RobotTopics {
 }
 
 impl RobotTopics {
-    /// A single robot's: [`PLAN_TOPIC`], [`POIS_TOPIC`], [`ROBOT_FRAME`].
+    /// A single robot's: [`PLAN_TOPIC`], [`POIS_TOPIC`], `ROBOT_FRAME`.
     pub fn single() -> Self {
         Self {
             plan: PLAN_TOPIC.into(),
@@ -115,7 +115,7 @@ fn stamped(topic: &str, type_name: &'static str, time_ns: u64, data: Vec<u8>) ->
 }
 
 /// Every message of `scene`, stamped from `t0_ns` on (the transforms one
-/// [`WAYPOINT_STEP_NS`] apart), in log-time order.
+/// `WAYPOINT_STEP_NS` apart), in log-time order.
 pub fn scene_messages(scene: &PlanScene<'_>, t0_ns: u64) -> Vec<Stamped> {
     let topics = RobotTopics::single();
     let mut messages = vec![occupancy_message(scene, t0_ns)];

@@ -43,9 +43,9 @@ pub struct PolygonMap {
     pub cell: f64,
 }
 
-/// A seeded map of [`OBSTACLES`] star-shaped polygons (5 to 8 corners, 60 to 180
+/// A seeded map of `OBSTACLES` star-shaped polygons (5 to 8 corners, 60 to 180
 /// cells across) and `targets + 1` cities (the first is the start) at least
-/// [`CLEARANCE`] cells from every blocked cell.
+/// `CLEARANCE` cells from every blocked cell.
 pub fn generated(targets: usize, seed: u64) -> crate::Result<PolygonMap> {
     let mut rng = smug_core::rng::stage_rng(seed, "bench-modes-polygons");
     let side = SIDE as f64;
@@ -266,7 +266,7 @@ fn rasterise(map: &PolygonMap) -> Vec<bool> {
     blocked
 }
 
-/// The world of `map`: its raster as an elevation (walls [`WALL`] high) and a mission
+/// The world of `map`: its raster as an elevation (walls `WALL` high) and a mission
 /// from the start city through every other one, back to the start (`open` false) or
 /// to the file's end city (`open`, when it names one).
 pub fn world(map: &PolygonMap, open: bool) -> crate::Result<Scenario> {

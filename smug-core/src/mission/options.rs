@@ -30,7 +30,7 @@ pub enum SequencingCosts {
     /// grows during the run the order can be a little worse than the full matrix's).
     LazyUnsettled,
     /// Plan a path between every pair of representatives (the paper's way). A
-    /// [`MissionSession`](super::MissionSession)'s replans serve the pairs it kept paths
+    /// `smug_mission::MissionSession`'s replans serve the pairs it kept paths
     /// for and fill the others lazily (only the pairs the tour uses are planned).
     Full,
 }

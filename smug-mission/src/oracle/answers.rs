@@ -56,7 +56,7 @@ pub struct OracleStats {
 }
 
 /// Exact paths between poses kept from earlier missions (the memory of a
-/// [`crate::mission::MissionSession`]), keyed by the poses' bits, so that an answer is
+/// [`MissionSession`](crate::MissionSession)), keyed by the poses' bits, so that an answer is
 /// found again whatever index the poses get in the next mission's oracle.
 #[derive(Clone, Debug, Default)]
 pub struct KnownAnswers {

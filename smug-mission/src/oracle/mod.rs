@@ -119,7 +119,7 @@ impl PathOracle {
     }
 
     /// True when the oracle serves answers kept from earlier missions
-    /// ([`with_known`](Self::with_known)): a [`crate::mission::MissionSession`]'s replans.
+    /// ([`with_known`](Self::with_known)): a [`MissionSession`](crate::MissionSession)'s replans.
     pub fn has_known_answers(&self) -> bool {
         !self.known.is_empty()
     }
@@ -299,7 +299,7 @@ impl PathOracle {
 
     /// Plans every pair of `pairs` not planned yet: when the planner searches rows side
     /// by side, as rows (with [`plan_rows`](Self::plan_rows)): one search per pose the
-    /// pairs share (see [`rows_of`](Self::rows_of)) if it answers many goals at once,
+    /// pairs share (see `rows_of`) if it answers many goals at once,
     /// else one per pair; otherwise one after another as [`path`](Self::path) would.
     /// (Grouped rows were measured for the lattice only: LazyPRM*'s one-to-many
     /// searches change its plans, dearer on lunar, cheaper on the imported map.)

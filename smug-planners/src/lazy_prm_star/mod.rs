@@ -270,7 +270,7 @@ impl PointToPointPlanner for LazyPrmStar {
     }
 
     /// With `one_to_many`, every row's search side by side (see
-    /// [`plan_rows_on_roadmap`](Self::plan_rows_on_roadmap)); else query by query.
+    /// `plan_rows_on_roadmap`); else query by query.
     fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
         if !self.params.one_to_many {
             return rows

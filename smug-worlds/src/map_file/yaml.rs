@@ -29,7 +29,7 @@ pub enum MapMode {
     Raw,
 }
 
-/// The keys of a map YAML file (see the [module documentation](self)).
+/// The keys of a map YAML file (see the module documentation).
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MapYaml {

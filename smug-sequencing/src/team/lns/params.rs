@@ -5,7 +5,7 @@ use crate::ParamError;
 use serde::{Deserialize, Serialize};
 use smug_core::TeamObjective;
 
-/// Parameters of [`TeamLns`].
+/// Parameters of [`TeamLns`](super::TeamLns).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TeamLnsParams {
