@@ -82,9 +82,30 @@ fn layout(problem: &JointProblem) -> Result<(Vec<usize>, Clusters)> {
 mod tests {
     use super::*;
     use crate::matrix::full_matrix;
-    use crate::test_support::{oracle, Exhaustive};
+    use crate::test_support::{oracle, oracle_with_dead_pair, Exhaustive};
     use proptest::prelude::*;
     use smug_core::pose::Pose2;
+
+    /// A symmetric model whose planner proves no path between the two nearest PoIs of
+    /// two targets (a lattice's proof at its resolution): the tour goes round that
+    /// leg through another PoI instead of ending without a plan.
+    #[test]
+    fn a_proved_dead_leg_between_pois_is_routed_round() {
+        // Start (0, 0); target A = {1}; target B = {2 (near A), 3 (farther)}.
+        let poses =
+            [(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (2.0, 3.0)].map(|(x, y)| Pose2::new(x, y, 0.0));
+        let (mut oracle, nodes) = oracle_with_dead_pair(&poses, vec![1.0; 16], (1, 2));
+        let problem = JointProblem {
+            start: nodes[0],
+            groups: vec![vec![nodes[1]], vec![nodes[2], nodes[3]]],
+            end: None,
+        };
+        let (_, joint) = joint_tour(&Exhaustive, &mut oracle, &problem).unwrap();
+        assert_eq!(joint.chosen.len(), 2);
+        assert!(joint.chosen.contains(&nodes[3]), "{joint:?}");
+        let expected = 1.0 + 10f64.sqrt() + 13f64.sqrt();
+        assert!((joint.cost - expected).abs() < 1e-9, "{joint:?}");
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]

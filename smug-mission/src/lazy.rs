@@ -120,15 +120,28 @@ fn converge(
             return Ok((tour, false));
         }
         let mut dead_end = false;
+        let mut unproved = false;
         for (a, b) in unplanned {
-            dead_end |= !oracle.cost(a, b)?.is_finite();
+            let planned = oracle.path(a, b)?;
+            if !planned.cost.is_finite() {
+                dead_end = true;
+                unproved |= !planned
+                    .outcome
+                    .no_path_reason()
+                    .is_some_and(|reason| reason.is_proved());
+            }
         }
-        if dead_end && oracle.is_symmetric() {
+        if dead_end && oracle.is_symmetric() && unproved {
             return Ok((tour, true));
         }
         // A directed model's leg without a path (a PoI a car can enter but not leave
-        // towards the end, say) may have a way round in another order: solve again
-        // with it infinite (each round plans a leg more, so the loop ends).
+        // towards the end, say) may have a way round in another order, and so may a
+        // leg a lattice proved impossible at its resolution between two PoIs both
+        // reached from the start (the lattice joins a start and enters a goal
+        // differently, so such a proof need not hold the other way round): solve
+        // again with it infinite (each round plans a leg more, so the loop ends). A
+        // leg whose budget ran out ends the loop instead, so that a robot that cannot
+        // leave its room does not spend one budget per PoI.
         previous = warm.then_some(tour);
     }
 }

@@ -19,8 +19,8 @@ struct DetourPlanner {
     poses: Vec<Pose2>,
     detours: Vec<f64>,
     objective: PathLength,
-    /// A directed leg (indices of `poses`) without a path, if any.
-    dead: Option<(usize, usize)>,
+    /// Directed legs (indices of `poses`) without a path.
+    dead: Vec<(usize, usize)>,
 }
 
 impl DetourPlanner {
@@ -32,7 +32,7 @@ impl DetourPlanner {
 impl PointToPointPlanner for DetourPlanner {
     fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
         let (i, j) = (self.index(start), self.index(goal));
-        if self.dead == Some((i, j)) {
+        if self.dead.contains(&(i, j)) {
             return Ok(PlannerOutcome::NoPath(NoPathReason::Proved(
                 Proof::Exhausted,
             )));
@@ -137,6 +137,26 @@ pub(crate) fn oracle_with_dead_leg(
     detours: Vec<f64>,
     dead: Option<(usize, usize)>,
 ) -> (PathOracle, Vec<usize>) {
+    oracle_without(poses, detours, dead.into_iter().collect(), dead.is_none())
+}
+
+/// [`oracle`], symmetric, whose planner proves that no path joins the poses `pair`
+/// (indices of `poses`), either way: what a lattice may prove at its resolution
+/// between two PoIs that other routes reach.
+pub(crate) fn oracle_with_dead_pair(
+    poses: &[Pose2],
+    detours: Vec<f64>,
+    (i, j): (usize, usize),
+) -> (PathOracle, Vec<usize>) {
+    oracle_without(poses, detours, vec![(i, j), (j, i)], true)
+}
+
+fn oracle_without(
+    poses: &[Pose2],
+    detours: Vec<f64>,
+    dead: Vec<(usize, usize)>,
+    symmetric: bool,
+) -> (PathOracle, Vec<usize>) {
     let objective = PathLength::default();
     let planner = DetourPlanner {
         poses: poses.to_vec(),
@@ -145,7 +165,7 @@ pub(crate) fn oracle_with_dead_leg(
         dead,
     };
     let mut oracle =
-        PathOracle::new(Arc::new(objective), Box::new(planner)).with_symmetry(dead.is_none());
+        PathOracle::new(Arc::new(objective), Box::new(planner)).with_symmetry(symmetric);
     let nodes = poses.iter().map(|p| oracle.add_pose(*p)).collect();
     (oracle, nodes)
 }
