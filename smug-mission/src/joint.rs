@@ -39,6 +39,7 @@ pub(super) fn joint_tour(
     let tour = lazy_solve(
         oracle,
         &nodes,
+        &clusters,
         kind,
         true,
         false,

@@ -7,7 +7,7 @@
 use crate::oracle::PathOracle;
 use smug_core::error::Result;
 use smug_core::stages::PathCosts;
-use smug_core::stages::{CostMatrix, Tour, TourKind};
+use smug_core::stages::{Clusters, CostMatrix, Tour, TourKind};
 use std::collections::{HashMap, HashSet};
 
 /// Relative slack of the cost comparisons (rounding in sums of floating-point legs).
@@ -31,9 +31,15 @@ const SLACK: f64 = 1e-9;
 /// legs planned, and the loop goes on; else the tour is optimal (with an exact solver)
 /// for any costs that refining or planning the other legs could give. Each leg is
 /// planned at most twice, so the loop ends.
+///
+/// `clusters` groups the positions of `nodes` (the joint mode's targets; singletons
+/// otherwise): with a planner that answers many goals with one search, a round plans
+/// each unplanned leg's start to every pose of its end's cluster, as the next rounds
+/// would try them one by one.
 pub(super) fn lazy_solve(
     oracle: &mut PathOracle,
     nodes: &[usize],
+    clusters: &Clusters,
     kind: TourKind,
     warm: bool,
     settle: bool,
@@ -43,9 +49,13 @@ pub(super) fn lazy_solve(
     let mut refined = Refined::new(oracle.is_symmetric());
     let mut matrix = LazyMatrix::new(oracle, nodes)?;
     loop {
+        let on = Nodes {
+            indices: nodes,
+            clusters,
+        };
         let (tour, dead_end) = converge(
             oracle,
-            nodes,
+            on,
             &mut matrix,
             kind,
             previous.take(),
@@ -90,16 +100,24 @@ pub(super) fn lazy_solve(
     }
 }
 
+/// The lazy loop's nodes: their oracle indices, and the clusters their positions form.
+#[derive(Clone, Copy)]
+struct Nodes<'a> {
+    indices: &'a [usize],
+    clusters: &'a Clusters,
+}
+
 /// The loop without settling: the tour, and whether one of its planned legs has no path.
 fn converge(
     oracle: &mut PathOracle,
-    nodes: &[usize],
+    on: Nodes<'_>,
     lazy: &mut LazyMatrix,
     kind: TourKind,
     mut previous: Option<Tour>,
     warm: bool,
     solve: &mut impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
 ) -> Result<(Tour, bool)> {
+    let nodes = on.indices;
     loop {
         let matrix = lazy.refresh(oracle)?;
         let mut tour = solve(matrix, previous.as_ref())?;
@@ -119,6 +137,7 @@ fn converge(
         if unplanned.is_empty() {
             return Ok((tour, false));
         }
+        oracle.plan_pairs(&round_legs(oracle, on, &tour, kind))?;
         let mut dead_end = false;
         let mut unproved = false;
         for (a, b) in unplanned {
@@ -270,6 +289,36 @@ fn unplanned_legs(
         .collect()
 }
 
+/// The legs (oracle indices) a round plans for the tour's unplanned legs, in one
+/// batch: each leg, or with a planner that answers many goals with one search, the
+/// leg's start to every pose of its end's cluster not planned yet.
+fn round_legs(
+    oracle: &PathOracle,
+    on: Nodes<'_>,
+    tour: &Tour,
+    kind: TourKind,
+) -> Vec<(usize, usize)> {
+    let (nodes, clusters) = (on.indices, on.clusters);
+    let mut legs = Vec::new();
+    for (a, b) in tour_legs(tour, kind) {
+        if oracle.is_planned(nodes[a], nodes[b]) {
+            continue;
+        }
+        let ends = if oracle.answers_many() {
+            clusters.members(clusters.of(b))
+        } else {
+            std::slice::from_ref(&b)
+        };
+        for &end in ends {
+            let leg = (nodes[a], nodes[end]);
+            if !oracle.is_planned(leg.0, leg.1) && !legs.contains(&leg) {
+                legs.push(leg);
+            }
+        }
+    }
+    legs
+}
+
 /// The legs `(from, to)` of a tour, the return leg of a closed tour included.
 pub(super) fn tour_legs(tour: &Tour, kind: TourKind) -> impl Iterator<Item = (usize, usize)> + '_ {
     let closing = match kind {
@@ -413,9 +462,15 @@ mod tests {
             TourKind::Closed
         };
         let tour = if lazy {
-            lazy_solve(&mut oracle, &reps, kind, false, true, |m, _| {
-                Exhaustive.solve(m, kind)
-            })
+            lazy_solve(
+                &mut oracle,
+                &reps,
+                &Clusters::singletons(reps.len()),
+                kind,
+                false,
+                true,
+                |m, _| Exhaustive.solve(m, kind),
+            )
             .unwrap()
         } else {
             Exhaustive
@@ -465,7 +520,7 @@ mod tests {
             let n = mission.sizes.len() + 1 + usize::from(mission.open);
             let kind = if mission.open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
             let (mut lazy, nodes) = oracle(&mission.poses, &mission.detours, &mission.inflation);
-            let tour = lazy_solve(&mut lazy, &nodes, kind, false, true, |m, _| Exhaustive.solve(m, kind)).unwrap();
+            let tour = lazy_solve(&mut lazy, &nodes, &Clusters::singletons(nodes.len()), kind, false, true, |m, _| Exhaustive.solve(m, kind)).unwrap();
             let none = vec![0.0; mission.detours.len()];
             let (mut settled, nodes) = oracle(&mission.poses, &mission.detours, &none);
             let truth = full_matrix(&mut settled, &nodes).unwrap();

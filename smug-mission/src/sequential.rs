@@ -11,7 +11,7 @@ use smug_core::mission::Mission;
 use smug_core::mission::{PlanOptions, Representative, SequencingCosts};
 use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
-use smug_core::stages::{Sequencer, Tour, TourKind};
+use smug_core::stages::{Clusters, Sequencer, Tour, TourKind};
 
 /// The target's stand-in for sequencing.
 fn representative(
@@ -232,6 +232,7 @@ fn lazy_tour(
     lazy_solve(
         oracle,
         nodes,
+        &Clusters::singletons(nodes.len()),
         kind,
         true,
         settle,
