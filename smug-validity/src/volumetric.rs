@@ -135,13 +135,19 @@ struct Level {
     split: Option<usize>,
 }
 
+/// Subdivision levels below the whole box at most, whatever `max_depth` says: after
+/// 64 halvings a sub-box's sides are a two-millionth of the box's (and `max_depth`
+/// near `u32::MAX` would otherwise build a table of billions of levels).
+const MAX_LEVELS: u32 = 64;
+
 /// The subdivision levels of a box with half extents `half` under `params`.
 fn levels(half: [f64; 3], params: &VolumetricParams) -> Vec<Level> {
     let mut levels = Vec::new();
     let mut half = half;
+    let deepest = params.max_depth.min(MAX_LEVELS);
     for depth in 0.. {
         let axis = longest_axis(half);
-        let split = depth < params.max_depth && 2.0 * half[axis] >= params.min_size;
+        let split = depth < deepest && 2.0 * half[axis] >= params.min_size;
         levels.push(Level {
             half,
             outer: (half[0] * half[0] + half[1] * half[1] + half[2] * half[2]).sqrt(),
@@ -219,3 +225,45 @@ smug_core::register_plugin!(
     params = VolumetricParams,
     build = |params, ctx| Ok(Box::new(build_volumetric(params, ctx)?)),
 );
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_halve_the_longest_side_down_to_the_depth_or_the_size() {
+        // The rover's box (1.2 × 0.8 × 0.5 m), the default depth 4 and size 0.05 m.
+        let rover = levels([0.6, 0.4, 0.25], &VolumetricParams::default());
+        let halves: Vec<[f64; 3]> = rover.iter().map(|l| l.half).collect();
+        assert_eq!(
+            halves,
+            vec![
+                [0.6, 0.4, 0.25],
+                [0.3, 0.4, 0.25],
+                [0.3, 0.2, 0.25],
+                [0.15, 0.2, 0.25],
+                [0.15, 0.2, 0.125],
+            ]
+        );
+        let splits: Vec<Option<usize>> = rover.iter().map(|l| l.split).collect();
+        assert_eq!(splits, vec![Some(0), Some(1), Some(0), Some(2), None]);
+        assert_eq!(rover[0].inner, 0.25);
+        let small = VolumetricParams {
+            max_depth: 4,
+            min_size: 0.7,
+        };
+        assert_eq!(
+            levels([0.6, 0.4, 0.25], &small).len(),
+            3,
+            "sides below 0.7 m stop"
+        );
+        let endless = VolumetricParams {
+            max_depth: u32::MAX,
+            min_size: 0.0,
+        };
+        assert_eq!(
+            levels([0.6, 0.4, 0.25], &endless).len(),
+            MAX_LEVELS as usize + 1
+        );
+    }
+}
