@@ -4,6 +4,13 @@
 use smug_core::pose::Pose2;
 use smug_core::space::MotionExtent;
 
+/// The length in turning radii of segments of these `lengths` (Σ |length|, added in
+/// driving order): what [`Curve::unit_length`] gives for a curve of them, to the bit,
+/// so that solvers comparing words before building one pick the word it would.
+pub(crate) fn unit_length(lengths: impl IntoIterator<Item = f64>) -> f64 {
+    lengths.into_iter().map(f64::abs).sum()
+}
+
 /// How a segment steers: full left, straight, or full right.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Steer {
@@ -73,7 +80,7 @@ impl Curve {
 
     /// Total length in turning radii (Σ |length|).
     pub fn unit_length(&self) -> f64 {
-        self.segments().iter().map(|s| s.length.abs()).sum()
+        unit_length(self.segments().iter().map(|s| s.length))
     }
 
     /// Total turning in radians: Σ |length| over the arcs.

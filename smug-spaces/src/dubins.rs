@@ -3,7 +3,7 @@
 //! 1957: one of the words LSL, RSR, LSR, RSL, RLR, LRL), which is not symmetric.
 
 use crate::curvature::{CurvatureSpace, Solver};
-use crate::curve::{Curve, Steer};
+use crate::curve::{unit_length, Curve, Steer};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -68,12 +68,11 @@ pub(crate) fn shortest(x: f64, y: f64, phi: f64) -> Curve {
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let cab = (alpha - beta).cos();
-    // The best word so far and its unit length (summed as `Curve::unit_length` sums
-    // it); only the winner is built into a curve.
+    // The best word so far and its unit length; only the winner is built into a curve.
     let mut best: Option<([Steer; 3], [f64; 3], f64)> = None;
     let mut consider = |steers: [Steer; 3], lengths: Option<[f64; 3]>| {
         if let Some(lengths) = lengths {
-            let length: f64 = lengths.iter().map(|l| l.abs()).sum();
+            let length = unit_length(lengths);
             if best.is_none_or(|(_, _, b)| length < b) {
                 best = Some((steers, lengths, length));
             }

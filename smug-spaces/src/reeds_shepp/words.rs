@@ -7,7 +7,7 @@
 //! Formulas as in the paper's §8 (and OMPL's `ReedsSheppStateSpace`), with a small
 //! slack on every domain and sign test so that tangent cases survive rounding.
 
-use crate::curve::{Curve, Steer, MAX_SEGMENTS};
+use crate::curve::{unit_length, Curve, Steer, MAX_SEGMENTS};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use Steer::{Left as L, Right as R, Straight as S};
@@ -271,7 +271,7 @@ impl Best {
     }
 
     fn consider(&mut self, steers: &[Steer], lengths: &[f64]) {
-        let length: f64 = lengths.iter().map(|l| l.abs()).sum();
+        let length = unit_length(lengths.iter().copied());
         if length < self.length {
             let mut word = ([S; MAX_SEGMENTS], [0.0; MAX_SEGMENTS], steers.len());
             word.0[..steers.len()].copy_from_slice(steers);
