@@ -49,7 +49,7 @@ impl ExactChecker {
         let c = placed.center;
         let robot_pose = Pose::new(
             Vector::new(c[0] as f32, c[1] as f32, c[2] as f32),
-            Vector::new(0.0, 0.0, placed.yaw as f32),
+            Vector::new(0.0, 0.0, placed.yaw() as f32),
         );
         let r = g.resolution as f32 / 2.0;
         let voxel = Cuboid::new(Vector::new(r, r, r));

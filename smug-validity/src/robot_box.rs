@@ -16,8 +16,8 @@ pub struct RobotBox {
 pub struct PlacedBox {
     /// Centre in world coordinates.
     pub center: [f64; 3],
-    /// Heading.
-    pub yaw: f64,
+    /// Heading ([`yaw`](Self::yaw): read only, its sine and cosine are kept beside it).
+    yaw: f64,
     /// Half extents (body frame).
     pub half: [f64; 3],
     /// The heading's sine and cosine (every corner and sub-box centre turns by them).
@@ -52,6 +52,11 @@ impl RobotBox {
 }
 
 impl PlacedBox {
+    /// The heading.
+    pub fn yaw(&self) -> f64 {
+        self.yaw
+    }
+
     /// Axis-aligned bounds `(min, max)`.
     pub fn aabb(&self) -> ([f64; 3], [f64; 3]) {
         let (s, c) = self.sin_cos;
