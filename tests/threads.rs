@@ -1,7 +1,7 @@
 //! The number of threads never changes a plan: the stages that run side by side
 //! (traversability and terrain grids, cost-matrix rows and DP layers of one-to-many
-//! searches, post-processing, the lattice's rows, the GTSP search's matrix copy and
-//! cluster bounds) give the plan one thread gives, bit for bit.
+//! searches, post-processing, the lattice's rows, the GTSP search's matrix copy,
+//! cluster bounds and neighbours) give the plan one thread gives, bit for bit.
 
 use smug_core::{LoadedConfig, Pipeline, Plan, PlanOptions};
 use smug_mission::plan_mission;
@@ -38,16 +38,17 @@ const CASES: [Case; 5] = [
         ],
     },
     // The joint mode on the GTSP large-neighbourhood search (its matrix copy and
-    // cluster bounds are filled side by side).
+    // cluster bounds are filled side by side, and on 256 nodes or more each
+    // iteration's neighbours are built side by side).
     Case {
         config: "lunar.toml",
         set: &[
-            "world.params.targets=24",
+            "world.params.targets=56",
             "world.params.pois_per_target=5",
             "planner.params.one_to_many=true",
             "plan.mode=\"joint\"",
             "sequencer.type=\"gtsp-lns\"",
-            "sequencer.params.max_iterations=300",
+            "sequencer.params.max_iterations=150",
         ],
     },
     // The default lazy order, settled.

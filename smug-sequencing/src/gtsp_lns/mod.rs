@@ -10,6 +10,8 @@
 //!    related to a seed node, or the costliest), reinserts them at their cheapest
 //!    places with noisy costs, polishes, and on promising tours moves every cluster to
 //!    its best place and node ("move-opt"). Simulated annealing decides acceptance.
+//!    Each iteration builds `neighbours_per_iteration` such neighbours (side by side
+//!    on large instances, each from its own generator) and judges the cheapest.
 //! 3. After each epoch the search restarts from the best tour, reordered by the TSP
 //!    local search.
 //!
