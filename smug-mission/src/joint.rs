@@ -43,8 +43,8 @@ pub(super) fn joint_tour(
         kind,
         true,
         false,
-        |matrix, previous| match previous {
-            Some(previous) => sequencer.solve_clusters_from(matrix, &clusters, kind, previous),
+        |matrix, warm| match warm {
+            Some(warm) => sequencer.solve_clusters_from(matrix, &clusters, kind, warm.tour),
             None => sequencer.solve_clusters(matrix, &clusters, kind),
         },
     )?;

@@ -13,14 +13,26 @@ use std::collections::{HashMap, HashSet};
 /// Relative slack of the cost comparisons (rounding in sums of floating-point legs).
 const SLACK: f64 = 1e-9;
 
+/// A round's warm start: the previous round's tour, and when it was found on the
+/// same matrix as this round's but for the legs planned since, the positions whose
+/// legs (in or out) changed ([`Sequencer::solve_from_changed`](smug_core::Sequencer)).
+#[derive(Clone, Copy)]
+pub(super) struct Warm<'a> {
+    /// The previous round's tour.
+    pub(super) tour: &'a Tour,
+    /// The positions whose legs changed since it was found, if known.
+    pub(super) changed: Option<&'a [usize]>,
+}
+
 /// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
 /// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
 /// legs, repeat until the tour uses planned legs only (or one of them has no path; for
 /// a directed model, until the solver finds no tour round the legs without a path).
 ///
-/// With `warm`, each round is given the previous round's tour to start from; a warm
-/// round that ends on planned legs only is checked by one solve from scratch of the
-/// same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
+/// With `warm`, each round is given the previous round's tour to start from (and the
+/// positions whose legs were planned since, when it was found on the same matrix); a
+/// warm round that ends on planned legs only is checked by one solve from scratch of
+/// the same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
 ///
 /// With `settle`, a planned leg is final only once it has been planned again
 /// ([`PathOracle::refine`], on the roadmap as grown since: a leg planned on a sparser
@@ -43,7 +55,7 @@ pub(super) fn lazy_solve(
     kind: TourKind,
     warm: bool,
     settle: bool,
-    mut solve: impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
+    mut solve: impl FnMut(&CostMatrix, Option<Warm<'_>>) -> Result<Tour>,
 ) -> Result<Tour> {
     let mut previous: Option<Tour> = None;
     let mut refined = Refined::new(oracle.is_symmetric());
@@ -78,7 +90,13 @@ pub(super) fn lazy_solve(
                 oracle.lower_bound(nodes[i], nodes[j])
             }
         })?;
-        let rival = solve(&optimistic, Some(&tour))?;
+        let rival = solve(
+            &optimistic,
+            Some(Warm {
+                tour: &tour,
+                changed: None,
+            }),
+        )?;
         if optimistic.tour_cost(&rival.order, kind) >= cost * (1.0 - SLACK) {
             return Ok(tour);
         }
@@ -115,12 +133,20 @@ fn converge(
     kind: TourKind,
     mut previous: Option<Tour>,
     warm: bool,
-    solve: &mut impl FnMut(&CostMatrix, Option<&Tour>) -> Result<Tour>,
+    solve: &mut impl FnMut(&CostMatrix, Option<Warm<'_>>) -> Result<Tour>,
 ) -> Result<(Tour, bool)> {
     let nodes = on.indices;
+    // Whether `previous` was found on the lazy matrix (not on the settling step's).
+    let mut on_lazy_matrix = false;
     loop {
-        let matrix = lazy.refresh(oracle)?;
-        let mut tour = solve(matrix, previous.as_ref())?;
+        lazy.refresh(oracle)?;
+        let changed = lazy.take_changed();
+        let matrix = &lazy.matrix;
+        let start = previous.as_ref().map(|tour| Warm {
+            tour,
+            changed: on_lazy_matrix.then_some(changed.as_slice()),
+        });
+        let mut tour = solve(matrix, start)?;
         if previous.is_some() && unplanned_legs(oracle, nodes, &tour, kind).is_empty() {
             let cold = solve(matrix, None)?;
             let cost = |t: &Tour| matrix.tour_cost(&t.order, kind);
@@ -162,6 +188,7 @@ fn converge(
         // leg whose budget ran out ends the loop instead, so that a robot that cannot
         // leave its room does not spend one budget per PoI.
         previous = warm.then_some(tour);
+        on_lazy_matrix = true;
     }
 }
 
@@ -226,6 +253,8 @@ fn above_bound(oracle: &PathOracle, a: usize, b: usize) -> bool {
 /// entries as [`lazy_matrix`] gives.
 struct LazyMatrix {
     matrix: CostMatrix,
+    /// Whether each position's legs changed since [`take_changed`](Self::take_changed).
+    changed: Vec<bool>,
     /// The matrix positions of each oracle index among the nodes.
     positions: HashMap<usize, Vec<usize>>,
     /// The oracle's log length the matrix is up to date with.
@@ -240,6 +269,7 @@ impl LazyMatrix {
         }
         Ok(Self {
             matrix: lazy_matrix(oracle, nodes)?,
+            changed: vec![false; nodes.len()],
             positions,
             mark: oracle.stored_since(0).len(),
         })
@@ -256,12 +286,25 @@ impl LazyMatrix {
             let cost = oracle.cost_or_bound(a, b);
             for &i in rows {
                 for &j in columns.iter().filter(|&&j| j != i) {
-                    self.matrix.set(i, j, cost)?;
+                    if self.matrix.get(i, j).to_bits() != cost.to_bits() {
+                        self.matrix.set(i, j, cost)?;
+                        self.changed[i] = true;
+                        self.changed[j] = true;
+                    }
                 }
             }
         }
         self.mark += stored.len();
         Ok(&self.matrix)
+    }
+
+    /// The positions whose legs changed since the last call, in order; forgets them.
+    fn take_changed(&mut self) -> Vec<usize> {
+        let changed = (0..self.changed.len())
+            .filter(|&i| self.changed[i])
+            .collect();
+        self.changed.fill(false);
+        changed
     }
 }
 
@@ -493,8 +536,91 @@ mod tests {
         (order, cost, oracle)
     }
 
+    /// Runs the warm lazy loop (settled or not) on `mission`'s representatives and
+    /// checks every warm round told what changed against the matrices the solver saw:
+    /// the positions named are exactly those with a leg (in or out) that differs from
+    /// the matrix the previous tour was found on. The number of such rounds.
+    fn check_change_hints(mission: &Generated, settle: bool) -> std::result::Result<usize, String> {
+        let (mut oracle, nodes) = oracle(&mission.poses, &mission.detours, &mission.inflation);
+        let mut reps = vec![nodes[0]];
+        let mut next = 1;
+        for &size in &mission.sizes {
+            reps.push(nodes[next]);
+            next += size;
+        }
+        let kind = if mission.open {
+            reps.push(nodes[next]);
+            TourKind::OpenTo(reps.len() - 1)
+        } else {
+            TourKind::Closed
+        };
+        let n = reps.len();
+        let mut last: Option<CostMatrix> = None;
+        let mut hints = 0;
+        let mut wrong = None;
+        lazy_solve(
+            &mut oracle,
+            &reps,
+            &Clusters::singletons(n),
+            kind,
+            true,
+            settle,
+            |m, warm| {
+                if let (
+                    Some(Warm {
+                        changed: Some(changed),
+                        ..
+                    }),
+                    Some(before),
+                ) = (warm, &last)
+                {
+                    hints += 1;
+                    let differs = |i: usize| {
+                        (0..n).any(|j| {
+                            m.get(i, j).to_bits() != before.get(i, j).to_bits()
+                                || m.get(j, i).to_bits() != before.get(j, i).to_bits()
+                        })
+                    };
+                    let expected: Vec<usize> = (0..n).filter(|&i| differs(i)).collect();
+                    if changed != expected.as_slice() {
+                        wrong = Some(format!("told {changed:?}, changed {expected:?}"));
+                    }
+                }
+                last = Some(m.clone());
+                Exhaustive.solve(m, kind)
+            },
+        )
+        .map_err(|e| e.to_string())?;
+        match wrong {
+            Some(message) => Err(message),
+            None => Ok(hints),
+        }
+    }
+
+    /// The hints are given at all: over generated missions some warm rounds are told
+    /// what changed (else the property below would hold vacuously).
+    #[test]
+    fn warm_rounds_are_told_what_changed() {
+        use proptest::strategy::ValueTree;
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let strategy = generated(3);
+        let mut hints = 0;
+        for case in 0..64 {
+            let mission = strategy.new_tree(&mut runner).unwrap().current();
+            hints += check_change_hints(&mission, case % 2 == 0).unwrap();
+        }
+        assert!(hints > 0, "no warm round was told what changed");
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// A warm round told what changed is told exactly the positions whose legs
+        /// changed since its tour was found.
+        #[test]
+        fn warm_rounds_are_told_exactly_what_changed(mission in generated(3), settle: bool) {
+            prop_assert!(check_change_hints(&mission, settle).is_ok(), "{:?}", check_change_hints(&mission, settle));
+        }
 
         /// Exact sequencing and selection with fixed leg costs: the settled lazy matrix
         /// gives the full matrix's order (or, on a closed tour of symmetric costs, the

@@ -2,7 +2,7 @@
 //! costs between one representative pose per target (full or lazy cost matrix).
 
 use crate::layout::Layout;
-use crate::lazy::lazy_solve;
+use crate::lazy::{lazy_solve, Warm};
 use crate::matrix::{full_matrix, plan_matrix_rows};
 use crate::oracle::PathOracle;
 use crate::unreachable::unreachable_targets;
@@ -236,8 +236,15 @@ fn lazy_tour(
         kind,
         true,
         settle,
-        |matrix, previous| match previous {
-            Some(tour) => sequencer.solve_from(matrix, kind, tour),
+        |matrix, warm| match warm {
+            Some(Warm {
+                tour,
+                changed: Some(changed),
+            }) => sequencer.solve_from_changed(matrix, kind, tour, changed),
+            Some(Warm {
+                tour,
+                changed: None,
+            }) => sequencer.solve_from(matrix, kind, tour),
             None => sequencer.solve(matrix, kind),
         },
     )

@@ -149,6 +149,21 @@ impl Sequencer for Auto {
         }
     }
 
+    fn solve_from_changed(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: &Tour,
+        changed: &[usize],
+    ) -> smug_core::Result<Tour> {
+        if costs.len() <= self.threshold {
+            self.exact.solve(costs, kind)
+        } else {
+            self.heuristic
+                .solve_from_changed(costs, kind, initial, changed)
+        }
+    }
+
     fn solve_clusters(
         &self,
         costs: &CostMatrix,

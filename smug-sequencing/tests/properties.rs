@@ -148,6 +148,48 @@ proptest! {
         prop_assert_eq!(solver.solve_from(&costs, kind, &initial).unwrap(), tour);
     }
 
+    /// A warm start told which nodes' legs changed (a lazy round's planned legs)
+    /// returns a valid tour no costlier than its initial tour, the same as a fresh
+    /// solver's, after at most the focused budget; a changed node that is not a node
+    /// makes it solve from scratch.
+    #[test]
+    fn a_focused_warm_start_never_loses_to_its_initial_tour(
+        (costs, _) in matrix(60, true), open: bool, pick in 0usize..100,
+        raised in proptest::collection::vec((0usize..60, 0usize..60, 1u32..100), 1..6),
+    ) {
+        let n = costs.len();
+        prop_assume!(n >= 13);
+        let kind = kind_for(n, open, pick);
+        let tour = local_search(40).solve(&costs, kind).unwrap();
+        let mut cells: Vec<f64> = (0..n * n).map(|k| costs.get(k / n, k % n)).collect();
+        let mut changed = Vec::new();
+        for (i, j, raise) in raised {
+            let (i, j) = (i % n, j % n);
+            if i != j {
+                cells[i * n + j] += f64::from(raise);
+                changed.extend([i, j]);
+            }
+        }
+        changed.sort_unstable();
+        changed.dedup();
+        let raised = CostMatrix::from_fn(n, |i, j| cells[i * n + j]).unwrap();
+        let initial = Tour { cost: raised.tour_cost(&tour.order, kind), order: tour.order };
+        let solver = local_search(40);
+        let found = solver.solve_from_changed(&raised, kind, &initial, &changed).unwrap();
+        check_tour(&found, &raised, kind)?;
+        prop_assert!(found.cost <= initial.cost || same_cost(found.cost, initial.cost),
+            "{} > initial {}", found.cost, initial.cost);
+        prop_assert_eq!(
+            &found,
+            &local_search(40).solve_from_changed(&raised, kind, &initial, &changed).unwrap()
+        );
+        let stranger = [n];
+        prop_assert_eq!(
+            solver.solve_from_changed(&raised, kind, &initial, &stranger).unwrap(),
+            local_search(40).solve(&raised, kind).unwrap()
+        );
+    }
+
     /// One solver asked again and again, as a lazy loop asks it (legs raised to their
     /// planned costs or found missing, warm starts from the last tour), gives the tours
     /// a fresh solver gives each time: what it keeps between solves changes nothing.

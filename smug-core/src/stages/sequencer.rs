@@ -115,6 +115,21 @@ pub trait Sequencer: Send + Sync {
         self.solve(costs, kind)
     }
 
+    /// [`solve_from`](Self::solve_from) told which nodes' legs (in or out) changed
+    /// since `initial` was found: every other leg costs what it did, so a solver may
+    /// look for improvements around `changed` only (the lazy loop's rounds, each of
+    /// which plans a few legs of a large tour). The default ignores the hint.
+    fn solve_from_changed(
+        &self,
+        costs: &CostMatrix,
+        kind: TourKind,
+        initial: &Tour,
+        changed: &[usize],
+    ) -> Result<Tour> {
+        let _ = changed;
+        self.solve_from(costs, kind, initial)
+    }
+
     /// The generalized TSP (GTSP): the best tour it finds that visits one node of every
     /// cluster, starting in cluster 0 (and ending in cluster `c` for `OpenTo(c)`); the
     /// tour's `order` lists the visited nodes. Solvers that only order nodes refuse it.

@@ -50,7 +50,6 @@ impl ArrayTour {
     }
 
     /// Position of `c` in the array.
-    #[cfg(test)]
     pub(crate) fn pos(&self, c: usize) -> usize {
         self.pos[c]
     }
