@@ -86,4 +86,16 @@ pub enum ParamError {
         /// The largest value allowed.
         most: f64,
     },
+    /// A count out of its range.
+    #[error("{name} = {value} must be in [{least}, {most}]")]
+    CountOutOfRange {
+        /// The parameter.
+        name: &'static str,
+        /// Its value.
+        value: usize,
+        /// The smallest value allowed.
+        least: usize,
+        /// The largest value allowed.
+        most: usize,
+    },
 }

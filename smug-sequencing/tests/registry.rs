@@ -88,6 +88,18 @@ fn gtsp_plugins_build_and_solve_clustered_problems() {
         .unwrap()
         .to_string();
     assert!(err.contains("would never stop"), "{err}");
+    for bad in ["0", "65"] {
+        let err = build("gtsp-lns", &format!("neighbours_per_iteration = {bad}"))
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(
+            err.contains(&format!(
+                "neighbours_per_iteration = {bad} must be in [1, 64]"
+            )),
+            "{err}"
+        );
+    }
     let tsp_only = build("held-karp", "").unwrap();
     let err = tsp_only
         .solve_clusters(&costs, &clusters, TourKind::Closed)

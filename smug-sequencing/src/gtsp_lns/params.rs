@@ -5,6 +5,9 @@ use crate::local_search::{check_search_budget, search_termination};
 use serde::{Deserialize, Serialize};
 use smug_core::Termination;
 
+/// The most neighbours an iteration may build (each is a copy of the tour).
+const MOST_NEIGHBOURS_PER_ITERATION: usize = 64;
+
 /// Parameters of [`GtspLns`](super::GtspLns).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -78,6 +81,15 @@ impl GtspLnsParams {
             if !(value >= 0.0 && value <= most) {
                 return Err(ParamError::OutOfRange { name, value, most });
             }
+        }
+        let neighbours = self.neighbours_per_iteration;
+        if !(1..=MOST_NEIGHBOURS_PER_ITERATION).contains(&neighbours) {
+            return Err(ParamError::CountOutOfRange {
+                name: "neighbours_per_iteration",
+                value: neighbours,
+                least: 1,
+                most: MOST_NEIGHBOURS_PER_ITERATION,
+            });
         }
         Ok(())
     }
