@@ -210,16 +210,12 @@ impl LocalSearch {
         kind: TourKind,
         start: Start<'_>,
     ) -> (Tour, SearchStats) {
-        let (initial, changed) = match start {
-            Start::Cold => (None, None),
-            Start::Warm(tour) => (Some(tour), None),
-            Start::Changed(tour, changed) => (Some(tour), Some(changed)),
+        let rule = match start {
+            Start::Cold => self.params.termination(),
+            Start::Warm(_) => self.warm_termination(),
+            Start::Changed(_, changed) => self.focused_termination(changed.len()),
         };
-        let rule = match (initial, changed) {
-            (None, _) => self.params.termination(),
-            (Some(_), None) => self.warm_termination(),
-            (Some(_), Some(changed)) => self.focused_termination(changed.len()),
-        };
+        let (initial, changed) = (start.tour(), start.changed());
         let mut clock = rule.start_within(&self.deadline);
         let prepared = self.prepared.take(costs, self.params.neighbours);
         let (dist, neighbours) = (&prepared.dist, &prepared.neighbours);
@@ -310,13 +306,10 @@ impl LocalSearch {
     ) -> smug_core::Result<(Tour, SearchStats)> {
         validate(costs.len(), kind)?;
         let n = costs.len();
-        let usable = match start {
-            Start::Cold => false,
-            Start::Warm(tour) => tour.is_valid_for(n, kind),
-            Start::Changed(tour, changed) => {
-                tour.is_valid_for(n, kind) && changed.iter().all(|&c| c < n)
-            }
-        };
+        let usable = start.tour().is_some_and(|tour| tour.is_valid_for(n, kind))
+            && start
+                .changed()
+                .is_none_or(|nodes| nodes.iter().all(|&c| c < n));
         if n < EXACT_BELOW || !usable {
             return self.solve_with_stats(costs, kind);
         }
@@ -404,6 +397,24 @@ enum Start<'a> {
     Cold,
     Warm(&'a Tour),
     Changed(&'a Tour, &'a [usize]),
+}
+
+impl<'a> Start<'a> {
+    /// The warm start's tour.
+    fn tour(self) -> Option<&'a Tour> {
+        match self {
+            Start::Cold => None,
+            Start::Warm(tour) | Start::Changed(tour, _) => Some(tour),
+        }
+    }
+
+    /// The nodes whose legs changed, when told.
+    fn changed(self) -> Option<&'a [usize]> {
+        match self {
+            Start::Changed(_, changed) => Some(changed),
+            _ => None,
+        }
+    }
 }
 
 /// The tour a construction heuristic gives (what the local search starts from), with
