@@ -150,6 +150,104 @@ fn one_to_many_equals_per_pair() {
     }
 }
 
+/// A DP layer in one search (sources with offsets) settles every goal at the least,
+/// over the sources, of the offset plus the path cost one search from that source
+/// gives, and names a source that attains it.
+#[test]
+fn a_layer_search_equals_the_least_over_its_sources_of_searches_alone() {
+    for space in SPACES {
+        let settings = [
+            space,
+            "planner.params.shortcut=false",
+            "planner.params.smooth=false",
+        ];
+        let sources: Vec<(Pose2, f64)> = queries()
+            .iter()
+            .zip([3.0, 0.0, 1.25, 7.5])
+            .map(|(q, offset)| (q.0, offset))
+            .collect();
+        let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
+        let mut layer = pipeline(&settings);
+        let layer = layer.planner.as_mut().unwrap();
+        assert!(layer.answers_layers());
+        let answers = layer.plan_layer(&sources, &goals).unwrap();
+        let mut alone = pipeline(&settings);
+        let alone = alone.planner.as_mut().unwrap();
+        let totals: Vec<Vec<f64>> = sources
+            .iter()
+            .map(|(start, offset)| {
+                let outcomes = alone.plan_many(start, &goals).unwrap();
+                let cost = |o: &PlannerOutcome| o.exact_path().map_or(f64::INFINITY, |p| p.cost);
+                outcomes.iter().map(|o| offset + cost(o)).collect()
+            })
+            .collect();
+        let mut winners = std::collections::BTreeSet::new();
+        for (k, answer) in answers.iter().enumerate() {
+            let least = totals.iter().map(|t| t[k]).fold(f64::INFINITY, f64::min);
+            let path = answer.outcome.exact_path().expect("every goal is reached");
+            let got = sources[answer.source].1 + path.cost;
+            assert!(
+                (got - least).abs() <= 1e-6 * least,
+                "{space}, goal {k}: {got} in the layer, {least} alone"
+            );
+            assert_eq!(path.states[0], sources[answer.source].0);
+            winners.insert(answer.source);
+        }
+        assert!(winners.len() > 1, "{space}: one source won every goal");
+    }
+}
+
+/// The rows of a matrix that only orders targets, searched with the heuristic weighted
+/// by `order_heuristic_weight`: paths of the model, never cheaper than the optimal
+/// ones and at most that factor dearer (weighted A*), and with weight 1 the same as
+/// rows asked for anything else.
+#[test]
+fn order_rows_are_weighted_a_star_within_their_weight() {
+    let mut differ = false;
+    for space in SPACES {
+        let (start, _) = queries()[0];
+        let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
+        let rows = vec![(start, goals.clone())];
+        let costs = |weight: &str, order: bool| -> Vec<f64> {
+            let settings = [
+                space,
+                "planner.params.shortcut=false",
+                "planner.params.smooth=false",
+                weight,
+            ];
+            let mut p = pipeline(&settings);
+            let planner = p.planner.as_mut().unwrap();
+            let answers = if order {
+                planner.plan_order_rows(&rows).unwrap()
+            } else {
+                planner.plan_rows(&rows).unwrap()
+            };
+            answers[0]
+                .iter()
+                .map(|o| o.exact_path().expect("a path").cost)
+                .collect()
+        };
+        let exact = costs("planner.params.order_heuristic_weight=1.0", false);
+        assert_eq!(
+            exact,
+            costs("planner.params.order_heuristic_weight=1.0", true)
+        );
+        let weighted = costs("planner.params.order_heuristic_weight=1.5", true);
+        assert_eq!(
+            exact,
+            costs("planner.params.order_heuristic_weight=1.5", false)
+        );
+        differ |= weighted != exact;
+        for (w, e) in weighted.iter().zip(&exact) {
+            assert!(
+                *w >= e * (1.0 - 1e-6) && *w <= 1.5 * e * (1.0 + 1e-6),
+                "{space}: {w} against {e}"
+            );
+        }
+    }
+    assert!(differ, "the weight changed no path");
+}
+
 #[test]
 fn a_goal_in_a_closed_box_is_proved_unreachable() {
     for space in SPACES {
@@ -370,8 +468,11 @@ fn rows_searched_side_by_side_equal_rows_searched_alone_bit_for_bit() {
     }
 }
 
+/// A reversing car enters a pose wherever it can leave it: the boxed PoI's small search
+/// towards the end proves it a dead end before sequencing (no leg to it is searched,
+/// which would exhaust everything the start reaches), and it is named.
 #[test]
-fn a_poi_in_a_closed_box_is_never_chosen_and_its_legs_are_proved_for_a_reversing_car_too() {
+fn a_poi_in_a_closed_box_is_never_chosen_and_is_proved_a_dead_end_for_a_reversing_car_too() {
     let boxed = "{ x = 13.5, y = 2.5, yaw = 0.0 }";
     let config = CONFIG
         .replace(
@@ -390,13 +491,15 @@ fn a_poi_in_a_closed_box_is_never_chosen_and_its_legs_are_proved_for_a_reversing
     let plan = smug_mission::plan_mission(&mut p, options).unwrap();
     let chosen = plan.pois.iter().find(|c| c.target == "box").unwrap();
     assert_eq!(chosen.index, 1);
+    assert_eq!(plan.dead_ends.len(), 1, "{:?}", plan.dead_ends);
+    let dead = &plan.dead_ends[0];
+    assert_eq!((dead.target.as_str(), dead.index), ("box", 0));
     assert!(
-        plan.stats
-            .legs_without_path
-            .contains_key("proved:exhausted"),
-        "{:?}",
-        plan.stats.legs_without_path
+        dead.why.contains("cannot be reached from it"),
+        "{}",
+        dead.why
     );
+    assert!(plan.stats.legs_without_path.is_empty());
 }
 
 #[test]

@@ -16,10 +16,18 @@ use smug_core::plan::DeadEndPoi;
 /// poses a boxed-in car reaches, far too few to search a map.
 const PROOF_EFFORT: u64 = 20_000;
 
+/// Expansions a proof that a PoI cannot reach the end may take for a symmetric model:
+/// a PoI boxed in where it stands (the lunar rover's, between stones) runs out of
+/// poses within a few dozen, and the probe of each PoI that is not stays cheap
+/// against the search of the whole map that would prove the same later.
+const SYMMETRIC_PROOF_EFFORT: u64 = 128;
+
 /// Drops from `layout` the PoIs of `targets` that provably cannot reach the end or
-/// that the start provably cannot reach, for directed models (symmetric ones: the
-/// start's reach decides both ways, checked later for whole targets) and planners that
-/// prove dead ends cheaply (others are not asked: their plans do not change).
+/// that the start provably cannot reach, for planners that prove dead ends cheaply
+/// (others are not asked: their plans do not change). For a symmetric model only the
+/// PoIs boxed in where they stand are looked for (with a smaller effort): a path to
+/// such a PoI would be one from it reversed, and the start's reach decides the rest,
+/// checked later for whole targets.
 ///
 /// The cheap proofs come first: a small search from each PoI (a car boxed in where it
 /// stands runs out of poses within [`PROOF_EFFORT`] expansions). The start's row of
@@ -33,7 +41,7 @@ pub(super) fn drop_dead_ends(
     layout: &mut Layout,
     targets: &[usize],
 ) -> Result<Vec<DeadEndPoi>> {
-    if oracle.is_symmetric() || !oracle.proves_dead_ends() {
+    if !oracle.proves_dead_ends() {
         return Ok(Vec::new());
     }
     let mut dead = DeadEnds {
@@ -42,20 +50,32 @@ pub(super) fn drop_dead_ends(
         targets,
         dropped: Vec::new(),
     };
-    dead.drop_where(oracle, layout, cannot_leave)?;
-    let left: Vec<usize> = targets
-        .iter()
-        .flat_map(|&t| layout.pois[t].iter().copied())
-        .collect();
+    if oracle.is_symmetric() {
+        let boxed_in = cannot_leave(oracle, layout, targets, SYMMETRIC_PROOF_EFFORT)?;
+        dead.drop(oracle, layout, boxed_in);
+        return Ok(dead.dropped);
+    }
+    let cannot_leave = cannot_leave(oracle, layout, targets, PROOF_EFFORT)?;
+    dead.drop(oracle, layout, cannot_leave);
+    let left = pois_of(layout, targets);
     if !left.is_empty() && oracle.answers_many() {
         oracle.plan_from(layout.start, &left)?;
     }
-    dead.drop_where(oracle, layout, cannot_enter)?;
+    let cannot_enter = left
+        .iter()
+        .map(|&p| cannot_enter(oracle, layout, p))
+        .collect::<Result<_>>()?;
+    dead.drop(oracle, layout, cannot_enter);
     Ok(dead.dropped)
 }
 
-/// Why PoI `p` cannot be part of a route, when a proof says so.
-type DeadEndProof = fn(&mut PathOracle, &Layout, usize) -> Result<Option<String>>;
+/// The PoIs `layout` keeps for `targets`, target by target.
+fn pois_of(layout: &Layout, targets: &[usize]) -> Vec<usize> {
+    targets
+        .iter()
+        .flat_map(|&t| layout.pois[t].iter().copied())
+        .collect()
+}
 
 /// The PoIs of a mission's `targets` dropped so far, and what naming them needs.
 struct DeadEnds<'a> {
@@ -66,18 +86,14 @@ struct DeadEnds<'a> {
 }
 
 impl DeadEnds<'_> {
-    /// Drops from `layout` the PoIs of the targets that `proof` rules out, recording
-    /// each.
-    fn drop_where(
-        &mut self,
-        oracle: &mut PathOracle,
-        layout: &mut Layout,
-        proof: DeadEndProof,
-    ) -> Result<()> {
+    /// Drops from `layout` the PoIs of the targets that have a reason in `why` (one
+    /// entry per PoI [`pois_of`] lists, in its order), recording each.
+    fn drop(&mut self, oracle: &PathOracle, layout: &mut Layout, why: Vec<Option<String>>) {
+        let mut why = why.into_iter();
         for &t in self.targets {
             let mut kept = Vec::with_capacity(layout.pois[t].len());
             for &p in &layout.pois[t] {
-                match proof(oracle, layout, p)? {
+                match why.next().flatten() {
                     None => kept.push(p),
                     Some(why) => {
                         let pose = *oracle.pose(p);
@@ -93,16 +109,26 @@ impl DeadEnds<'_> {
             }
             layout.pois[t] = kept;
         }
-        Ok(())
     }
 }
 
-/// The proof, when a small search finds one, that the end cannot be reached from PoI
-/// `p`.
-fn cannot_leave(oracle: &mut PathOracle, layout: &Layout, p: usize) -> Result<Option<String>> {
+/// For each PoI of `targets` (as [`pois_of`] lists them), the proof, when a search of
+/// `effort` expansions from it finds one, that the end cannot be reached from it.
+fn cannot_leave(
+    oracle: &mut PathOracle,
+    layout: &Layout,
+    targets: &[usize],
+    effort: u64,
+) -> Result<Vec<Option<String>>> {
+    let pairs: Vec<(usize, usize)> = pois_of(layout, targets)
+        .into_iter()
+        .map(|p| (p, layout.end))
+        .collect();
     Ok(oracle
-        .prove_unreachable(p, layout.end, PROOF_EFFORT)?
-        .map(|reason| format!("the end cannot be reached from it: {reason}")))
+        .prove_each_unreachable(&pairs, effort)?
+        .into_iter()
+        .map(|proof| proof.map(|reason| format!("the end cannot be reached from it: {reason}")))
+        .collect())
 }
 
 /// The proof, when the start's search gives one, that PoI `p` cannot be reached from

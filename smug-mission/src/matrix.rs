@@ -27,9 +27,9 @@ pub(crate) fn full_matrix(oracle: &mut PathOracle, nodes: &[usize]) -> Result<Co
 }
 
 /// Plans the full matrix's rows over `nodes` with one call to the oracle's
-/// [`plan_rows`](PathOracle::plan_rows): one search per row (the rest of the row for a
-/// symmetric oracle), side by side where the planner can. Pairs planned already are
-/// not asked again.
+/// [`plan_order_rows`](PathOracle::plan_order_rows): one search per row (the rest of
+/// the row for a symmetric oracle), side by side where the planner can. Pairs planned
+/// already are not asked again.
 pub(crate) fn plan_matrix_rows(oracle: &mut PathOracle, nodes: &[usize]) -> Result<()> {
     let rows: Vec<(usize, Vec<usize>)> = (0..nodes.len())
         .map(|i| {
@@ -37,5 +37,5 @@ pub(crate) fn plan_matrix_rows(oracle: &mut PathOracle, nodes: &[usize]) -> Resu
             (nodes[i], nodes[from..].to_vec())
         })
         .collect();
-    oracle.plan_rows(&rows)
+    oracle.plan_order_rows(&rows)
 }

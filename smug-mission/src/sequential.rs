@@ -10,29 +10,35 @@ use smug_core::error::{Error, Result};
 use smug_core::mission::Mission;
 use smug_core::mission::{PlanOptions, Representative, SequencingCosts};
 use smug_core::pipeline::Pipeline;
-use smug_core::pose::Pose2;
 use smug_core::stages::{Clusters, Sequencer, Tour, TourKind};
 
-/// The target's stand-in for sequencing.
+/// The target's stand-in for sequencing, among the PoIs `layout` keeps for it (those
+/// not dropped as dead ends), in the mission's order.
 fn representative(
+    oracle: &PathOracle,
     mission: &Mission,
     layout: &Layout,
     target: usize,
     rule: Representative,
 ) -> usize {
-    let t = &mission.targets[target];
+    let pois = &layout.pois[target];
     if rule == Representative::FirstPoi {
-        return layout.pois[target][0];
+        return pois[0];
     }
-    let d = |p: &Pose2| (p.x - t.position.x).hypot(p.y - t.position.y);
-    let best = (0..t.pois.len())
-        .min_by(|&a, &b| d(&t.pois[a]).total_cmp(&d(&t.pois[b])).then(a.cmp(&b)))
+    let centre = &mission.targets[target].position;
+    let d = |i: usize| {
+        let p = oracle.pose(i);
+        (p.x - centre.x).hypot(p.y - centre.y)
+    };
+    let best = (0..pois.len())
+        .min_by(|&a, &b| d(pois[a]).total_cmp(&d(pois[b])).then(a.cmp(&b)))
         .unwrap_or(0);
-    layout.pois[target][best]
+    pois[best]
 }
 
 /// The stand-ins of `targets` (indices into the mission) for sequencing, in their order.
 fn representatives(
+    oracle: &PathOracle,
     mission: &Mission,
     layout: &Layout,
     targets: &[usize],
@@ -40,20 +46,21 @@ fn representatives(
 ) -> Vec<usize> {
     targets
         .iter()
-        .map(|&t| representative(mission, layout, t, rule))
+        .map(|&t| representative(oracle, mission, layout, t, rule))
         .collect()
 }
 
 /// The sequencing matrix's nodes: the start, the stand-ins of `targets` in their
 /// order, and the end pose of an open tour.
 fn matrix_nodes(
+    oracle: &PathOracle,
     mission: &Mission,
     layout: &Layout,
     targets: &[usize],
     rule: Representative,
 ) -> Vec<usize> {
     let mut nodes = vec![layout.start];
-    nodes.extend(representatives(mission, layout, targets, rule));
+    nodes.extend(representatives(oracle, mission, layout, targets, rule));
     if mission.end.is_some() {
         nodes.push(layout.end);
     }
@@ -94,7 +101,7 @@ pub(super) fn unreached_from_start_row(
         return Ok(Vec::new());
     }
     if plans_matrix_with_start_row(oracle, mission) {
-        let nodes = matrix_nodes(mission, layout, targets, options.representative);
+        let nodes = matrix_nodes(oracle, mission, layout, targets, options.representative);
         plan_matrix_rows(oracle, &nodes)?;
     }
     start_row_misses(
@@ -147,7 +154,7 @@ fn start_row_misses(
     as_the_matrix: bool,
 ) -> Result<Vec<usize>> {
     let mut missed = Vec::new();
-    let stand_ins = representatives(mission, layout, targets, rule);
+    let stand_ins = representatives(oracle, mission, layout, targets, rule);
     if oracle.answers_many() {
         oracle.plan_from(layout.start, &stand_ins)?;
     }
@@ -182,7 +189,7 @@ pub(super) fn sequence(
         needed: "sequencer",
     })?;
     let open = mission.end.is_some();
-    let nodes = matrix_nodes(mission, layout, targets, rule);
+    let nodes = matrix_nodes(oracle, mission, layout, targets, rule);
     let n = nodes.len();
     let kind = if open {
         TourKind::OpenTo(n - 1)
@@ -253,6 +260,63 @@ fn lazy_tour(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use smug_core::mission::Target;
+    use smug_core::pose::{Point3, Pose2};
+
+    /// A target's stand-in is one of the PoIs the layout keeps: with the PoI nearest
+    /// its centre dropped (a dead end), the nearest of the others, never the dropped
+    /// one or a PoI of the wrong position in the list.
+    #[test]
+    fn a_stand_in_is_the_nearest_kept_poi() {
+        let pois = [(4.0, 0.0), (1.0, 0.0), (0.0, 2.0), (3.0, 3.0)];
+        let poses: Vec<Pose2> = std::iter::once(Pose2::new(9.0, 9.0, 0.0))
+            .chain(pois.iter().map(|&(x, y)| Pose2::new(x, y, 0.0)))
+            .collect();
+        let (oracle, at) = oracle(&poses, vec![0.0; poses.len()]);
+        let mission = Mission {
+            start: poses[0],
+            end: None,
+            targets: vec![Target {
+                id: "t".into(),
+                position: Point3 {
+                    x: 0.0,
+                    y: 0.0,
+                    z: 0.0,
+                },
+                pois: poses[1..].to_vec(),
+            }],
+        };
+        let mut layout = Layout {
+            start: at[0],
+            end: at[0],
+            pois: vec![at[1..].to_vec()],
+        };
+        let nearest = Representative::NearestPoi;
+        assert_eq!(
+            representative(&oracle, &mission, &layout, 0, nearest),
+            at[2]
+        );
+        // (4, 0) dropped: (1, 0) is still the nearest, now second in the list.
+        layout.pois[0] = vec![at[2], at[3], at[4]];
+        assert_eq!(
+            representative(&oracle, &mission, &layout, 0, nearest),
+            at[2]
+        );
+        // The nearest (1, 0) dropped: (0, 2) is the nearest left.
+        layout.pois[0] = vec![at[1], at[3], at[4]];
+        assert_eq!(
+            representative(&oracle, &mission, &layout, 0, nearest),
+            at[3]
+        );
+        layout.pois[0] = vec![at[4]];
+        assert_eq!(
+            representative(&oracle, &mission, &layout, 0, nearest),
+            at[4]
+        );
+        let first = Representative::FirstPoi;
+        layout.pois[0] = vec![at[3], at[4]];
+        assert_eq!(representative(&oracle, &mission, &layout, 0, first), at[3]);
+    }
     use crate::test_support::{oracle, oracle_with_dead_leg, Exhaustive};
     use proptest::prelude::*;
 

@@ -26,12 +26,12 @@ impl DpSelector {
 impl PoiSelector for DpSelector {
     fn select(&self, oracle: &mut dyn PathCosts, problem: &SelectionProblem) -> Result<Selection> {
         check_groups(problem)?;
+        if oracle.answers_layers() {
+            return crate::layered::dp_by_layers(oracle, problem, &layers(problem));
+        }
         if oracle.answers_many() {
             // Every leg DP needs, one call per pose of a layer.
-            let mut layers = vec![vec![problem.start]];
-            layers.extend(problem.groups.iter().cloned());
-            layers.push(vec![problem.end]);
-            for pair in layers.windows(2) {
+            for pair in layers(problem).windows(2) {
                 let rows: Vec<(usize, Vec<usize>)> =
                     pair[0].iter().map(|&p| (p, pair[1].clone())).collect();
                 oracle.plan_rows(&rows)?;
@@ -46,6 +46,14 @@ impl PoiSelector for DpSelector {
     }
 }
 
+/// The start, the groups in order, and the end: the DP's layers.
+pub(crate) fn layers(problem: &SelectionProblem) -> Vec<Vec<usize>> {
+    let mut layers = vec![vec![problem.start]];
+    layers.extend(problem.groups.iter().cloned());
+    layers.push(vec![problem.end]);
+    layers
+}
+
 smug_core::register_plugin!(
     smug_core::registry::SelectorStage,
     name = "dp",
@@ -57,7 +65,7 @@ smug_core::register_plugin!(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_support::{detour_oracle, selection_error, straight_oracle};
+    use crate::test_support::{detour_oracle, radius_oracle_by, selection_error, straight_oracle};
     use crate::SelectionError;
 
     #[test]
@@ -89,6 +97,53 @@ mod tests {
         let s = DpSelector::default().select(&mut o, &problem).unwrap();
         assert_eq!(s.chosen, vec![2]);
         assert!((s.cost - 16.0).abs() < 1e-12);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+        /// Asked layer by layer (one call per layer, each PoI at its DP value), the DP
+        /// chooses a route as cheap as the DP over every pair, or names the same
+        /// unreachable group (legs longer than 10 m have no path).
+        #[test]
+        fn layer_by_layer_equals_every_pair(
+            points in proptest::collection::vec((0.0f64..24.0, 0.0f64..24.0), 7..16),
+            sizes in proptest::collection::vec(1usize..4, 2..5),
+        ) {
+            let groups = groups_of(&sizes, points.len() - 1);
+            let problem = SelectionProblem { start: 0, groups, end: 0 };
+            let mut pairs = radius_oracle_by(false, &points);
+            let mut layers = radius_oracle_by(true, &points);
+            let by_pairs = DpSelector::default().select(&mut pairs, &problem);
+            let by_layers = DpSelector::default().select(&mut layers, &problem);
+            match (by_pairs, by_layers) {
+                (Ok(a), Ok(b)) => {
+                    proptest::prop_assert!((a.cost - b.cost).abs() <= 1e-9 * a.cost.max(1.0));
+                    let cost = problem.route_cost(&b.chosen, |i, j| layers.cost(i, j)).unwrap();
+                    proptest::prop_assert!((cost - b.cost).abs() <= 1e-9 * cost.max(1.0));
+                }
+                (Err(a), Err(b)) => {
+                    proptest::prop_assert_eq!(selection_error(&a), selection_error(&b));
+                }
+                (a, b) => proptest::prop_assert!(false, "{a:?} by pairs, {b:?} by layers"),
+            }
+        }
+    }
+
+    /// Groups of the given sizes over poses `1..=poses` (wrapping round).
+    fn groups_of(sizes: &[usize], poses: usize) -> Vec<Vec<usize>> {
+        let mut next = 0;
+        sizes
+            .iter()
+            .map(|&n| {
+                (0..n)
+                    .map(|_| {
+                        next += 1;
+                        (next - 1) % poses + 1
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     #[test]

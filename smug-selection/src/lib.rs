@@ -19,6 +19,7 @@ pub mod dp;
 pub mod error;
 pub mod idp;
 pub mod irba;
+mod layered;
 #[cfg(test)]
 mod test_support;
 

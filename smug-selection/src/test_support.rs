@@ -66,6 +66,24 @@ impl PointToPointPlanner for Radius {
     }
 }
 
+/// Another planner's answers, with whole DP layers asked at once (the trait's
+/// default `plan_layer`: a search per source, the least offset plus cost kept).
+struct Layered(Box<dyn PointToPointPlanner>);
+
+impl PointToPointPlanner for Layered {
+    fn plan(&mut self, a: &Pose2, b: &Pose2) -> Result<PlannerOutcome> {
+        self.0.plan(a, b)
+    }
+
+    fn answers_layers(&self) -> bool {
+        true
+    }
+
+    fn stats(&self) -> PlannerStats {
+        PlannerStats::default()
+    }
+}
+
 fn objective() -> PathLength {
     PathLength::new(1.0, 0.0).expect("valid weights")
 }
@@ -91,6 +109,15 @@ pub(crate) fn detour_oracle(poses: &[(f64, f64)]) -> PathOracle {
 /// An oracle over straight lines of at most 10 m.
 pub(crate) fn radius_oracle(poses: &[(f64, f64)]) -> PathOracle {
     oracle(Box::new(Radius), poses)
+}
+
+/// An oracle over straight lines of at most 10 m (`layers`: asked layer by layer).
+pub(crate) fn radius_oracle_by(layers: bool, poses: &[(f64, f64)]) -> PathOracle {
+    if layers {
+        oracle(Box::new(Layered(Box::new(Radius))), poses)
+    } else {
+        radius_oracle(poses)
+    }
 }
 
 /// The selection error inside a selector's error.

@@ -30,4 +30,35 @@ pub trait PathCosts {
     fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()>;
     /// Plans every pair of `pairs` not planned yet (side by side where the planner can).
     fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()>;
+    /// True when [`plan_layer`](Self::plan_layer) answers a DP layer with one search
+    /// (default false).
+    fn answers_layers(&self) -> bool {
+        false
+    }
+    /// For each of `goals`: the `i` of `sources` (each `(i, offset)`, the cost already
+    /// paid to be at `i`) from which the offset plus the path's cost is least, the pair
+    /// `i → goal` then planned (its cost served by [`cost`](Self::cost)); `None` when
+    /// no source reaches the goal. The default plans every pair and compares the
+    /// costs (ties to the first source).
+    fn plan_layer(
+        &mut self,
+        sources: &[(usize, f64)],
+        goals: &[usize],
+    ) -> Result<Vec<Option<usize>>> {
+        let rows: Vec<(usize, Vec<usize>)> =
+            sources.iter().map(|&(i, _)| (i, goals.to_vec())).collect();
+        self.plan_rows(&rows)?;
+        let mut best = Vec::with_capacity(goals.len());
+        for &j in goals {
+            let mut least: Option<(f64, usize)> = None;
+            for &(i, offset) in sources {
+                let total = offset + self.cost(i, j)?;
+                if total.is_finite() && least.is_none_or(|(l, _)| total < l) {
+                    least = Some((total, i));
+                }
+            }
+            best.push(least.map(|(_, i)| i));
+        }
+        Ok(best)
+    }
 }

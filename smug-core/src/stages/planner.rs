@@ -172,6 +172,15 @@ impl std::fmt::Display for NoPathReason {
     }
 }
 
+/// A goal's answer in a DP layer ([`PointToPointPlanner::plan_layer`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LayerOutcome {
+    /// The index of the source the path leaves from.
+    pub source: usize,
+    /// The path from that source (or why there is none).
+    pub outcome: PlannerOutcome,
+}
+
 /// A planner's cumulative statistics over all its queries.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PlannerStats {
@@ -210,6 +219,17 @@ pub trait PointToPointPlanner: Send + Sync {
             .collect()
     }
 
+    /// [`plan_rows`](Self::plan_rows) for the rows of a cost matrix that only orders
+    /// targets (the sequencer's): a planner may answer them with fewer expansions and
+    /// dearer paths (the lattice's `order_heuristic_weight`). The default is
+    /// `plan_rows`.
+    fn plan_order_rows(
+        &mut self,
+        rows: &[(Pose2, Vec<Pose2>)],
+    ) -> Result<Vec<Vec<PlannerOutcome>>> {
+        self.plan_rows(rows)
+    }
+
     /// True when [`plan_rows`](Self::plan_rows) searches rows side by side: the path
     /// oracle then hands it independent pairs (a route's legs) together (default
     /// false: they are planned one by one with [`plan`](Self::plan)).
@@ -222,6 +242,50 @@ pub trait PointToPointPlanner: Send + Sync {
     /// (default false: pairs are planned one by one, in the order they are asked).
     fn answers_many(&self) -> bool {
         false
+    }
+
+    /// True when [`plan_layer`](Self::plan_layer) answers a whole DP layer with one
+    /// search, cheaper than a search per source (default false).
+    fn answers_layers(&self) -> bool {
+        false
+    }
+
+    /// For each of `goals`, the cheapest way there from any of `sources`, each a pose
+    /// and the cost already paid to be there (a DP value): the source's index and the
+    /// path from it. The source is the one whose offset plus the planner's own cost is
+    /// least (ties to the lowest index); a planner that shortcuts its paths after
+    /// choosing may return a path cheaper than it chose by. A goal no source reaches
+    /// gets source 0 and the first source's answer (`InvalidStart` when there are no
+    /// sources). The default plans from each source
+    /// with [`plan_many`](Self::plan_many) and compares the paths' costs.
+    fn plan_layer(
+        &mut self,
+        sources: &[(Pose2, f64)],
+        goals: &[Pose2],
+    ) -> Result<Vec<LayerOutcome>> {
+        let mut best: Vec<Option<(f64, LayerOutcome)>> = vec![None; goals.len()];
+        for (s, (pose, offset)) in sources.iter().enumerate() {
+            for (slot, outcome) in best.iter_mut().zip(self.plan_many(pose, goals)?) {
+                let total = outcome
+                    .exact_path()
+                    .map_or(f64::INFINITY, |p| offset + p.cost);
+                if slot.as_ref().is_none_or(|(least, _)| total < *least) {
+                    *slot = Some((total, LayerOutcome { source: s, outcome }));
+                }
+            }
+        }
+        Ok(best
+            .into_iter()
+            .map(|slot| {
+                slot.map_or(
+                    LayerOutcome {
+                        source: 0,
+                        outcome: PlannerOutcome::InvalidStart,
+                    },
+                    |(_, answer)| answer,
+                )
+            })
+            .collect())
     }
 
     /// Statistics accumulated over all queries so far.
@@ -247,6 +311,21 @@ pub trait PointToPointPlanner: Send + Sync {
     ) -> Result<Option<NoPathReason>> {
         let _ = (start, goal, effort);
         Ok(None)
+    }
+
+    /// [`prove_unreachable`](Self::prove_unreachable) for each `(start, goal)` of
+    /// `pairs`, the answers in order. The default asks one after another; a planner
+    /// whose searches can run side by side overrides it, with answers that must not
+    /// depend on how many run at once.
+    fn prove_each_unreachable(
+        &mut self,
+        pairs: &[(Pose2, Pose2)],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        pairs
+            .iter()
+            .map(|(start, goal)| self.prove_unreachable(start, goal, effort))
+            .collect()
     }
 
     /// Tries, within `effort` units of work, to prove for each of `goals` that no path

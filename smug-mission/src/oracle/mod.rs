@@ -10,7 +10,9 @@ use smug_core::path::Path;
 use smug_core::pipeline::Pipeline;
 use smug_core::pose::Pose2;
 use smug_core::run_context::RunContext;
-use smug_core::stages::{NoPathReason, PathCosts, PlannerOutcome, PointToPointPlanner};
+use smug_core::stages::{
+    LayerOutcome, NoPathReason, PathCosts, PlannerOutcome, PointToPointPlanner,
+};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -247,6 +249,18 @@ impl PathOracle {
     /// [`plan_from`](Self::plan_from) for every row `(i, js)`, with one call to the
     /// planner's `plan_rows` (which may search the rows side by side).
     pub fn plan_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+        self.plan_rows_for(rows, false)
+    }
+
+    /// [`plan_rows`](Self::plan_rows) for the rows of a matrix that only orders
+    /// targets ([`PointToPointPlanner::plan_order_rows`]).
+    pub fn plan_order_rows(&mut self, rows: &[(usize, Vec<usize>)]) -> Result<()> {
+        self.plan_rows_for(rows, true)
+    }
+
+    /// The rows' pairs not planned yet, planned with one call to the planner
+    /// (`for_order`: as rows of a matrix that only orders targets).
+    fn plan_rows_for(&mut self, rows: &[(usize, Vec<usize>)], for_order: bool) -> Result<()> {
         let mut asked: Vec<(usize, Vec<usize>)> = Vec::new();
         for (i, js) in rows {
             let mut wanted: Vec<usize> = Vec::new();
@@ -277,7 +291,11 @@ impl PathOracle {
             .collect();
         let legs: usize = asked.iter().map(|(_, js)| js.len()).sum();
         let asked_so_far = self.run.progress.ask(legs as u64);
-        let answers = self.planner.plan_rows(&queries);
+        let answers = if for_order {
+            self.planner.plan_order_rows(&queries)
+        } else {
+            self.planner.plan_rows(&queries)
+        };
         self.run.progress.answered_up_to(asked_so_far);
         let answers = answers?;
         for ((i, wanted), outcomes) in asked.into_iter().zip(answers) {
@@ -295,6 +313,69 @@ impl PathOracle {
             }
         }
         Ok(())
+    }
+
+    /// True when the planner answers a DP layer with one search
+    /// ([`PointToPointPlanner::answers_layers`]).
+    pub fn answers_layers(&self) -> bool {
+        self.planner.answers_layers()
+    }
+
+    /// For each of `goals`, the `i` of `sources` (each `(i, offset)`, the cost already
+    /// paid to be at `i`) the planner's one search of the layer reached it from most
+    /// cheaply, offset included ([`PointToPointPlanner::plan_layer`]); `None` when no
+    /// source reaches it. The pair `i → goal` is cached as planned (a pair planned
+    /// before keeps the cheaper path); a goal without a path is cached as unreachable
+    /// from the first source.
+    pub fn plan_layer(
+        &mut self,
+        sources: &[(usize, f64)],
+        goals: &[usize],
+    ) -> Result<Vec<Option<usize>>> {
+        refuse_after_deadline(&self.run.deadline)?;
+        let from: Vec<(Pose2, f64)> = sources.iter().map(|&(i, o)| (self.poses[i], o)).collect();
+        let to: Vec<Pose2> = goals.iter().map(|&j| self.poses[j]).collect();
+        let asked_so_far = self.run.progress.ask(goals.len() as u64);
+        let answers = self.planner.plan_layer(&from, &to);
+        self.run.progress.answered_up_to(asked_so_far);
+        Ok(goals
+            .iter()
+            .zip(answers?)
+            .map(|(&j, answer)| self.keep_layer_answer(sources, j, answer))
+            .collect())
+    }
+
+    /// Caches a layer search's answer for goal `j` as the pair from its source (unless
+    /// that pair is planned already at no higher cost); the source's index when it
+    /// reached `j`.
+    fn keep_layer_answer(
+        &mut self,
+        sources: &[(usize, f64)],
+        j: usize,
+        answer: LayerOutcome,
+    ) -> Option<usize> {
+        let i = sources.get(answer.source).map_or(j, |s| s.0);
+        let reached = answer.outcome.exact_path().is_some();
+        let cost = answer
+            .outcome
+            .exact_path()
+            .map_or(f64::INFINITY, |p| p.cost);
+        let cheaper = self
+            .cache
+            .get(&(i, j))
+            .is_none_or(|known| cost < known.cost);
+        if i != j && cheaper {
+            self.stats.paths_planned += 1;
+            let planned = Arc::new(PlannedPath {
+                outcome: answer.outcome,
+                cost,
+            });
+            if self.symmetric {
+                self.store(j, i, Arc::new(planned.reversed()));
+            }
+            self.store(i, j, planned);
+        }
+        reached.then_some(i)
     }
 
     /// Plans every pair of `pairs` not planned yet: when the planner searches rows side
@@ -425,6 +506,21 @@ impl PathOracle {
         self.planner.prove_unreachable(&a, &b, effort)
     }
 
+    /// [`prove_unreachable`](Self::prove_unreachable) for each pair `(i, j)` of
+    /// `pairs`, side by side where the planner can
+    /// ([`PointToPointPlanner::prove_each_unreachable`]); nothing is cached.
+    pub fn prove_each_unreachable(
+        &mut self,
+        pairs: &[(usize, usize)],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let poses: Vec<(Pose2, Pose2)> = pairs
+            .iter()
+            .map(|&(i, j)| (self.poses[i], self.poses[j]))
+            .collect();
+        self.planner.prove_each_unreachable(&poses, effort)
+    }
+
     /// Asks the planner to prove, within `effort`, for each pose of `js` that no path
     /// leads from pose `i` to it, with one search
     /// ([`PointToPointPlanner::prove_unreachable_from`]); nothing is cached.
@@ -505,6 +601,18 @@ impl PathCosts for PathOracle {
 
     fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
         PathOracle::plan_pairs(self, pairs)
+    }
+
+    fn answers_layers(&self) -> bool {
+        PathOracle::answers_layers(self)
+    }
+
+    fn plan_layer(
+        &mut self,
+        sources: &[(usize, f64)],
+        goals: &[usize],
+    ) -> Result<Vec<Option<usize>>> {
+        PathOracle::plan_layer(self, sources, goals)
     }
 }
 

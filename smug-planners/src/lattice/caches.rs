@@ -21,6 +21,13 @@ const HEURISTIC_BYTES: usize = 64 << 20;
 /// Bytes of shot tables kept (on lunar about half a megabyte per goal).
 const SHOT_BYTES: usize = 96 << 20;
 
+/// How many starts' curves onto the lattice are kept.
+const JOINS_KEPT: usize = 4096;
+
+/// A start's curves onto the lattice: the lattice pose, the cost, and whether the curve
+/// reverses.
+pub(crate) type Joins = Vec<(StateId, f64, bool)>;
+
 /// How many proofs of unreachable goals are kept.
 const PROOFS_KEPT: usize = 8;
 
@@ -48,6 +55,10 @@ pub(crate) struct Caches {
     heuristics: Mutex<LruCache<Vec<u64>, Arc<Vec<f32>>>>,
     /// Proofs of unreachable goals from recent exhausted searches, the latest last.
     proofs: Mutex<Vec<KeptProof>>,
+    /// The curves onto the lattice of recent starts (by their poses as bits): a PoI
+    /// is a search's start several times in a mission (its dead-end probe, its
+    /// sequencing row, its DP layer).
+    joins: Mutex<LruCache<[u64; 3], Arc<Joins>>>,
 }
 
 impl Caches {
@@ -64,7 +75,20 @@ impl Caches {
                 HEURISTIC_BYTES / (4 * lattice.points().max(1)),
             ))),
             proofs: Mutex::new(Vec::new()),
+            joins: Mutex::new(LruCache::new(at_least_two(JOINS_KEPT))),
         }
+    }
+
+    /// The curves onto the lattice of `start`: the ones kept, or new ones from `make`
+    /// (then kept).
+    pub(crate) fn joins(&self, start: &Pose2, make: impl FnOnce() -> Joins) -> Arc<Joins> {
+        let key = pose_bits(start);
+        if let Some(kept) = self.joins.lock().expect("joins cache").get(&key) {
+            return kept.clone();
+        }
+        let made = Arc::new(make());
+        let mut kept = self.joins.lock().expect("joins cache");
+        kept.get_or_insert(key, || made).clone()
     }
 
     /// A pose's validity, if known.

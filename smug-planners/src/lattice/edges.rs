@@ -61,6 +61,12 @@ impl Worker<'_> {
         h
     }
 
+    /// [`Self::start_successors`] of `start`, kept across searches.
+    pub(super) fn joins_of(&mut self, start: &Pose2) -> Arc<super::caches::Joins> {
+        let sh = self.sh;
+        sh.caches.joins(start, || self.start_successors(start))
+    }
+
     /// The lattice poses the start joins with the model's curves (one gear, no loops),
     /// valid, with their costs: the poses around it with headings near its own; for a
     /// start hemmed in there (a car facing a stone, its back to another), poses of any

@@ -2,7 +2,7 @@
 //! goals left and its queue re-keyed, so it stops expanding towards settled goals.
 
 use super::queue::{Entry, Item};
-use super::search::{Run, Worker};
+use super::search::{is_source, Run, Worker};
 
 /// A search with goals left re-aims its heuristic at them whenever at most this
 /// many are left (and whenever half of those aimed at are settled).
@@ -54,11 +54,14 @@ impl Worker<'_> {
         let Item::Node { id, g, .. } = entry.item else {
             return false;
         };
+        if is_source(id) {
+            return false; // keyed at its offset alone, under any focus
+        }
         let h = self.heuristic(id, &run.aimed, run.h2d.as_deref());
         if h.is_infinite() {
             return true;
         }
-        let key = g + self.sh.params.heuristic_weight * h;
+        let key = g + self.weight * h;
         debug_assert!(key >= entry.key, "a refocused key never falls");
         let mut item = entry.item;
         if let Item::Node { focus, .. } = &mut item {

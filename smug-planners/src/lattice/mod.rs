@@ -26,6 +26,7 @@ mod caches;
 mod edges;
 mod focus;
 mod heuristic;
+mod layer;
 mod primitives;
 mod prove;
 mod queue;
@@ -43,8 +44,9 @@ pub use shots::sideways_bound;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use smug_core::{
-    BuildContext, Error, MotionValidator, NoPathReason, Objective, PlannerOutcome, PlannerStats,
-    PointToPointPlanner, Pose2, Result, StateSpace, StateValidityChecker, TimeBreakdown,
+    BuildContext, Error, LayerOutcome, MotionValidator, NoPathReason, Objective, PlannerOutcome,
+    PlannerStats, PointToPointPlanner, Pose2, Result, StateSpace, StateValidityChecker,
+    TimeBreakdown,
 };
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
@@ -75,6 +77,11 @@ pub struct LatticeParams {
     /// weighted A*, paths at most this factor dearer than the lattice's optimum, found
     /// with fewer expansions).
     pub heuristic_weight: f64,
+    /// The heuristic's weight in the searches of a sequencing matrix's rows (≥ 1):
+    /// their costs only order the targets (a path of theirs serves a route only where
+    /// the PoI selection finds none cheaper), so they may trade a few per cent of cost
+    /// for far fewer expansions.
+    pub order_heuristic_weight: f64,
     /// Shortcut every path found with the model's curves (the cost never rises).
     pub shortcut: bool,
     /// Smooth every path found: rounds of shortcutting and corner cutting with the
@@ -95,6 +102,7 @@ impl Default for LatticeParams {
             time_limit: 30.0,
             obstacle_heuristic: true,
             heuristic_weight: 1.0,
+            order_heuristic_weight: 1.0,
             shortcut: true,
             smooth: true,
         }
@@ -297,11 +305,22 @@ impl LatticePlanner {
         pool: &Mutex<Vec<buffers::Searcher>>,
         work: impl FnOnce(&mut search::Worker<'_>) -> R,
     ) -> (R, Counts) {
+        Self::with_weighted_searcher(shared, pool, shared.params.heuristic_weight, work)
+    }
+
+    /// [`Self::with_searcher`] with the heuristic weighted by `weight`.
+    fn with_weighted_searcher<R>(
+        shared: &Shared,
+        pool: &Mutex<Vec<buffers::Searcher>>,
+        weight: f64,
+        work: impl FnOnce(&mut search::Worker<'_>) -> R,
+    ) -> (R, Counts) {
         let idle = pool.lock().expect("searcher pool").pop();
         let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
         let result = work(&mut search::Worker {
             sh: shared,
             me: &mut searcher,
+            weight,
         });
         let counts = std::mem::take(&mut searcher.counts);
         pool.lock().expect("searcher pool").push(searcher);
@@ -317,7 +336,20 @@ impl LatticePlanner {
         goals: &[Pose2],
         max_expansions: u64,
     ) -> (search::Answers, Counts) {
-        Self::with_searcher(shared, pool, |worker| {
+        let weight = shared.params.heuristic_weight;
+        Self::weighted_search_with_pool(shared, pool, weight, start, goals, max_expansions)
+    }
+
+    /// [`Self::search_with_pool`] with the heuristic weighted by `weight`.
+    fn weighted_search_with_pool(
+        shared: &Shared,
+        pool: &Mutex<Vec<buffers::Searcher>>,
+        weight: f64,
+        start: &Pose2,
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) -> (search::Answers, Counts) {
+        Self::with_weighted_searcher(shared, pool, weight, |worker| {
             worker.search(start, goals, max_expansions)
         })
     }
@@ -350,6 +382,34 @@ impl LatticePlanner {
         self.counts.add(&counts);
         self.last_costs = answers.costs;
         answers.outcomes
+    }
+
+    /// The rows' searches, the heuristic weighted by `weight`: side by side on rayon's
+    /// threads where the lattice allows, sharing the caches; each search's answer is
+    /// the same as alone (see module `caches`).
+    fn plan_rows_weighted(
+        &mut self,
+        rows: &[(Pose2, Vec<Pose2>)],
+        weight: f64,
+    ) -> Result<Vec<Vec<PlannerOutcome>>> {
+        let (shared, pool) = (&self.shared, &self.searchers);
+        let max = shared.params.max_expansions;
+        let search = |(start, goals): &(Pose2, Vec<Pose2>)| {
+            let answered = Self::weighted_search_with_pool(shared, pool, weight, start, goals, max);
+            shared.progress.answer(goals.len() as u64);
+            answered
+        };
+        let answered: Vec<(search::Answers, Counts)> =
+            if rows.len() < 2 || !self.plans_rows_side_by_side() {
+                rows.iter().map(search).collect()
+            } else {
+                rows.par_iter().with_max_len(1).map(search).collect()
+            };
+        self.counts.queries += rows
+            .iter()
+            .map(|(_, goals)| goals.len() as u64)
+            .sum::<u64>();
+        Ok(answered.into_iter().map(|a| self.record(a)).collect())
     }
 
     /// The search's costs of the last query's paths before shortcutting, one per goal
@@ -413,6 +473,12 @@ fn check_params(p: &LatticeParams) -> Result<()> {
             format!("must be finite and ≥ 1, got {}", p.heuristic_weight),
         ));
     }
+    if !(p.order_heuristic_weight.is_finite() && p.order_heuristic_weight >= 1.0) {
+        return Err(invalid(
+            "planner.params.order_heuristic_weight",
+            format!("must be finite and ≥ 1, got {}", p.order_heuristic_weight),
+        ));
+    }
     if p.time_limit.is_nan() || p.time_limit <= 0.0 {
         return Err(invalid(
             "planner.params.time_limit",
@@ -451,29 +517,38 @@ impl PointToPointPlanner for LatticePlanner {
     /// The rows' searches run side by side on rayon's threads, sharing the caches;
     /// each search's answer is the same as alone (see module `caches`).
     fn plan_rows(&mut self, rows: &[(Pose2, Vec<Pose2>)]) -> Result<Vec<Vec<PlannerOutcome>>> {
-        if rows.len() < 2 || !self.plans_rows_side_by_side() {
-            return rows.iter().map(|(s, g)| self.plan_many(s, g)).collect();
-        }
-        let (shared, pool) = (&self.shared, &self.searchers);
-        let max = shared.params.max_expansions;
-        let answered: Vec<(search::Answers, Counts)> = rows
-            .par_iter()
-            .with_max_len(1)
-            .map(|(start, goals)| {
-                let answered = Self::search_with_pool(shared, pool, start, goals, max);
-                shared.progress.answer(goals.len() as u64);
-                answered
-            })
-            .collect();
-        self.counts.queries += rows
-            .iter()
-            .map(|(_, goals)| goals.len() as u64)
-            .sum::<u64>();
-        Ok(answered.into_iter().map(|a| self.record(a)).collect())
+        self.plan_rows_weighted(rows, self.shared.params.heuristic_weight)
+    }
+
+    /// [`Self::plan_rows`] with the heuristic weighted by `order_heuristic_weight`.
+    fn plan_order_rows(
+        &mut self,
+        rows: &[(Pose2, Vec<Pose2>)],
+    ) -> Result<Vec<Vec<PlannerOutcome>>> {
+        self.plan_rows_weighted(rows, self.shared.params.order_heuristic_weight)
     }
 
     fn answers_many(&self) -> bool {
         true
+    }
+
+    fn answers_layers(&self) -> bool {
+        true
+    }
+
+    /// One search from every source at once (module `layer`).
+    fn plan_layer(
+        &mut self,
+        sources: &[(Pose2, f64)],
+        goals: &[Pose2],
+    ) -> Result<Vec<LayerOutcome>> {
+        self.counts.queries += goals.len() as u64;
+        let max = self.shared.params.max_expansions;
+        let (answers, counts) = Self::with_searcher(&self.shared, &self.searchers, |worker| {
+            worker.search_layer(sources, goals, max)
+        });
+        self.counts.add(&counts);
+        Ok(answers)
     }
 
     fn plans_rows_side_by_side(&self) -> bool {
@@ -492,6 +567,37 @@ impl PointToPointPlanner for LatticePlanner {
     ) -> Result<Option<NoPathReason>> {
         let outcome = self.search(start, std::slice::from_ref(goal), effort.max(1));
         Ok(outcome[0].no_path_reason().filter(NoPathReason::is_proved))
+    }
+
+    /// The pairs' searches run side by side, as rows do ([`Self::plan_rows`]).
+    fn prove_each_unreachable(
+        &mut self,
+        pairs: &[(Pose2, Pose2)],
+        effort: u64,
+    ) -> Result<Vec<Option<NoPathReason>>> {
+        let (shared, pool) = (&self.shared, &self.searchers);
+        let search = |(start, goal): &(Pose2, Pose2)| {
+            let goals = std::slice::from_ref(goal);
+            let (answers, counts) =
+                Self::search_with_pool(shared, pool, start, goals, effort.max(1));
+            let proof = answers.outcomes[0]
+                .no_path_reason()
+                .filter(NoPathReason::is_proved);
+            (proof, counts)
+        };
+        let proved: Vec<(Option<NoPathReason>, Counts)> =
+            if pairs.len() < 2 || !self.plans_rows_side_by_side() {
+                pairs.iter().map(search).collect()
+            } else {
+                pairs.par_iter().with_max_len(1).map(search).collect()
+            };
+        Ok(proved
+            .into_iter()
+            .map(|(proof, counts)| {
+                self.counts.add(&counts);
+                proof
+            })
+            .collect())
     }
 
     fn prove_unreachable_from(

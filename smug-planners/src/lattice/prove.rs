@@ -5,7 +5,7 @@
 //! proved.
 
 use super::caches::insert;
-use super::search::{End, Run, Worker, START};
+use super::search::{source_id, End, Run, Worker};
 use smug_core::{NoPathReason, Pose2, Proof};
 use std::sync::Arc;
 use std::time::Instant;
@@ -29,7 +29,7 @@ impl Worker<'_> {
         }
         let (asked, index) = self.asked_goals(start, goals, |_, _| {});
         if !asked.is_empty() {
-            let (reached, end) = self.run(start, asked, max_expansions);
+            let (reached, end) = self.run(&[(*start, 0.0)], asked, max_expansions);
             let exhausted = matches!(end, End::Exhausted);
             for (goal, k) in reached.into_iter().zip(index) {
                 if goal.reached.is_none() && (exhausted || goal.proved_out) {
@@ -42,12 +42,16 @@ impl Worker<'_> {
     }
 
     /// Marks the goals an earlier exhausted search proved unreachable from every
-    /// lattice pose the start joins (and that no direct shot from the start reaches):
+    /// lattice pose the sources join (and that no direct shot from a source reaches):
     /// everything this search can reach, that one reached, and it found no way to
     /// them. The search still orders its expansions by every goal (so its answers for
     /// the others are the same), it only stops without waiting for these.
-    pub(super) fn apply_kept_proofs(&mut self, start: &Pose2, run: &mut Run) {
-        let joined: Vec<u32> = run.joins.iter().map(|j| j.0).collect();
+    pub(super) fn apply_kept_proofs(&mut self, run: &mut Run) {
+        let joined: Vec<u32> = run
+            .sources
+            .iter()
+            .flat_map(|s| s.joins.iter().map(|j| j.0))
+            .collect();
         if joined.is_empty() {
             return;
         }
@@ -56,8 +60,11 @@ impl Worker<'_> {
             if !self.sh.caches.proved_unreachable(&joined, &pose) {
                 continue;
             }
-            let direct = start.xy_distance(&pose) <= self.sh.shot_radius
-                && self.shot_valid(START, start, &pose, &run.goals[k].shots);
+            let direct = (0..run.sources.len()).any(|s| {
+                let from = run.sources[s].pose;
+                from.xy_distance(&pose) <= self.sh.shot_radius
+                    && self.shot_valid(source_id(s), &from, &pose, &run.goals[k].shots)
+            });
             if !direct {
                 run.goals[k].proved_out = true;
                 run.open_goals -= 1;

@@ -3,15 +3,44 @@
 //! analytic shots, caches of state and primitive validity kept across queries.
 
 use super::buffers::{Node, Searcher};
-use super::caches::{holds, ShotTable};
+use super::caches::{holds, Joins, ShotTable};
 use super::queue::{BucketQueue, Entry, Item};
 use super::Shared;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
 use std::sync::Arc;
 use std::time::Instant;
 
-/// The start's node id (lattice poses are `0..len`).
+/// The start's node id (lattice poses are `0..len`): the first source's.
 pub(super) const START: u32 = u32::MAX;
+
+/// Sources one search may have at most ([`source_id`]).
+pub(super) const MAX_SOURCES: usize = 4096;
+
+/// The node id of a search's source `s` (`s < MAX_SOURCES`): ids down from [`START`],
+/// above every lattice pose's (at most `MAX_STATES`).
+pub(super) fn source_id(s: usize) -> u32 {
+    START - s as u32
+}
+
+/// Which source a node id is, if it is one.
+pub(super) fn source_of(id: u32) -> Option<usize> {
+    let s = (START - id) as usize;
+    (s < MAX_SOURCES).then_some(s)
+}
+
+/// Whether a node id is a source's (off the lattice).
+pub(super) fn is_source(id: u32) -> bool {
+    source_of(id).is_some()
+}
+
+/// One of a search's sources: a pose off the lattice, the cost already paid to be
+/// there (a DP layer's value; 0 for a plain start), and its curves onto the lattice
+/// (taken when it is expanded).
+pub(super) struct Source {
+    pub(super) pose: Pose2,
+    pub(super) offset: f64,
+    pub(super) joins: Arc<Joins>,
+}
 
 /// How wide the queue's buckets are, in lattice cells (of path cost at `w_t` = 1).
 const QUEUE_BUCKET_CELLS: f64 = 1.0 / 32.0;
@@ -26,7 +55,8 @@ pub(super) struct Goal {
     pub(super) pose: Pose2,
     /// The sine and cosine of its heading.
     pub(super) dir: (f64, f64),
-    /// Settled: the search's cost and the lattice pose (or start) its shot leaves from.
+    /// Settled: the search's cost (its source's offset included) and the lattice pose
+    /// (or source) its shot leaves from.
     pub(super) reached: Option<(f64, u32)>,
     /// Proved unreachable before the search (by an earlier search's exhaustion): the
     /// search does not wait for it.
@@ -51,8 +81,8 @@ pub(super) struct Run {
     pub(super) h2d: Option<Arc<Vec<f32>>>,
     /// The goals the heuristic aims at: those not settled when it was last focused.
     pub(super) aimed: Vec<Pose2>,
-    /// The start's curves onto the lattice (taken when the start is expanded).
-    pub(super) joins: Vec<(u32, f64, bool)>,
+    /// The sources (one for a plain search from a start).
+    pub(super) sources: Vec<Source>,
     /// How many times the heuristic was re-aimed (the focus of the keys computed now).
     pub(super) focus: u32,
     /// Lattice poses a kept proof shows no goal left can be reached from (a bitmap):
@@ -84,6 +114,9 @@ impl Run {
 pub(super) struct Worker<'a> {
     pub(super) sh: &'a Shared,
     pub(super) me: &'a mut Searcher,
+    /// The heuristic's weight in this worker's searches (`heuristic_weight`, or
+    /// `order_heuristic_weight` for the rows of a matrix that only orders targets).
+    pub(super) weight: f64,
 }
 
 /// A search's answers: one outcome per goal, and the search's cost of each path
@@ -124,10 +157,10 @@ impl Worker<'_> {
             });
         });
         if !asked.is_empty() {
-            let (reached, end) = self.run(start, asked, max_expansions);
+            let (reached, end) = self.run(&[(*start, 0.0)], asked, max_expansions);
             for (goal, k) in reached.into_iter().zip(index) {
                 costs[k] = goal.reached.map(|(cost, _)| cost);
-                outcomes[k] = Some(self.outcome(start, &goal, &end));
+                outcomes[k] = Some(self.outcome(&[*start], &goal, &end).1);
             }
         }
         self.me.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
@@ -157,36 +190,42 @@ impl Worker<'_> {
                 answered(k, true);
             } else {
                 index.push(k);
-                asked.push(Goal {
-                    pose: *goal,
-                    dir: goal.yaw.sin_cos(),
-                    reached: None,
-                    proved_out: false,
-                    shots: self.sh.caches.shot_table(goal, || {
-                        ShotTable::new(&self.sh.lattice, goal, self.sh.shot_radius)
-                    }),
-                });
+                asked.push(self.goal(goal));
             }
         }
         (asked, index)
     }
 
-    /// The outcome for one goal once the search ended.
-    fn outcome(&self, start: &Pose2, goal: &Goal, end: &End) -> PlannerOutcome {
+    /// The outcome for one goal once the search from `sources` ended, with the source
+    /// its path leaves from (0 when it has none).
+    pub(super) fn outcome(
+        &self,
+        sources: &[Pose2],
+        goal: &Goal,
+        end: &End,
+    ) -> (usize, PlannerOutcome) {
         let Some((_, from)) = goal.reached else {
-            return PlannerOutcome::NoPath(match end {
+            let reason = match end {
                 End::Budget(b) => NoPathReason::BudgetSpent(*b),
                 _ => NoPathReason::Proved(Proof::Exhausted),
-            });
+            };
+            return (0, PlannerOutcome::NoPath(reason));
         };
         let mut states = vec![goal.pose];
         let mut at = from;
-        while at != START {
+        while !is_source(at) {
             states.push(self.sh.lattice.pose(at));
             at = self.me.buffers.nodes[at as usize].parent;
         }
-        states.push(*start);
+        let source = source_of(at).expect("a path leaves from a source");
+        states.push(sources[source]);
         states.reverse();
+        (source, self.finished(states))
+    }
+
+    /// The outcome of a lattice path's states: shortcut or smoothed as configured (the
+    /// cost never rises).
+    fn finished(&self, states: Vec<Pose2>) -> PlannerOutcome {
         let path = Path::new(states, self.sh.objective.as_ref());
         let (sh, params) = (self.sh, &self.sh.params);
         if !(params.shortcut || params.smooth) || path.states.len() <= 2 {
@@ -211,46 +250,55 @@ impl Worker<'_> {
         })
     }
 
-    /// The A* loop: settles the goals it reaches, ends when all are, when nothing is
-    /// left to expand, or when a budget runs out.
+    /// The A* loop from `sources` (each with the cost already paid there): settles the
+    /// goals it reaches, ends when all are, when nothing is left to expand, or when a
+    /// budget runs out.
     pub(super) fn run(
         &mut self,
-        start: &Pose2,
+        sources: &[(Pose2, f64)],
         goals: Vec<Goal>,
         max_expansions: u64,
     ) -> (Vec<Goal>, End) {
         self.me.buffers.next_generation();
         let open_goals = goals.len();
-        let joins = self.start_successors(start);
+        let sources = sources
+            .iter()
+            .map(|&(pose, offset)| Source {
+                pose,
+                offset,
+                joins: self.joins_of(&pose),
+            })
+            .collect();
         let mut run = Run {
             heap: BucketQueue::new(self.sh.lattice.cell * QUEUE_BUCKET_CELLS),
             goals,
             open_goals,
             h2d: None,
             aimed: Vec::new(),
-            joins,
+            sources,
             focus: 0,
             pruned: None,
             closed: Vec::new(),
         };
-        self.apply_kept_proofs(start, &mut run);
+        self.apply_kept_proofs(&mut run);
         if run.open_goals == 0 {
             return (run.goals, End::AllReached);
         }
         run.pruned = self.proof_bound(&run);
         self.aim(&mut run);
-        run.push(
-            0.0,
-            Item::Node {
-                id: START,
-                parent: START,
-                g: 0.0,
+        for s in 0..run.sources.len() {
+            let (id, offset) = (source_id(s), run.sources[s].offset);
+            let item = Item::Node {
+                id,
+                parent: id,
+                g: offset,
                 prim: 0,
                 reverse: false,
                 verified: true,
                 focus: 0,
-            },
-        );
+            };
+            run.push(offset, item);
+        }
         let started = Instant::now();
         let max = match max_expansions {
             0 => u64::MAX,
@@ -287,16 +335,16 @@ impl Worker<'_> {
                         continue;
                     }
                     if self.close(id, parent, g, reverse) {
-                        if id != START {
+                        if !is_source(id) {
                             run.closed.push(id);
                         }
                         expansions += 1;
                         self.me.counts.expansions += 1;
-                        self.expand(start, id, g, &mut run);
+                        self.expand(id, g, &mut run);
                     }
                 }
                 Item::Shot { from, goal, costed } => {
-                    self.try_shot(start, from, goal as usize, costed, entry.key, &mut run);
+                    self.try_shot(from, goal as usize, costed, entry.key, &mut run);
                     if run.open_goals == 0 {
                         return (run.goals, End::AllReached);
                     }
@@ -324,13 +372,13 @@ impl Worker<'_> {
         else {
             return;
         };
-        if *id == START {
+        if is_source(*id) {
             return;
         }
         let stride = self.sh.primitives.stride;
         super::buffers::prefetch(&self.me.buffers.nodes[*id as usize]);
         self.sh.caches.prefetch_edge(*id as usize * stride);
-        if !verified && *parent != START {
+        if !verified && !is_source(*parent) {
             self.sh
                 .caches
                 .prefetch_edge(*parent as usize * stride + *prim as usize);
@@ -340,8 +388,8 @@ impl Worker<'_> {
     /// Closes a popped node (its cost and parent final); false when it was already
     /// closed, or a cheaper way to it is known.
     fn close(&mut self, id: u32, parent: u32, g: f64, reverse: bool) -> bool {
-        if id == START {
-            return true;
+        if is_source(id) {
+            return true; // queued once
         }
         let b = &mut self.me.buffers;
         let i = id as usize;
@@ -383,29 +431,29 @@ impl Worker<'_> {
         if reverse {
             step *= self.sh.params.reverse_penalty;
         }
-        if parent != START && self.me.buffers.nodes[parent as usize].gear != reverse as u8 {
+        if !is_source(parent) && self.me.buffers.nodes[parent as usize].gear != reverse as u8 {
             step += self.sh.params.gear_change_cost;
         }
         step
     }
 
-    fn pose_of(&self, start: &Pose2, id: u32) -> Pose2 {
-        if id == START {
-            *start
-        } else {
-            self.sh.lattice.pose(id)
+    /// The pose of a node of `run`: a source's or a lattice pose.
+    fn pose_of(&self, run: &Run, id: u32) -> Pose2 {
+        match source_of(id) {
+            Some(s) => run.sources[s].pose,
+            None => self.sh.lattice.pose(id),
         }
     }
 
-    /// Pushes the shots from `id` to the goals near it (from the start: to every goal,
+    /// Pushes the shots from `id` to the goals near it (from a source: to every goal,
     /// however far, as Hybrid A*'s analytic expansion: the model's own curve is often
     /// the way) and relaxes its successors.
-    fn expand(&mut self, start: &Pose2, id: u32, g: f64, run: &mut Run) {
-        let pose = self.pose_of(start, id);
+    fn expand(&mut self, id: u32, g: f64, run: &mut Run) {
+        let pose = self.pose_of(run, id);
         let mut dir = None;
         for j in 0..run.goals.len() {
             let goal = &run.goals[j];
-            let near = id == START || pose.xy_distance(&goal.pose) <= self.sh.shot_radius;
+            let near = is_source(id) || pose.xy_distance(&goal.pose) <= self.sh.shot_radius;
             if goal.reached.is_none() && near {
                 let dir = *dir.get_or_insert_with(|| pose.yaw.sin_cos());
                 let bound = self.shot_bound((&pose, dir), (&goal.pose, goal.dir));
@@ -419,10 +467,11 @@ impl Worker<'_> {
                 }
             }
         }
-        if id == START {
-            for (to, cost, reverse) in std::mem::take(&mut run.joins) {
-                let ng = g + self.step_cost(START, cost, reverse);
-                self.queue(run, to, START, ng, 0, reverse, true);
+        if let Some(s) = source_of(id) {
+            let joins = std::mem::take(&mut run.sources[s].joins);
+            for &(to, cost, reverse) in joins.iter() {
+                let ng = g + self.step_cost(id, cost, reverse);
+                self.queue(run, to, id, ng, 0, reverse, true);
             }
             return;
         }
@@ -496,7 +545,7 @@ impl Worker<'_> {
             node.gear = reverse as u8;
         }
         run.push(
-            g + self.sh.params.heuristic_weight * h,
+            g + self.weight * h,
             Item::Node {
                 id: to,
                 parent,
@@ -511,24 +560,15 @@ impl Worker<'_> {
 
     /// Costs a shot when first popped (pushed again at its cost), checks it when popped
     /// at its cost; a valid shot settles its goal.
-    fn try_shot(
-        &mut self,
-        start: &Pose2,
-        from: u32,
-        goal: usize,
-        costed: bool,
-        key: f64,
-        run: &mut Run,
-    ) {
+    fn try_shot(&mut self, from: u32, goal: usize, costed: bool, key: f64, run: &mut Run) {
         if run.goals[goal].reached.is_some() {
             return;
         }
-        let pose = self.pose_of(start, from);
+        let pose = self.pose_of(run, from);
         let target = run.goals[goal].pose;
-        let g = if from == START {
-            0.0
-        } else {
-            self.me.buffers.nodes[from as usize].g
+        let g = match source_of(from) {
+            Some(s) => run.sources[s].offset,
+            None => self.me.buffers.nodes[from as usize].g,
         };
         if !costed {
             let cost = self.shot_cost_below(from, &pose, &target, &run.goals[goal].shots);

@@ -8,7 +8,7 @@
 //! shot settles it is the objective's own, solved again.
 
 use super::caches::{known, record, ShotTable, UNKNOWN_COST};
-use super::search::{Worker, START};
+use super::search::{is_source, Worker};
 use smug_core::pose::angle_distance;
 use smug_core::Pose2;
 use std::sync::atomic::Ordering::Relaxed;
@@ -50,9 +50,9 @@ pub fn sideways_bound(radius: f64, a: (&Pose2, (f64, f64)), b: (&Pose2, (f64, f6
 
 impl Worker<'_> {
     /// The slot of the shot from `from` in the goal's table `shots`: none from the
-    /// start (off the lattice) or from beyond the table's box.
+    /// source (off the lattice) or from beyond the table's box.
     fn shot_slot(&self, from: u32, shots: &ShotTable) -> Option<usize> {
-        (from != START)
+        (!is_source(from))
             .then(|| shots.slot(&self.sh.lattice, from))
             .flatten()
     }

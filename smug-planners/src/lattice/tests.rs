@@ -63,6 +63,20 @@ fn bad_parameters_name_their_key() {
             },
             "time_limit",
         ),
+        (
+            LatticeParams {
+                order_heuristic_weight: 0.9,
+                ..Default::default()
+            },
+            "order_heuristic_weight",
+        ),
+        (
+            LatticeParams {
+                order_heuristic_weight: f64::NAN,
+                ..Default::default()
+            },
+            "order_heuristic_weight",
+        ),
     ];
     for (params, key) in cases {
         let message = check_params(&params).unwrap_err().to_string();

@@ -1,0 +1,75 @@
+//! A DP layer in one search: many sources, each with the cost already paid to be
+//! there, to a set of goals; each goal settles at the least offset plus path cost
+//! over all sources (the multi-source form of the one-to-many search).
+
+use super::search::Worker;
+use super::search::{Goal, MAX_SOURCES};
+use smug_core::{LayerOutcome, PlannerOutcome, Pose2};
+use std::time::Instant;
+
+impl Worker<'_> {
+    /// One search from every valid source of `sources` to every goal, of at most
+    /// `max_expansions` expansions (0: as many as the lattice has). A source's offset
+    /// is the cost its node starts at, so a goal settles at `min_s offset_s + c(s, goal)`
+    /// on the lattice, as the least of one search per source would give (the path from
+    /// the winning source is then shortcut as every path is).
+    pub(super) fn search_layer(
+        &mut self,
+        sources: &[(Pose2, f64)],
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) -> Vec<LayerOutcome> {
+        let started = Instant::now();
+        self.me.counts.searches += 1;
+        let valid: Vec<usize> = (0..sources.len().min(MAX_SOURCES))
+            .filter(|&s| sources[s].1.is_finite() && self.sh.states.is_valid(&sources[s].0))
+            .collect();
+        let mut answers = vec![
+            LayerOutcome {
+                source: 0,
+                outcome: PlannerOutcome::InvalidStart,
+            };
+            goals.len()
+        ];
+        if valid.is_empty() {
+            return answers;
+        }
+        let mut asked = Vec::new();
+        let mut index = Vec::new();
+        for (k, goal) in goals.iter().enumerate() {
+            if self.sh.states.is_valid(goal) {
+                index.push(k);
+                asked.push(self.goal(goal));
+            } else {
+                answers[k].outcome = PlannerOutcome::InvalidGoal;
+            }
+        }
+        if !asked.is_empty() {
+            let searched: Vec<(Pose2, f64)> = valid.iter().map(|&s| sources[s]).collect();
+            let poses: Vec<Pose2> = searched.iter().map(|s| s.0).collect();
+            let (reached, end) = self.run(&searched, asked, max_expansions);
+            for (goal, k) in reached.iter().zip(index) {
+                let (s, outcome) = self.outcome(&poses, goal, &end);
+                answers[k] = LayerOutcome {
+                    source: valid[s],
+                    outcome,
+                };
+            }
+        }
+        self.me.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
+        answers
+    }
+
+    /// A goal of a search, its shot table shared with every search to it.
+    pub(super) fn goal(&self, pose: &Pose2) -> Goal {
+        Goal {
+            pose: *pose,
+            dir: pose.yaw.sin_cos(),
+            reached: None,
+            proved_out: false,
+            shots: self.sh.caches.shot_table(pose, || {
+                super::caches::ShotTable::new(&self.sh.lattice, pose, self.sh.shot_radius)
+            }),
+        }
+    }
+}
