@@ -170,7 +170,7 @@ fn a_layer_search_equals_the_least_over_its_sources_of_searches_alone() {
         let mut layer = pipeline(&settings);
         let layer = layer.planner.as_mut().unwrap();
         assert!(layer.answers_layers());
-        let answers = layer.plan_layer(&sources, &goals).unwrap();
+        let answers = layer.plan_layer(&sources, &goals, &[]).unwrap();
         let mut alone = pipeline(&settings);
         let alone = alone.planner.as_mut().unwrap();
         let totals: Vec<Vec<f64>> = sources
@@ -194,6 +194,15 @@ fn a_layer_search_equals_the_least_over_its_sources_of_searches_alone() {
             winners.insert(answer.source);
         }
         assert!(winners.len() > 1, "{space}: one source won every goal");
+        // The next layer's search run ahead beside it changes no answer.
+        let mut ahead = pipeline(&settings);
+        let ahead = ahead.planner.as_mut().unwrap();
+        let next: Vec<Pose2> = sources.iter().map(|s| s.0).collect();
+        let with_next = ahead.plan_layer(&sources, &goals, &next).unwrap();
+        assert_eq!(
+            with_next, answers,
+            "{space}: the next layer changed the answers"
+        );
     }
 }
 

@@ -1,6 +1,7 @@
 //! The number of threads never changes a plan: the stages that run side by side
 //! (traversability and terrain grids, cost-matrix rows and DP layers of one-to-many
-//! searches, post-processing, the lattice's rows, the GTSP search's matrix copy,
+//! searches, post-processing, the lattice's rows, probes and DP layers run ahead,
+//! the GTSP search's matrix copy,
 //! cluster bounds and neighbours) give the plan one thread gives, bit for bit.
 
 use smug_core::{LoadedConfig, Pipeline, Plan, PlanOptions};
@@ -15,7 +16,7 @@ struct Case {
     set: &'static [&'static str],
 }
 
-const CASES: [Case; 5] = [
+const CASES: [Case; 6] = [
     // LazyPRM*'s one-to-many rows: the full matrix and the IDP layers.
     Case {
         config: "lunar.toml",
@@ -60,6 +61,12 @@ const CASES: [Case; 5] = [
     Case {
         config: "flat-dubins.toml",
         set: &[],
+    },
+    // The reversing rover on lunar: its PoIs' dead-end probes side by side, the
+    // matrix's order rows, and each DP layer's search with the next one run ahead.
+    Case {
+        config: "lunar-rover.toml",
+        set: &["world.params.targets=7"],
     },
 ];
 

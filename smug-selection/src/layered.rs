@@ -16,8 +16,9 @@ pub(crate) fn dp_by_layers(
     let mut values: Vec<f64> = vec![0.0];
     // back[l][b]: the position in layer l − 1 of the best predecessor of layer l's b.
     let mut back: Vec<Vec<usize>> = vec![Vec::new()];
-    for pair in layers.windows(2) {
+    for (l, pair) in layers.windows(2).enumerate() {
         let (from, to) = (&pair[0], &pair[1]);
+        let next = layers.get(l + 2).map_or(&[][..], Vec::as_slice);
         let sources: Vec<(usize, f64)> = from
             .iter()
             .zip(&values)
@@ -27,7 +28,7 @@ pub(crate) fn dp_by_layers(
         if sources.is_empty() {
             return Err(unreachable_error(oracle, problem));
         }
-        let best = oracle.plan_layer(&sources, to)?;
+        let best = oracle.plan_layer(&sources, to, next)?;
         let mut next = Vec::with_capacity(to.len());
         let mut links = Vec::with_capacity(to.len());
         for (&q, source) in to.iter().zip(best) {

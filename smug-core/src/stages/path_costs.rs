@@ -38,13 +38,17 @@ pub trait PathCosts {
     /// For each of `goals`: the `i` of `sources` (each `(i, offset)`, the cost already
     /// paid to be at `i`) from which the offset plus the path's cost is least, the pair
     /// `i → goal` then planned (its cost served by [`cost`](Self::cost)); `None` when
-    /// no source reaches the goal. The default plans every pair and compares the
-    /// costs (ties to the first source).
+    /// no source reaches the goal. `next`: the goals of the layer after this one
+    /// (empty for the last), which the planner may start on early; the answers do not
+    /// depend on it. The default plans every pair and compares the costs (ties to the
+    /// first source).
     fn plan_layer(
         &mut self,
         sources: &[(usize, f64)],
         goals: &[usize],
+        next: &[usize],
     ) -> Result<Vec<Option<usize>>> {
+        let _ = next;
         let rows: Vec<(usize, Vec<usize>)> =
             sources.iter().map(|&(i, _)| (i, goals.to_vec())).collect();
         self.plan_rows(&rows)?;

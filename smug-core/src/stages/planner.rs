@@ -256,13 +256,17 @@ pub trait PointToPointPlanner: Send + Sync {
     /// least (ties to the lowest index); a planner that shortcuts its paths after
     /// choosing may return a path cheaper than it chose by. A goal no source reaches
     /// gets source 0 and the first source's answer (`InvalidStart` when there are no
-    /// sources). The default plans from each source
+    /// sources). `next`: the layer after this one's goals (empty for the last), which
+    /// a planner may start on early (the lattice warms its caches with it beside this
+    /// search); the answers must not depend on it. The default plans from each source
     /// with [`plan_many`](Self::plan_many) and compares the paths' costs.
     fn plan_layer(
         &mut self,
         sources: &[(Pose2, f64)],
         goals: &[Pose2],
+        next: &[Pose2],
     ) -> Result<Vec<LayerOutcome>> {
+        let _ = next;
         let mut best: Vec<Option<(f64, LayerOutcome)>> = vec![None; goals.len()];
         for (s, (pose, offset)) in sources.iter().enumerate() {
             for (slot, outcome) in best.iter_mut().zip(self.plan_many(pose, goals)?) {

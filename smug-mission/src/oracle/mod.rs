@@ -326,17 +326,20 @@ impl PathOracle {
     /// cheaply, offset included ([`PointToPointPlanner::plan_layer`]); `None` when no
     /// source reaches it. The pair `i → goal` is cached as planned (a pair planned
     /// before keeps the cheaper path); a goal without a path is cached as unreachable
-    /// from the first source.
+    /// from the first source. `next`: the following layer's goals, which the planner
+    /// may start on early.
     pub fn plan_layer(
         &mut self,
         sources: &[(usize, f64)],
         goals: &[usize],
+        next: &[usize],
     ) -> Result<Vec<Option<usize>>> {
         refuse_after_deadline(&self.run.deadline)?;
         let from: Vec<(Pose2, f64)> = sources.iter().map(|&(i, o)| (self.poses[i], o)).collect();
         let to: Vec<Pose2> = goals.iter().map(|&j| self.poses[j]).collect();
+        let after: Vec<Pose2> = next.iter().map(|&j| self.poses[j]).collect();
         let asked_so_far = self.run.progress.ask(goals.len() as u64);
-        let answers = self.planner.plan_layer(&from, &to);
+        let answers = self.planner.plan_layer(&from, &to, &after);
         self.run.progress.answered_up_to(asked_so_far);
         Ok(goals
             .iter()
@@ -611,8 +614,9 @@ impl PathCosts for PathOracle {
         &mut self,
         sources: &[(usize, f64)],
         goals: &[usize],
+        next: &[usize],
     ) -> Result<Vec<Option<usize>>> {
-        PathOracle::plan_layer(self, sources, goals)
+        PathOracle::plan_layer(self, sources, goals, next)
     }
 }
 

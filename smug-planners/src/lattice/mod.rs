@@ -49,6 +49,7 @@ use smug_core::{
     TimeBreakdown,
 };
 use std::collections::BTreeMap;
+use std::sync::atomic::AtomicBool;
 use std::sync::{Arc, Mutex};
 
 /// Parameters of the `lattice` planner.
@@ -315,12 +316,24 @@ impl LatticePlanner {
         weight: f64,
         work: impl FnOnce(&mut search::Worker<'_>) -> R,
     ) -> (R, Counts) {
+        Self::with_stoppable_searcher(shared, pool, weight, None, work)
+    }
+
+    /// [`Self::with_weighted_searcher`] whose search stops once `stop` is set.
+    fn with_stoppable_searcher<R>(
+        shared: &Shared,
+        pool: &Mutex<Vec<buffers::Searcher>>,
+        weight: f64,
+        stop: Option<&AtomicBool>,
+        work: impl FnOnce(&mut search::Worker<'_>) -> R,
+    ) -> (R, Counts) {
         let idle = pool.lock().expect("searcher pool").pop();
         let mut searcher = idle.unwrap_or_else(|| buffers::Searcher::new(shared.lattice.len()));
         let result = work(&mut search::Worker {
             sh: shared,
             me: &mut searcher,
             weight,
+            stop,
         });
         let counts = std::mem::take(&mut searcher.counts);
         pool.lock().expect("searcher pool").push(searcher);
@@ -394,22 +407,30 @@ impl LatticePlanner {
     ) -> Result<Vec<Vec<PlannerOutcome>>> {
         let (shared, pool) = (&self.shared, &self.searchers);
         let max = shared.params.max_expansions;
-        let search = |(start, goals): &(Pose2, Vec<Pose2>)| {
+        let answered = self.side_by_side(rows, |(start, goals)| {
             let answered = Self::weighted_search_with_pool(shared, pool, weight, start, goals, max);
             shared.progress.answer(goals.len() as u64);
             answered
-        };
-        let answered: Vec<(search::Answers, Counts)> =
-            if rows.len() < 2 || !self.plans_rows_side_by_side() {
-                rows.iter().map(search).collect()
-            } else {
-                rows.par_iter().with_max_len(1).map(search).collect()
-            };
+        });
         self.counts.queries += rows
             .iter()
             .map(|(_, goals)| goals.len() as u64)
             .sum::<u64>();
         Ok(answered.into_iter().map(|a| self.record(a)).collect())
+    }
+
+    /// `work` on each of `items`, side by side on rayon's threads when there are two or
+    /// more and the lattice allows (see [`MAX_PARALLEL_STATES`]), the results in order.
+    fn side_by_side<T: Sync, R: Send>(
+        &self,
+        items: &[T],
+        work: impl Fn(&T) -> R + Sync + Send,
+    ) -> Vec<R> {
+        if items.len() < 2 || !self.plans_rows_side_by_side() {
+            items.iter().map(work).collect()
+        } else {
+            items.par_iter().with_max_len(1).map(work).collect()
+        }
     }
 
     /// The search's costs of the last query's paths before shortcutting, one per goal
@@ -536,18 +557,43 @@ impl PointToPointPlanner for LatticePlanner {
         true
     }
 
-    /// One search from every source at once (module `layer`).
+    /// One search from every source at once (module `layer`); beside it, where rows
+    /// run side by side, the next layer's search from `goals` (at offset 0: their
+    /// values are not known yet) runs until this one ends, only to fill the caches the
+    /// next layer's own search will read (state, primitive and shot validity, the
+    /// goals' heuristics, the starts' curves). The caches hold pure functions of the
+    /// world, so the answers are the same as without it (`tests/threads.rs`); the next
+    /// search runs warm (on lunar a layer searched warm takes a third of the time).
     fn plan_layer(
         &mut self,
         sources: &[(Pose2, f64)],
         goals: &[Pose2],
+        next: &[Pose2],
     ) -> Result<Vec<LayerOutcome>> {
         self.counts.queries += goals.len() as u64;
-        let max = self.shared.params.max_expansions;
-        let (answers, counts) = Self::with_searcher(&self.shared, &self.searchers, |worker| {
-            worker.search_layer(sources, goals, max)
-        });
+        let (shared, pool) = (&self.shared, &self.searchers);
+        let max = shared.params.max_expansions;
+        let weight = shared.params.heuristic_weight;
+        let layer = || Self::with_searcher(shared, pool, |w| w.search_layer(sources, goals, max));
+        let ((answers, counts), ahead) = if next.is_empty() || !self.plans_rows_side_by_side() {
+            (layer(), Counts::default())
+        } else {
+            let stop = AtomicBool::new(false);
+            let starts: Vec<(Pose2, f64)> = goals.iter().map(|&g| (g, 0.0)).collect();
+            rayon::join(
+                || {
+                    let answered = layer();
+                    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                    answered
+                },
+                || {
+                    let ahead = |w: &mut search::Worker<'_>| w.search_layer(&starts, next, max);
+                    Self::with_stoppable_searcher(shared, pool, weight, Some(&stop), ahead).1
+                },
+            )
+        };
         self.counts.add(&counts);
+        self.counts.add(&ahead);
         Ok(answers)
     }
 
@@ -569,28 +615,20 @@ impl PointToPointPlanner for LatticePlanner {
         Ok(outcome[0].no_path_reason().filter(NoPathReason::is_proved))
     }
 
-    /// The pairs' searches run side by side, as rows do ([`Self::plan_rows`]).
+    /// The pairs' proving searches (no path is built) run side by side, as rows do
+    /// ([`Self::plan_rows`]).
     fn prove_each_unreachable(
         &mut self,
         pairs: &[(Pose2, Pose2)],
         effort: u64,
     ) -> Result<Vec<Option<NoPathReason>>> {
         let (shared, pool) = (&self.shared, &self.searchers);
-        let search = |(start, goal): &(Pose2, Pose2)| {
-            let goals = std::slice::from_ref(goal);
-            let (answers, counts) =
-                Self::search_with_pool(shared, pool, start, goals, effort.max(1));
-            let proof = answers.outcomes[0]
-                .no_path_reason()
-                .filter(NoPathReason::is_proved);
-            (proof, counts)
-        };
-        let proved: Vec<(Option<NoPathReason>, Counts)> =
-            if pairs.len() < 2 || !self.plans_rows_side_by_side() {
-                pairs.iter().map(search).collect()
-            } else {
-                pairs.par_iter().with_max_len(1).map(search).collect()
-            };
+        let proved = self.side_by_side(pairs, |(start, goal)| {
+            let (mut proofs, counts) = Self::with_searcher(shared, pool, |worker| {
+                worker.prove(start, std::slice::from_ref(goal), effort.max(1))
+            });
+            (proofs.pop().flatten(), counts)
+        });
         Ok(proved
             .into_iter()
             .map(|(proof, counts)| {

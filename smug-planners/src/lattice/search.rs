@@ -7,6 +7,7 @@ use super::caches::{holds, Joins, ShotTable};
 use super::queue::{BucketQueue, Entry, Item};
 use super::Shared;
 use smug_core::{Budget, NoPathReason, Path, PlannerOutcome, Pose2, Proof};
+use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -117,6 +118,9 @@ pub(super) struct Worker<'a> {
     /// The heuristic's weight in this worker's searches (`heuristic_weight`, or
     /// `order_heuristic_weight` for the rows of a matrix that only orders targets).
     pub(super) weight: f64,
+    /// Set when this worker's search is no longer wanted (a search run ahead to warm
+    /// the caches, once the search it ran beside has ended): it stops as at a budget.
+    pub(super) stop: Option<&'a AtomicBool>,
 }
 
 /// A search's answers: one outcome per goal, and the search's cost of each path
@@ -314,7 +318,7 @@ impl Worker<'_> {
                 if started.elapsed().as_secs_f64() > self.sh.params.time_limit {
                     return (run.goals, End::Budget(Budget::Time));
                 }
-                if self.sh.deadline.passed() {
+                if self.sh.deadline.passed() || self.stopped() {
                     return (run.goals, End::Budget(Budget::Deadline));
                 }
             }
@@ -353,6 +357,11 @@ impl Worker<'_> {
         }
         self.keep_proof(&run);
         (run.goals, End::Exhausted)
+    }
+
+    /// Whether this worker was told to stop.
+    fn stopped(&self) -> bool {
+        self.stop.is_some_and(|stop| stop.load(Relaxed))
     }
 
     /// Fetches the data of the node entry that pops [`FETCH_AHEAD`] pops from now (its
