@@ -18,7 +18,7 @@ pub(crate) fn dp_by_layers(
     let mut back: Vec<Vec<usize>> = vec![Vec::new()];
     for (l, pair) in layers.windows(2).enumerate() {
         let (from, to) = (&pair[0], &pair[1]);
-        let next = layers.get(l + 2).map_or(&[][..], Vec::as_slice);
+        let after = layers.get(l + 2).map_or(&[][..], Vec::as_slice);
         let sources: Vec<(usize, f64)> = from
             .iter()
             .zip(&values)
@@ -28,7 +28,7 @@ pub(crate) fn dp_by_layers(
         if sources.is_empty() {
             return Err(unreachable_error(oracle, problem));
         }
-        let best = oracle.plan_layer(&sources, to, next)?;
+        let best = oracle.plan_layer(&sources, to, after)?;
         let mut next = Vec::with_capacity(to.len());
         let mut links = Vec::with_capacity(to.len());
         for (&q, source) in to.iter().zip(best) {

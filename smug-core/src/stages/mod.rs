@@ -17,8 +17,8 @@ pub use clusters::Clusters;
 pub use motion::{MotionCheck, MotionValidator};
 pub use path_costs::PathCosts;
 pub use planner::{
-    refuse_world_update, Budget, LayerOutcome, NoPathReason, NoRoadmap, PlannerOutcome,
-    PlannerStats, PointToPointPlanner, Proof,
+    plan_layer_by_sources, refuse_world_update, Budget, LayerOutcome, NoPathReason, NoRoadmap,
+    PlannerOutcome, PlannerStats, PointToPointPlanner, Proof,
 };
 pub use roadmap::{ChangedDisc, Fingerprint};
 pub use sampler::{InformedSet, Sampler};

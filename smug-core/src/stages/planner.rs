@@ -172,6 +172,35 @@ impl std::fmt::Display for NoPathReason {
     }
 }
 
+/// A DP layer answered by one [`plan_many`](PointToPointPlanner::plan_many) per
+/// source, keeping for each goal the source with the least offset plus path cost (ties
+/// to the lowest index): what [`PointToPointPlanner::plan_layer`] does by default.
+pub fn plan_layer_by_sources<P: PointToPointPlanner + ?Sized>(
+    planner: &mut P,
+    sources: &[(Pose2, f64)],
+    goals: &[Pose2],
+) -> Result<Vec<LayerOutcome>> {
+    let mut best: Vec<Option<(f64, LayerOutcome)>> = vec![None; goals.len()];
+    for (s, (pose, offset)) in sources.iter().enumerate() {
+        for (slot, outcome) in best.iter_mut().zip(planner.plan_many(pose, goals)?) {
+            let total = outcome
+                .exact_path()
+                .map_or(f64::INFINITY, |p| offset + p.cost);
+            if slot.as_ref().is_none_or(|(least, _)| total < *least) {
+                *slot = Some((total, LayerOutcome { source: s, outcome }));
+            }
+        }
+    }
+    let no_source = || LayerOutcome {
+        source: 0,
+        outcome: PlannerOutcome::InvalidStart,
+    };
+    Ok(best
+        .into_iter()
+        .map(|slot| slot.map_or_else(no_source, |(_, answer)| answer))
+        .collect())
+}
+
 /// A goal's answer in a DP layer ([`PointToPointPlanner::plan_layer`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct LayerOutcome {
@@ -267,29 +296,7 @@ pub trait PointToPointPlanner: Send + Sync {
         next: &[Pose2],
     ) -> Result<Vec<LayerOutcome>> {
         let _ = next;
-        let mut best: Vec<Option<(f64, LayerOutcome)>> = vec![None; goals.len()];
-        for (s, (pose, offset)) in sources.iter().enumerate() {
-            for (slot, outcome) in best.iter_mut().zip(self.plan_many(pose, goals)?) {
-                let total = outcome
-                    .exact_path()
-                    .map_or(f64::INFINITY, |p| offset + p.cost);
-                if slot.as_ref().is_none_or(|(least, _)| total < *least) {
-                    *slot = Some((total, LayerOutcome { source: s, outcome }));
-                }
-            }
-        }
-        Ok(best
-            .into_iter()
-            .map(|slot| {
-                slot.map_or(
-                    LayerOutcome {
-                        source: 0,
-                        outcome: PlannerOutcome::InvalidStart,
-                    },
-                    |(_, answer)| answer,
-                )
-            })
-            .collect())
+        plan_layer_by_sources(self, sources, goals)
     }
 
     /// Statistics accumulated over all queries so far.

@@ -21,9 +21,7 @@ impl Worker<'_> {
     ) -> Vec<LayerOutcome> {
         let started = Instant::now();
         self.me.counts.searches += 1;
-        let valid: Vec<usize> = (0..sources.len().min(MAX_SOURCES))
-            .filter(|&s| sources[s].1.is_finite() && self.sh.states.is_valid(&sources[s].0))
-            .collect();
+        let valid = self.valid_sources(sources);
         let mut answers = vec![
             LayerOutcome {
                 source: 0,
@@ -58,6 +56,34 @@ impl Worker<'_> {
         }
         self.me.counts.breakdown.astar_s += started.elapsed().as_secs_f64();
         answers
+    }
+
+    /// The search of [`Self::search_layer`] run only for what it leaves in the caches
+    /// (the next layer's, run ahead at offsets not known yet): no outcome is built.
+    pub(super) fn warm_layer(
+        &mut self,
+        sources: &[(Pose2, f64)],
+        goals: &[Pose2],
+        max_expansions: u64,
+    ) {
+        let valid = self.valid_sources(sources);
+        let asked: Vec<Goal> = goals
+            .iter()
+            .filter(|goal| self.sh.states.is_valid(goal))
+            .map(|goal| self.goal(goal))
+            .collect();
+        if !valid.is_empty() && !asked.is_empty() {
+            let searched: Vec<(Pose2, f64)> = valid.iter().map(|&s| sources[s]).collect();
+            self.run(&searched, asked, max_expansions);
+        }
+    }
+
+    /// The indices of the sources a search can start from: finite offset, valid pose
+    /// (at most [`MAX_SOURCES`]).
+    fn valid_sources(&self, sources: &[(Pose2, f64)]) -> Vec<usize> {
+        (0..sources.len().min(MAX_SOURCES))
+            .filter(|&s| sources[s].1.is_finite() && self.sh.states.is_valid(&sources[s].0))
+            .collect()
     }
 
     /// A goal of a search, its shot table shared with every search to it.

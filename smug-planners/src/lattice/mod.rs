@@ -557,7 +557,8 @@ impl PointToPointPlanner for LatticePlanner {
         true
     }
 
-    /// One search from every source at once (module `layer`); beside it, where rows
+    /// One search from every source at once (module `layer`; more than
+    /// `MAX_SOURCES` sources: one search each); beside it, where rows
     /// run side by side, the next layer's search from `goals` (at offset 0: their
     /// values are not known yet) runs until this one ends, only to fill the caches the
     /// next layer's own search will read (state, primitive and shot validity, the
@@ -570,6 +571,9 @@ impl PointToPointPlanner for LatticePlanner {
         goals: &[Pose2],
         next: &[Pose2],
     ) -> Result<Vec<LayerOutcome>> {
+        if sources.len() > search::MAX_SOURCES {
+            return smug_core::plan_layer_by_sources(self, sources, goals);
+        }
         self.counts.queries += goals.len() as u64;
         let (shared, pool) = (&self.shared, &self.searchers);
         let max = shared.params.max_expansions;
@@ -587,7 +591,7 @@ impl PointToPointPlanner for LatticePlanner {
                     answered
                 },
                 || {
-                    let ahead = |w: &mut search::Worker<'_>| w.search_layer(&starts, next, max);
+                    let ahead = |w: &mut search::Worker<'_>| w.warm_layer(&starts, next, max);
                     Self::with_stoppable_searcher(shared, pool, weight, Some(&stop), ahead).1
                 },
             )
