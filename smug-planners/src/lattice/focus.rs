@@ -2,7 +2,8 @@
 //! goals left and its queue re-keyed, so it stops expanding towards settled goals.
 
 use super::queue::{Entry, Item};
-use super::search::{is_source, Run, Worker};
+use super::search::{Run, Worker};
+use super::sources::is_source;
 
 /// A search with goals left re-aims its heuristic at them whenever at most this
 /// many are left (and whenever half of those aimed at are settled).

@@ -2,8 +2,9 @@
 //! there, to a set of goals; each goal settles at the least offset plus path cost
 //! over all sources (the multi-source form of the one-to-many search).
 
+use super::search::Goal;
 use super::search::Worker;
-use super::search::{Goal, MAX_SOURCES};
+use super::sources::MAX_SOURCES;
 use smug_core::{LayerOutcome, PlannerOutcome, Pose2};
 use std::time::Instant;
 

@@ -5,7 +5,8 @@
 //! proved.
 
 use super::caches::insert;
-use super::search::{source_id, End, Run, Worker};
+use super::search::{End, Run, Worker};
+use super::sources::source_id;
 use smug_core::{NoPathReason, Pose2, Proof};
 use std::sync::Arc;
 use std::time::Instant;

@@ -8,7 +8,8 @@
 //! shot settles it is the objective's own, solved again.
 
 use super::caches::{known, record, ShotTable, UNKNOWN_COST};
-use super::search::{is_source, Worker};
+use super::search::Worker;
+use super::sources::is_source;
 use smug_core::pose::angle_distance;
 use smug_core::Pose2;
 use std::sync::atomic::Ordering::Relaxed;
