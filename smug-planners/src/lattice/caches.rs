@@ -8,6 +8,7 @@
 //! finds never depends on which entries other searches filled first.
 
 use super::primitives::{Lattice, StateId};
+use super::sources::Joins;
 use lru::LruCache;
 use smug_core::Pose2;
 use std::num::NonZeroUsize;
@@ -23,10 +24,6 @@ const SHOT_BYTES: usize = 96 << 20;
 
 /// How many starts' curves onto the lattice are kept.
 const JOINS_KEPT: usize = 4096;
-
-/// A start's curves onto the lattice: the lattice pose, the cost, and whether the curve
-/// reverses.
-pub(crate) type Joins = Vec<(StateId, f64, bool)>;
 
 /// How many proofs of unreachable goals are kept.
 const PROOFS_KEPT: usize = 8;

@@ -62,7 +62,7 @@ impl Worker<'_> {
     }
 
     /// [`Self::start_successors`] of `start`, kept across searches.
-    pub(super) fn joins_of(&mut self, start: &Pose2) -> Arc<super::caches::Joins> {
+    pub(super) fn joins_of(&mut self, start: &Pose2) -> Arc<super::sources::Joins> {
         let sh = self.sh;
         sh.caches.joins(start, || self.start_successors(start))
     }

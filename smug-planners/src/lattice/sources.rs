@@ -1,7 +1,7 @@
 //! A search's sources: poses off the lattice where it starts, each with the cost
 //! already paid to be there, and their node ids (above every lattice pose's).
 
-use super::caches::Joins;
+use super::primitives::StateId;
 use smug_core::Pose2;
 use std::sync::Arc;
 
@@ -27,6 +27,10 @@ pub(super) fn source_of(id: u32) -> Option<usize> {
 pub(super) fn is_source(id: u32) -> bool {
     source_of(id).is_some()
 }
+
+/// A start's curves onto the lattice: the lattice pose, the cost, and whether the curve
+/// reverses.
+pub(crate) type Joins = Vec<(StateId, f64, bool)>;
 
 /// One of a search's sources: a pose off the lattice, the cost already paid to be
 /// there (a DP layer's value; 0 for a plain start), and its curves onto the lattice
