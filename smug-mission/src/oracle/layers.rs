@@ -9,14 +9,14 @@ use std::sync::Arc;
 
 impl PathOracle {
     /// True when the planner answers a DP layer with one search
-    /// ([`PointToPointPlanner::answers_layers`]).
+    /// ([`PointToPointPlanner::answers_layers`](smug_core::stages::PointToPointPlanner::answers_layers)).
     pub fn answers_layers(&self) -> bool {
         self.planner.answers_layers()
     }
 
     /// For each of `goals`, the `i` of `sources` (each `(i, offset)`, the cost already
     /// paid to be at `i`) the planner's one search of the layer reached it from most
-    /// cheaply, offset included ([`PointToPointPlanner::plan_layer`]); `None` when no
+    /// cheaply, offset included ([`PointToPointPlanner::plan_layer`](smug_core::stages::PointToPointPlanner::plan_layer)); `None` when no
     /// source reaches it. The pair `i → goal` is cached as planned (a pair planned
     /// before keeps the cheaper path); a goal without a path is cached as unreachable
     /// from the first source. `next`: the following layer's goals, which the planner
