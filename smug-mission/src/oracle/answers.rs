@@ -19,6 +19,12 @@ pub struct PlannedPath {
 }
 
 impl PlannedPath {
+    /// The answer `outcome`, costed by its exact path (`INFINITY` when it has none).
+    pub fn new(outcome: PlannerOutcome) -> Self {
+        let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
+        Self { outcome, cost }
+    }
+
     /// The exact path, if the pair is connected.
     pub fn path(&self) -> Option<&Path> {
         self.outcome.exact_path()

@@ -51,25 +51,15 @@ impl PathOracle {
         answer: LayerOutcome,
     ) -> Option<usize> {
         let i = sources.get(answer.source).map_or(j, |s| s.0);
-        let reached = answer.outcome.exact_path().is_some();
-        let cost = answer
-            .outcome
-            .exact_path()
-            .map_or(f64::INFINITY, |p| p.cost);
+        let planned = PlannedPath::new(answer.outcome);
+        let reached = planned.path().is_some();
         let cheaper = self
             .cache
             .get(&(i, j))
-            .is_none_or(|known| cost < known.cost);
+            .is_none_or(|known| planned.cost < known.cost);
         if i != j && cheaper {
             self.stats.paths_planned += 1;
-            let planned = Arc::new(PlannedPath {
-                outcome: answer.outcome,
-                cost,
-            });
-            if self.symmetric {
-                self.store(j, i, Arc::new(planned.reversed()));
-            }
-            self.store(i, j, planned);
+            self.store_both_ways(i, j, Arc::new(planned));
         }
         reached.then_some(i)
     }

@@ -191,6 +191,15 @@ impl PathOracle {
         self.stored.push((i, j));
     }
 
+    /// [`store`](Self::store)s `planned` for `i → j`, after its reverse for `j → i`
+    /// when the oracle is symmetric and `i ≠ j`.
+    fn store_both_ways(&mut self, i: usize, j: usize, planned: Arc<PlannedPath>) {
+        if self.symmetric && i != j {
+            self.store(j, i, Arc::new(planned.reversed()));
+        }
+        self.store(i, j, planned);
+    }
+
     /// The pairs whose answer was set (planned, served from known answers, or refined)
     /// since the log held `mark` entries, in order; `stored_since(0).len()` is the
     /// mark to pass next time. A matrix of planned costs updates from these alone.
@@ -218,10 +227,7 @@ impl PathOracle {
         } else {
             self.plan_pair(i, j)?
         });
-        if self.symmetric && i != j {
-            self.store(j, i, Arc::new(planned.reversed()));
-        }
-        self.store(i, j, planned.clone());
+        self.store_both_ways(i, j, planned.clone());
         Ok(planned)
     }
 
@@ -303,12 +309,7 @@ impl PathOracle {
                 if self.cache.contains_key(&(i, j)) {
                     continue;
                 }
-                let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
-                let planned = Arc::new(PlannedPath { outcome, cost });
-                if self.symmetric {
-                    self.store(j, i, Arc::new(planned.reversed()));
-                }
-                self.store(i, j, planned);
+                self.store_both_ways(i, j, Arc::new(PlannedPath::new(outcome)));
             }
         }
         Ok(())
@@ -377,10 +378,7 @@ impl PathOracle {
         if planned.cost >= old {
             return Ok(false);
         }
-        if self.symmetric {
-            self.store(j, i, Arc::new(planned.reversed()));
-        }
-        self.store(i, j, Arc::new(planned));
+        self.store_both_ways(i, j, Arc::new(planned));
         Ok(true)
     }
 
@@ -492,8 +490,7 @@ impl PathOracle {
         let outcome = self.planner.plan(&self.poses[i], &self.poses[j]);
         self.run.progress.answered_up_to(asked_so_far);
         let outcome = outcome?;
-        let cost = outcome.exact_path().map_or(f64::INFINITY, |p| p.cost);
-        Ok(PlannedPath { outcome, cost })
+        Ok(PlannedPath::new(outcome))
     }
 }
 

@@ -22,29 +22,14 @@ impl Worker<'_> {
     ) -> Vec<LayerOutcome> {
         let started = Instant::now();
         self.me.counts.searches += 1;
-        let valid = self.valid_sources(sources);
-        let mut answers = vec![
-            LayerOutcome {
-                source: 0,
-                outcome: PlannerOutcome::InvalidStart,
-            };
-            goals.len()
-        ];
+        let (valid, searched) = self.valid_sources(sources);
+        let no_path = |outcome| LayerOutcome { source: 0, outcome };
         if valid.is_empty() {
-            return answers;
+            return vec![no_path(PlannerOutcome::InvalidStart); goals.len()];
         }
-        let mut asked = Vec::new();
-        let mut index = Vec::new();
-        for (k, goal) in goals.iter().enumerate() {
-            if self.sh.states.is_valid(goal) {
-                index.push(k);
-                asked.push(self.goal(goal));
-            } else {
-                answers[k].outcome = PlannerOutcome::InvalidGoal;
-            }
-        }
+        let mut answers = vec![no_path(PlannerOutcome::InvalidGoal); goals.len()];
+        let (index, asked) = self.valid_goals(goals);
         if !asked.is_empty() {
-            let searched: Vec<(Pose2, f64)> = valid.iter().map(|&s| sources[s]).collect();
             let poses: Vec<Pose2> = searched.iter().map(|s| s.0).collect();
             let (reached, end) = self.run(&searched, asked, max_expansions);
             for (goal, k) in reached.iter().zip(index) {
@@ -67,24 +52,28 @@ impl Worker<'_> {
         goals: &[Pose2],
         max_expansions: u64,
     ) {
-        let valid = self.valid_sources(sources);
-        let asked: Vec<Goal> = goals
-            .iter()
-            .filter(|goal| self.sh.states.is_valid(goal))
-            .map(|goal| self.goal(goal))
-            .collect();
-        if !valid.is_empty() && !asked.is_empty() {
-            let searched: Vec<(Pose2, f64)> = valid.iter().map(|&s| sources[s]).collect();
+        let (_, searched) = self.valid_sources(sources);
+        let (_, asked) = self.valid_goals(goals);
+        if !searched.is_empty() && !asked.is_empty() {
             self.run(&searched, asked, max_expansions);
         }
     }
 
-    /// The indices of the sources a search can start from: finite offset, valid pose
-    /// (at most [`MAX_SOURCES`]).
-    fn valid_sources(&self, sources: &[(Pose2, f64)]) -> Vec<usize> {
+    /// The sources a search can start from (finite offset, valid pose; at most
+    /// [`MAX_SOURCES`]): their indices in `sources`, and themselves.
+    fn valid_sources(&self, sources: &[(Pose2, f64)]) -> (Vec<usize>, Vec<(Pose2, f64)>) {
         (0..sources.len().min(MAX_SOURCES))
             .filter(|&s| sources[s].1.is_finite() && self.sh.states.is_valid(&sources[s].0))
-            .collect()
+            .map(|s| (s, sources[s]))
+            .unzip()
+    }
+
+    /// The valid goals of `goals`: their indices, and each as a search's goal.
+    fn valid_goals(&self, goals: &[Pose2]) -> (Vec<usize>, Vec<Goal>) {
+        (0..goals.len())
+            .filter(|&k| self.sh.states.is_valid(&goals[k]))
+            .map(|k| (k, self.goal(&goals[k])))
+            .unzip()
     }
 
     /// A goal of a search, its shot table shared with every search to it.

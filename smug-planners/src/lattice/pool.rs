@@ -11,28 +11,19 @@ use std::sync::Mutex;
 
 impl LatticePlanner {
     /// Runs `work` on a worker with an idle searcher of `pool` (a new one when none is
-    /// idle), then returns the searcher to the pool; gives `work`'s result and the
-    /// searcher's counts of it.
+    /// idle) and the configured `heuristic_weight`, then returns the searcher to the
+    /// pool; gives `work`'s result and the searcher's counts of it.
     pub(super) fn with_searcher<R>(
         shared: &Shared,
         pool: &Mutex<Vec<buffers::Searcher>>,
         work: impl FnOnce(&mut search::Worker<'_>) -> R,
     ) -> (R, Counts) {
-        Self::with_weighted_searcher(shared, pool, shared.params.heuristic_weight, work)
+        Self::with_searcher_as(shared, pool, shared.params.heuristic_weight, None, work)
     }
 
-    /// [`Self::with_searcher`] with the heuristic weighted by `weight`.
-    pub(super) fn with_weighted_searcher<R>(
-        shared: &Shared,
-        pool: &Mutex<Vec<buffers::Searcher>>,
-        weight: f64,
-        work: impl FnOnce(&mut search::Worker<'_>) -> R,
-    ) -> (R, Counts) {
-        Self::with_stoppable_searcher(shared, pool, weight, None, work)
-    }
-
-    /// [`Self::with_weighted_searcher`] whose search stops once `stop` is set.
-    pub(super) fn with_stoppable_searcher<R>(
+    /// [`Self::with_searcher`] with the heuristic weighted by `weight`, the search
+    /// stopping once `stop` (if any) is set.
+    pub(super) fn with_searcher_as<R>(
         shared: &Shared,
         pool: &Mutex<Vec<buffers::Searcher>>,
         weight: f64,
@@ -52,21 +43,9 @@ impl LatticePlanner {
         (result, counts)
     }
 
-    /// Searches from `start` to `goals` with an idle searcher; gives the answers and
-    /// the search's counts.
+    /// Searches from `start` to `goals` with an idle searcher, the heuristic weighted
+    /// by `weight`; gives the answers and the search's counts.
     pub(super) fn search_with_pool(
-        shared: &Shared,
-        pool: &Mutex<Vec<buffers::Searcher>>,
-        start: &Pose2,
-        goals: &[Pose2],
-        max_expansions: u64,
-    ) -> (search::Answers, Counts) {
-        let weight = shared.params.heuristic_weight;
-        Self::weighted_search_with_pool(shared, pool, weight, start, goals, max_expansions)
-    }
-
-    /// [`Self::search_with_pool`] with the heuristic weighted by `weight`.
-    pub(super) fn weighted_search_with_pool(
         shared: &Shared,
         pool: &Mutex<Vec<buffers::Searcher>>,
         weight: f64,
@@ -74,7 +53,7 @@ impl LatticePlanner {
         goals: &[Pose2],
         max_expansions: u64,
     ) -> (search::Answers, Counts) {
-        Self::with_weighted_searcher(shared, pool, weight, |worker| {
+        Self::with_searcher_as(shared, pool, weight, None, |worker| {
             worker.search(start, goals, max_expansions)
         })
     }
@@ -86,8 +65,9 @@ impl LatticePlanner {
         goals: &[Pose2],
         max_expansions: u64,
     ) -> Vec<PlannerOutcome> {
-        let answered =
-            Self::search_with_pool(&self.shared, &self.searchers, start, goals, max_expansions);
+        let (shared, pool) = (&self.shared, &self.searchers);
+        let weight = shared.params.heuristic_weight;
+        let answered = Self::search_with_pool(shared, pool, weight, start, goals, max_expansions);
         self.record(answered)
     }
 
@@ -128,7 +108,7 @@ impl LatticePlanner {
         let (shared, pool) = (&self.shared, &self.searchers);
         let max = shared.params.max_expansions;
         let answered = self.side_by_side(rows, |(start, goals)| {
-            let answered = Self::weighted_search_with_pool(shared, pool, weight, start, goals, max);
+            let answered = Self::search_with_pool(shared, pool, weight, start, goals, max);
             shared.progress.answer(goals.len() as u64);
             answered
         });
