@@ -258,6 +258,44 @@ fn order_rows_are_weighted_a_star_within_their_weight() {
 }
 
 #[test]
+fn cost_bounds_stay_below_the_lattice_costs_and_see_the_walls() {
+    let mut tighter = false;
+    for space in SPACES {
+        let settings = [
+            space,
+            "planner.params.shortcut=false",
+            "planner.params.smooth=false",
+        ];
+        let mut p = pipeline(&settings);
+        let planner = p.planner.as_mut().unwrap();
+        for (start, _) in queries() {
+            let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
+            let bounds = planner
+                .cost_bounds(&start, &goals)
+                .unwrap()
+                .expect("the lattice bounds its costs");
+            let answers = planner.plan_many(&start, &goals).unwrap();
+            for ((goal, bound), answer) in goals.iter().zip(bounds).zip(answers) {
+                let straight = start.xy_distance(goal);
+                assert!(
+                    bound >= straight * (1.0 - 1e-9),
+                    "{space}: {bound} < {straight}"
+                );
+                if let Some(path) = answer.exact_path() {
+                    assert!(
+                        bound <= path.cost * (1.0 + 1e-9),
+                        "{space}: bound {bound} above the lattice's cost {}",
+                        path.cost
+                    );
+                }
+                tighter |= bound > 1.2 * straight;
+            }
+        }
+    }
+    assert!(tighter, "no bound saw a wall");
+}
+
+#[test]
 fn a_goal_in_a_closed_box_is_proved_unreachable() {
     for space in SPACES {
         let mut p = pipeline(&[space]);

@@ -13,7 +13,7 @@ use std::time::Instant;
 
 /// The robots measured by default: `name=profile[+KEY=VALUE…]`, profiles from
 /// `configs/robots/`.
-const ROBOTS: &str = "anymal=anymal,wheeled=wheeled,rover=rover,rover-prm=rover+planner.type=\"lazy-prm-star\"+selector.type=\"idp\",dubins=rover+space.type=\"dubins\"+space.params.turning_radius=1.5";
+const ROBOTS: &str = "anymal=anymal,wheeled=wheeled,rover=rover,rover-prm=rover+planner.type=\"lazy-prm-star\"+selector.type=\"idp\"+plan.sequencing_costs=\"full\",dubins=rover+space.type=\"dubins\"+space.params.turning_radius=1.5";
 
 /// Arguments of `smug bench robots`.
 #[derive(clap::Args, Debug)]

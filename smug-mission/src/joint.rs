@@ -5,7 +5,7 @@
 //! planned legs only. With an exact GTSP solver the result is optimal for the planned
 //! costs (IDP's argument applied to the whole problem).
 
-use crate::lazy::{lazy_solve, tour_legs as legs};
+use crate::lazy::{lazy_solve, tour_legs as legs, LazyRules};
 use crate::oracle::PathOracle;
 use smug_core::error::Result;
 use smug_core::stages::{Clusters, Selection, Sequencer, TourKind};
@@ -41,8 +41,11 @@ pub(super) fn joint_tour(
         &nodes,
         &clusters,
         kind,
-        true,
-        false,
+        LazyRules {
+            warm: true,
+            settle: false,
+            order_only: false,
+        },
         |matrix, warm| match warm {
             Some(warm) => sequencer.solve_clusters_from(matrix, &clusters, kind, warm.tour),
             None => sequencer.solve_clusters(matrix, &clusters, kind),

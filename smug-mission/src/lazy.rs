@@ -24,17 +24,30 @@ pub(super) struct Warm<'a> {
     pub(super) changed: Option<&'a [usize]>,
 }
 
+/// How [`lazy_solve`] runs.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LazyRules {
+    /// Each round starts from the previous round's tour.
+    pub(super) warm: bool,
+    /// Legs planned on a sparser roadmap are planned again where they decide the order.
+    pub(super) settle: bool,
+    /// The legs only order targets (the sequential mode's): planned as the rows of a
+    /// matrix that only orders ([`PathOracle::plan_order_pairs`]), not as legs of the
+    /// route (the joint mode's).
+    pub(super) order_only: bool,
+}
+
 /// The lazy loop shared by the sequential and joint modes: `solve` the matrix of
 /// planned costs where known and lower bounds elsewhere, plan the tour's unplanned
 /// legs, repeat until the tour uses planned legs only (or one of them has no path; for
 /// a directed model, until the solver finds no tour round the legs without a path).
 ///
-/// With `warm`, each round is given the previous round's tour to start from (and the
+/// With `rules.warm`, each round is given the previous round's tour to start from (and the
 /// positions whose legs were planned since, when it was found on the same matrix); a
 /// warm round that ends on planned legs only is checked by one solve from scratch of
 /// the same matrix, whose tour is taken (and the loop goes on) when it is cheaper.
 ///
-/// With `settle`, a planned leg is final only once it has been planned again
+/// With `rules.settle`, a planned leg is final only once it has been planned again
 /// ([`PathOracle::refine`], on the roadmap as grown since: a leg planned on a sparser
 /// roadmap can cost more than planning it again gives) or when it costs its lower
 /// bound. Once the tour uses planned legs only, its own legs are refined, and the
@@ -53,8 +66,7 @@ pub(super) fn lazy_solve(
     nodes: &[usize],
     clusters: &Clusters,
     kind: TourKind,
-    warm: bool,
-    settle: bool,
+    rules: LazyRules,
     mut solve: impl FnMut(&CostMatrix, Option<Warm<'_>>) -> Result<Tour>,
 ) -> Result<Tour> {
     let mut previous: Option<Tour> = None;
@@ -71,10 +83,10 @@ pub(super) fn lazy_solve(
             &mut matrix,
             kind,
             previous.take(),
-            warm,
+            rules,
             &mut solve,
         )?;
-        if dead_end || !settle {
+        if dead_end || !rules.settle {
             return Ok(tour);
         }
         for (a, b) in tour_legs(&tour, kind) {
@@ -114,7 +126,7 @@ pub(super) fn lazy_solve(
                 oracle.cost(nodes[a], nodes[b])?;
             }
         }
-        previous = warm.then_some(rival);
+        previous = rules.warm.then_some(rival);
     }
 }
 
@@ -132,7 +144,7 @@ fn converge(
     lazy: &mut LazyMatrix,
     kind: TourKind,
     mut previous: Option<Tour>,
-    warm: bool,
+    rules: LazyRules,
     solve: &mut impl FnMut(&CostMatrix, Option<Warm<'_>>) -> Result<Tour>,
 ) -> Result<(Tour, bool)> {
     let nodes = on.indices;
@@ -163,7 +175,12 @@ fn converge(
         if unplanned.is_empty() {
             return Ok((tour, false));
         }
-        oracle.plan_pairs(&round_legs(oracle, on, &tour, kind))?;
+        let legs = round_legs(oracle, on, &tour, kind);
+        if rules.order_only {
+            oracle.plan_order_pairs(&legs)?;
+        } else {
+            oracle.plan_pairs(&legs)?;
+        }
         let mut dead_end = false;
         let mut unproved = false;
         for (a, b) in unplanned {
@@ -187,7 +204,7 @@ fn converge(
         // again with it infinite (each round plans a leg more, so the loop ends). A
         // leg whose budget ran out ends the loop instead, so that a robot that cannot
         // leave its room does not spend one budget per PoI.
-        previous = warm.then_some(tour);
+        previous = rules.warm.then_some(tour);
         on_lazy_matrix = true;
     }
 }

@@ -135,8 +135,11 @@ fn plan(mission: &Generated, lazy: bool, inflation: &[f64]) -> (Vec<usize>, f64,
             &reps,
             &Clusters::singletons(reps.len()),
             kind,
-            false,
-            true,
+            LazyRules {
+                warm: false,
+                settle: true,
+                order_only: false,
+            },
             |m, _| Exhaustive.solve(m, kind),
         )
         .unwrap()
@@ -188,8 +191,11 @@ fn check_change_hints(mission: &Generated, settle: bool) -> std::result::Result<
         &reps,
         &Clusters::singletons(n),
         kind,
-        true,
-        settle,
+        LazyRules {
+            warm: true,
+            settle,
+            order_only: false,
+        },
         |m, warm| {
             if let (
                 Some(Warm {
@@ -271,7 +277,7 @@ proptest! {
         let n = mission.sizes.len() + 1 + usize::from(mission.open);
         let kind = if mission.open { TourKind::OpenTo(n - 1) } else { TourKind::Closed };
         let (mut lazy, nodes) = oracle(&mission.poses, &mission.detours, &mission.inflation);
-        let tour = lazy_solve(&mut lazy, &nodes, &Clusters::singletons(nodes.len()), kind, false, true, |m, _| Exhaustive.solve(m, kind)).unwrap();
+        let tour = lazy_solve(&mut lazy, &nodes, &Clusters::singletons(nodes.len()), kind, LazyRules { warm: false, settle: true, order_only: false }, |m, _| Exhaustive.solve(m, kind)).unwrap();
         let none = vec![0.0; mission.detours.len()];
         let (mut settled, nodes) = oracle(&mission.poses, &mission.detours, &none);
         let truth = full_matrix(&mut settled, &nodes).unwrap();

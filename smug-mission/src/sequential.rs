@@ -2,7 +2,7 @@
 //! costs between one representative pose per target (full or lazy cost matrix).
 
 use crate::layout::Layout;
-use crate::lazy::{lazy_solve, Warm};
+use crate::lazy::{lazy_solve, LazyRules, Warm};
 use crate::matrix::{full_matrix, plan_matrix_rows};
 use crate::oracle::PathOracle;
 use crate::unreachable::unreachable_targets;
@@ -236,13 +236,17 @@ fn lazy_tour(
     kind: TourKind,
     settle: bool,
 ) -> Result<Tour> {
+    oracle.tighten_bounds(nodes)?;
     lazy_solve(
         oracle,
         nodes,
         &Clusters::singletons(nodes.len()),
         kind,
-        true,
-        settle,
+        LazyRules {
+            warm: true,
+            settle,
+            order_only: true,
+        },
         |matrix, warm| match warm {
             Some(Warm {
                 tour,

@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 /// Targets that cannot be reached: the plan fails and names them.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("no safe path reaches target(s) {}{}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "), why_suffix(.why))]
+#[error("no safe path reaches target(s) {}{}{}", .targets.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "), why_suffix(.why), legs_suffix(.targets, .legs))]
 pub struct Unreachable {
     /// Ids of the unreachable targets.
     pub targets: Vec<String>,
@@ -25,6 +25,26 @@ pub struct Unreachable {
 /// The reasons of an [`Unreachable`], on lines of their own.
 fn why_suffix(why: &[String]) -> String {
     why.iter().map(|w| format!("\n  {w}")).collect()
+}
+
+/// How the start's legs to each target's PoIs ended, a line per target that has them
+/// (`10 × budget_spent:samples`: whether no path exists was never decided).
+fn legs_suffix(targets: &[String], legs: &[BTreeMap<String, u64>]) -> String {
+    targets
+        .iter()
+        .zip(legs)
+        .filter(|(_, counts)| !counts.is_empty())
+        .map(|(target, counts)| {
+            let ended: Vec<String> = counts
+                .iter()
+                .map(|(why, n)| format!("{n} × {why}"))
+                .collect();
+            format!(
+                "\n  `{target}`: the legs from the start to its PoIs: {}",
+                ended.join(", ")
+            )
+        })
+        .collect()
 }
 
 /// Targets none of whose PoIs the start reaches.

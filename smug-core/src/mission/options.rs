@@ -18,7 +18,9 @@ pub enum Representative {
 #[serde(rename_all = "kebab-case")]
 pub enum SequencingCosts {
     /// Plan only the legs the tour uses: solve on lower bounds (straight-line metric
-    /// costs) where no path is planned yet, plan the tour's unplanned legs, repeat until
+    /// costs, or the planner's own where it has tighter ones: the lattice's go around
+    /// obstacles) where no path is planned yet, plan the tour's unplanned legs (as the
+    /// rows of a matrix that only orders targets), repeat until
     /// the tour uses planned legs only. With an exact solver the order is optimal for
     /// the planned costs, as with the full matrix, from far fewer paths (IDP's idea
     /// applied to sequencing). With `refine_legs`, legs planned on a sparser roadmap

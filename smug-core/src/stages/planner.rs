@@ -259,6 +259,15 @@ pub trait PointToPointPlanner: Send + Sync {
         self.plan_rows(rows)
     }
 
+    /// Lower bounds of the costs of the paths this planner finds from `start` to each
+    /// of `goals`, where it knows more than the objective's contract bound (the
+    /// lattice: around obstacles); `None` (the default) where it does not. A
+    /// sequencer's lazy cost matrix orders targets by them before planning the legs.
+    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
+        let _ = (start, goals);
+        Ok(None)
+    }
+
     /// True when [`plan_rows`](Self::plan_rows) searches rows side by side: the path
     /// oracle then hands it independent pairs (a route's legs) together (default
     /// false: they are planned one by one with [`plan`](Self::plan)).

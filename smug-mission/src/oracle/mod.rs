@@ -33,6 +33,8 @@ pub struct PathOracle {
     stats: OracleStats,
     known: KnownAnswers,
     run: RunContext,
+    /// The planner's own lower bounds of pairs ([`tighten_bounds`](Self::tighten_bounds)).
+    bounds: HashMap<(usize, usize), f64>,
 }
 
 impl PathOracle {
@@ -49,6 +51,7 @@ impl PathOracle {
             stats: OracleStats::default(),
             known: KnownAnswers::default(),
             run: RunContext::default(),
+            bounds: HashMap::new(),
         }
     }
 
@@ -165,7 +168,39 @@ impl PathOracle {
 
     /// The objective's bound from `i` to `j`: a lower bound of any path's cost.
     pub fn lower_bound(&self, i: usize, j: usize) -> f64 {
-        self.objective.cost_bound(&self.poses[i], &self.poses[j])
+        let bound = self.objective.cost_bound(&self.poses[i], &self.poses[j]);
+        self.bounds.get(&(i, j)).map_or(bound, |b| b.max(bound))
+    }
+
+    /// Asks the planner for its own lower bounds between every two of `nodes`
+    /// ([`PointToPointPlanner::cost_bounds`]), kept for [`lower_bound`](Self::lower_bound);
+    /// for a symmetric oracle a pair's bound is the larger of its two ways'.
+    pub fn tighten_bounds(&mut self, nodes: &[usize]) -> Result<()> {
+        let mut asked: HashMap<(usize, usize), f64> = HashMap::new();
+        for &i in nodes {
+            let goals: Vec<usize> = nodes
+                .iter()
+                .copied()
+                .filter(|&j| j != i && !self.bounds.contains_key(&(i, j)))
+                .collect();
+            if goals.is_empty() {
+                continue;
+            }
+            let poses: Vec<Pose2> = goals.iter().map(|&j| self.poses[j]).collect();
+            let Some(bounds) = self.planner.cost_bounds(&self.poses[i], &poses)? else {
+                return Ok(());
+            };
+            asked.extend(goals.into_iter().map(|j| (i, j)).zip(bounds));
+        }
+        for (&(i, j), &bound) in &asked {
+            let back = if self.symmetric {
+                asked.get(&(j, i)).copied().unwrap_or(0.0)
+            } else {
+                0.0
+            };
+            self.bounds.insert((i, j), bound.max(back));
+        }
+        Ok(())
     }
 
     /// True when the pair has been planned (in either direction if symmetric).
@@ -322,18 +357,30 @@ impl PathOracle {
     /// (Grouped rows were measured for the lattice only: LazyPRM*'s one-to-many
     /// searches change its plans, dearer on lunar, cheaper on the imported map.)
     pub fn plan_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
-        if self.planner.answers_many() && self.planner.plans_rows_side_by_side() {
-            let rows = self.rows_of(pairs);
-            return self.plan_rows(&rows);
-        }
+        self.plan_pairs_for(pairs, false)
+    }
+
+    /// [`plan_pairs`](Self::plan_pairs) for legs that only order targets (a lazy cost
+    /// matrix's): rows are asked with [`plan_order_rows`](Self::plan_order_rows).
+    pub fn plan_order_pairs(&mut self, pairs: &[(usize, usize)]) -> Result<()> {
+        self.plan_pairs_for(pairs, true)
+    }
+
+    /// [`plan_pairs`](Self::plan_pairs), the rows asked as rows of a matrix that only
+    /// orders targets when `for_order`.
+    fn plan_pairs_for(&mut self, pairs: &[(usize, usize)], for_order: bool) -> Result<()> {
         if !self.planner.plans_rows_side_by_side() {
             for &(i, j) in pairs {
                 self.path(i, j)?;
             }
             return Ok(());
         }
-        let rows: Vec<(usize, Vec<usize>)> = pairs.iter().map(|&(i, j)| (i, vec![j])).collect();
-        self.plan_rows(&rows)
+        let rows: Vec<(usize, Vec<usize>)> = if self.planner.answers_many() {
+            self.rows_of(pairs)
+        } else {
+            pairs.iter().map(|&(i, j)| (i, vec![j])).collect()
+        };
+        self.plan_rows_for(&rows, for_order)
     }
 
     /// `pairs` grouped into rows by their source, in the order the sources first

@@ -250,3 +250,56 @@ fn pairs_that_share_a_pose_are_one_search_from_it() {
     assert_eq!(o.stats().paths_planned, 4);
     assert_eq!(searches.lock().unwrap().len(), 1);
 }
+
+/// The straight line, with its own bounds: the straight distance plus the start's x.
+struct Bounding {
+    inner: StraightLine,
+}
+
+impl PointToPointPlanner for Bounding {
+    fn plan(&mut self, start: &Pose2, goal: &Pose2) -> Result<PlannerOutcome> {
+        self.inner.plan(start, goal)
+    }
+
+    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
+        Ok(Some(
+            goals
+                .iter()
+                .map(|g| start.xy_distance(g) + start.x)
+                .collect(),
+        ))
+    }
+
+    fn stats(&self) -> PlannerStats {
+        self.inner.stats()
+    }
+}
+
+#[test]
+fn tightened_bounds_are_the_planners_the_larger_of_both_ways_when_symmetric() {
+    let objective = PathLength::default();
+    let planner = Bounding {
+        inner: StraightLine {
+            objective: objective.clone(),
+            calls: 0,
+        },
+    };
+    let mut o = PathOracle::new(Arc::new(objective), Box::new(planner));
+    for pose in [(0.0, 0.0), (3.0, 4.0), (9.0, 0.0)] {
+        o.add_pose(Pose2::new(pose.0, pose.1, 0.0));
+    }
+    let straight = o.lower_bound(0, 1);
+    assert!(
+        (straight - 5.0).abs() < 1e-9,
+        "the objective's bound before"
+    );
+    o.tighten_bounds(&[0, 1]).unwrap();
+    // 0 → 1: 5 + 0; 1 → 0: 5 + 3; a symmetric oracle takes the larger both ways.
+    assert_eq!(o.lower_bound(0, 1), 8.0);
+    assert_eq!(o.lower_bound(1, 0), 8.0);
+    assert_eq!(
+        o.lower_bound(0, 2),
+        o.objective.cost_bound(o.pose(0), o.pose(2))
+    );
+    assert_eq!(o.planner().stats().queries, 0, "bounds plan nothing");
+}

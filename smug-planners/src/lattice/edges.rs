@@ -229,7 +229,7 @@ impl Worker<'_> {
     /// kept yet (the same values as one at a time: each is a pure function of the
     /// world and its goal). A mission's first search (the probe of its start, towards
     /// every PoI) asks for all of them at once.
-    fn keep_missing_heuristics(&mut self, goals: &[Pose2]) {
+    pub(super) fn keep_missing_heuristics(&mut self, goals: &[Pose2]) {
         let mut missing: Vec<&Pose2> = Vec::new();
         for goal in goals {
             let key = heuristic_key(std::slice::from_ref(goal));

@@ -2,8 +2,8 @@
 //! there, to a set of goals; each goal settles at the least offset plus path cost
 //! over all sources (the multi-source form of the one-to-many search).
 
-use super::search::Goal;
 use super::search::Worker;
+use super::search::{Goal, Until};
 use super::sources::MAX_SOURCES;
 use smug_core::{LayerOutcome, PlannerOutcome, Pose2};
 use std::time::Instant;
@@ -31,7 +31,7 @@ impl Worker<'_> {
         let (index, asked) = self.valid_goals(goals);
         if !asked.is_empty() {
             let poses: Vec<Pose2> = searched.iter().map(|s| s.0).collect();
-            let (reached, end) = self.run(&searched, asked, max_expansions);
+            let (reached, end) = self.run(&searched, asked, max_expansions, Until::EveryGoal);
             for (goal, k) in reached.iter().zip(index) {
                 let (s, outcome) = self.outcome(&poses, goal, &end);
                 answers[k] = LayerOutcome {
@@ -55,7 +55,7 @@ impl Worker<'_> {
         let (_, searched) = self.valid_sources(sources);
         let (_, asked) = self.valid_goals(goals);
         if !searched.is_empty() && !asked.is_empty() {
-            self.run(&searched, asked, max_expansions);
+            self.run(&searched, asked, max_expansions, Until::EveryGoal);
         }
     }
 

@@ -21,6 +21,7 @@
 //! primitive it tried costs and whether it is valid) is kept for the mission's later
 //! queries: after the first few, searches are pure graph searches.
 
+mod bounds;
 mod buffers;
 mod caches;
 mod edges;
@@ -291,6 +292,15 @@ impl PointToPointPlanner for LatticePlanner {
 
     fn answers_many(&self) -> bool {
         true
+    }
+
+    /// From the goals' obstacle-aware distances (module `bounds`).
+    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
+        let (bounds, counts) = Self::with_searcher(&self.shared, &self.searchers, |worker| {
+            worker.cost_bounds(start, goals)
+        });
+        self.counts.add(&counts);
+        Ok(Some(bounds))
     }
 
     fn answers_layers(&self) -> bool {

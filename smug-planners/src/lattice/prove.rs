@@ -5,7 +5,7 @@
 //! proved.
 
 use super::caches::insert;
-use super::search::{End, Run, Worker};
+use super::search::{End, Run, Until, Worker};
 use super::sources::source_id;
 use smug_core::{NoPathReason, Pose2, Proof};
 use std::sync::Arc;
@@ -15,7 +15,10 @@ impl Worker<'_> {
     /// One search from `start` to `goals` of at most `max_expansions` expansions that
     /// only proves: for each goal, the proof that it cannot be reached when the search
     /// exhausted the lattice poses it could reach without it (`None`: reached, invalid,
-    /// or the budget ran out). No path is built.
+    /// or the budget ran out). No path is built. The search ends at the first goal it
+    /// reaches: a start that reaches one is not boxed in, and a search on to the others
+    /// would only prove them out by exhausting a region that holds a goal (on lunar,
+    /// the start's probe ran its whole budget of 20,000 expansions every time).
     pub(super) fn prove(
         &mut self,
         start: &Pose2,
@@ -30,7 +33,8 @@ impl Worker<'_> {
         }
         let (asked, index) = self.asked_goals(start, goals, |_, _| {});
         if !asked.is_empty() {
-            let (reached, end) = self.run(&[(*start, 0.0)], asked, max_expansions);
+            let (reached, end) =
+                self.run(&[(*start, 0.0)], asked, max_expansions, Until::FirstGoal);
             let exhausted = matches!(end, End::Exhausted);
             for (goal, k) in reached.into_iter().zip(index) {
                 if goal.reached.is_none() && (exhausted || goal.proved_out) {

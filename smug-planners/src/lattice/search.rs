@@ -42,6 +42,15 @@ pub(super) enum End {
     Budget(Budget),
 }
 
+/// When a search that has not run out of poses or budget ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Until {
+    /// Once every goal is settled or proved unreachable.
+    EveryGoal,
+    /// Once some goal is settled (a probe: one way out proves nothing is boxed in).
+    FirstGoal,
+}
+
 /// A search in progress.
 pub(super) struct Run {
     pub(super) heap: BucketQueue,
@@ -130,7 +139,8 @@ impl Worker<'_> {
             });
         });
         if !asked.is_empty() {
-            let (reached, end) = self.run(&[(*start, 0.0)], asked, max_expansions);
+            let (reached, end) =
+                self.run(&[(*start, 0.0)], asked, max_expansions, Until::EveryGoal);
             for (goal, k) in reached.into_iter().zip(index) {
                 costs[k] = goal.reached.map(|(cost, _)| cost);
                 outcomes[k] = Some(self.outcome(&[*start], &goal, &end).1);
@@ -231,6 +241,7 @@ impl Worker<'_> {
         sources: &[(Pose2, f64)],
         goals: Vec<Goal>,
         max_expansions: u64,
+        until: Until,
     ) -> (Vec<Goal>, End) {
         self.me.buffers.next_generation();
         let open_goals = goals.len();
@@ -280,10 +291,10 @@ impl Worker<'_> {
         let mut expansions = 0u64;
         while let Some(entry) = run.heap.pop() {
             self.fetch_ahead(&run.heap);
+            if expansions >= max {
+                return (run.goals, End::Budget(Budget::Expansions));
+            }
             if expansions.is_multiple_of(256) {
-                if expansions >= max {
-                    return (run.goals, End::Budget(Budget::Expansions));
-                }
                 if started.elapsed().as_secs_f64() > self.sh.params.time_limit {
                     return (run.goals, End::Budget(Budget::Time));
                 }
@@ -317,8 +328,10 @@ impl Worker<'_> {
                     }
                 }
                 Item::Shot { from, goal, costed } => {
+                    let open = run.open_goals;
                     self.try_shot(from, goal as usize, costed, entry.key, &mut run);
-                    if run.open_goals == 0 {
+                    let first = until == Until::FirstGoal && run.open_goals < open;
+                    if run.open_goals == 0 || first {
                         return (run.goals, End::AllReached);
                     }
                 }
