@@ -40,6 +40,9 @@ fn pose_bits(p: &Pose2) -> [u64; 3] {
 pub(crate) struct Caches {
     /// Per lattice pose: 0 unknown, 1 valid, 2 invalid.
     state: Vec<AtomicU8>,
+    /// Per lattice point: 0 unknown, 1 some heading valid (open to the heuristic's 2D
+    /// relaxation), 2 none.
+    point: Vec<AtomicU8>,
     /// Per lattice pose and primitive (stride: the most primitives of a heading), the
     /// bits of an `f32`: 0.0 unknown, infinity invalid, else the objective's cost of
     /// the motion, negative while its validity is not known.
@@ -66,6 +69,7 @@ impl Caches {
         let table_bytes = ShotTable::box_poses(lattice, shot_radius) * ShotTable::BYTES_PER_POSE;
         Self {
             state: (0..poses).map(|_| AtomicU8::new(0)).collect(),
+            point: (0..lattice.points()).map(|_| AtomicU8::new(0)).collect(),
             edge: (0..poses * stride).map(|_| AtomicU32::new(0)).collect(),
             shots: Mutex::new(LruCache::new(at_least_two(SHOT_BYTES / table_bytes.max(1)))),
             heuristics: Mutex::new(LruCache::new(at_least_two(
@@ -96,6 +100,17 @@ impl Caches {
     /// Records a pose's validity.
     pub(crate) fn set_state(&self, id: StateId, valid: bool) {
         record(&self.state[id as usize], valid);
+    }
+
+    /// Whether some heading is valid at lattice point `point` (`nx · row + column`),
+    /// if known.
+    pub(crate) fn point(&self, point: usize) -> Option<bool> {
+        known(&self.point[point])
+    }
+
+    /// Records whether some heading is valid at lattice point `point`.
+    pub(crate) fn set_point(&self, point: usize, open: bool) {
+        record(&self.point[point], open);
     }
 
     /// How many poses' validity is known.

@@ -97,6 +97,7 @@ impl Worker<'_> {
     fn joins_ring(&mut self, start: &Pose2, inner: f64, outer: f64) -> Vec<(u32, f64, bool)> {
         let sh = self.sh;
         let mut out = Vec::new();
+        let from = (start, start.yaw.sin_cos());
         for (ix, iy) in sh.lattice.points_near(start.x, start.y, outer) {
             let [x, y] = sh.lattice.position(ix, iy);
             let direct = (x - start.x).hypot(y - start.y);
@@ -109,8 +110,9 @@ impl Worker<'_> {
                     continue;
                 }
                 let to = sh.lattice.pose(id);
-                if sh.space.motion_extent(start, &to).length
-                    > direct + std::f64::consts::PI * sh.radius
+                let longest = direct + std::f64::consts::PI * sh.radius;
+                if sideways_bound(sh.radius, from, (&to, to.yaw.sin_cos())) > longest
+                    || sh.space.motion_extent(start, &to).length > longest
                 {
                     continue;
                 }
@@ -149,6 +151,7 @@ impl Worker<'_> {
         let spread =
             (reach / (sh.radius * 2.0 * std::f64::consts::PI / h as f64)).ceil() as i64 + 1;
         let mut out = Vec::new();
+        let from = (start, start.yaw.sin_cos());
         for (ix, iy) in sh.lattice.points_near(start.x, start.y, reach) {
             for dk in -spread..=spread {
                 let k = (k0 + dk).rem_euclid(h) as usize;
@@ -158,9 +161,14 @@ impl Worker<'_> {
                 if direct < 1e-9 && dk == 0 {
                     continue;
                 }
+                // Every curve is at least this long: no need to solve for one.
+                let longest = 1.3 * direct + cell;
+                if sideways_bound(sh.radius, from, (&to, to.yaw.sin_cos())) > longest {
+                    continue;
+                }
                 let extent = sh.space.motion_extent(start, &to);
                 let turn = smug_core::pose::angle_distance(start.yaw, to.yaw);
-                if extent.length > 1.3 * direct + cell || extent.turning > turn + 0.6 {
+                if extent.length > longest || extent.turning > turn + 0.6 {
                     continue;
                 }
                 out.extend(self.join(start, id, &to));
@@ -289,9 +297,15 @@ fn state_valid(sh: &Shared, id: StateId, checks: &mut u64) -> bool {
     valid
 }
 
-/// Whether some heading is valid at a lattice point (the 2D relaxation's nodes).
+/// Whether some heading is valid at a lattice point (the 2D relaxation's nodes; cached).
 fn point_open(sh: &Shared, ix: usize, iy: usize, checks: &mut u64) -> bool {
-    (0..sh.lattice.headings).any(|k| state_valid(sh, sh.lattice.id(ix, iy, k), checks))
+    let point = iy * sh.lattice.nx + ix;
+    if let Some(open) = sh.caches.point(point) {
+        return open;
+    }
+    let open = (0..sh.lattice.headings).any(|k| state_valid(sh, sh.lattice.id(ix, iy, k), checks));
+    sh.caches.set_point(point, open);
+    open
 }
 
 /// A lower bound of the length of every shot from the point `(x, y)`, whatever its
