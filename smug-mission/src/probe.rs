@@ -101,8 +101,8 @@ pub(super) fn probe_start_and_end(
         pois: pois.len(),
         reason,
     };
-    // The end first: its searches stop at the first PoI that proves nothing, while
-    // the start's runs its whole budget when the start is free. (A symmetric model
+    // The end first: its searches stop at the first PoI that proves nothing (the
+    // start's ends at the first PoI it reaches). (A symmetric model
     // enters a pose wherever it can leave it: the start's probe decides for both.)
     if !(closed && oracle.is_symmetric()) {
         let into_end = oracle.prove_unenterable(layout.end, &pois, PROBE_EFFORT)?;

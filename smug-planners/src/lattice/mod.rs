@@ -402,7 +402,8 @@ impl PointToPointPlanner for LatticePlanner {
     }
 
     /// One small forward search from each start to `goal`, stopping at the first
-    /// that proves nothing (the rest then prove nothing either). Each is cheap when
+    /// that proves nothing (the rest then prove nothing either); as many side by side
+    /// as rayon has threads. Each is cheap when
     /// the goal cannot be entered: the 2D heuristic, seeded only where a final shot
     /// into the goal can start, is infinite almost everywhere, and an exhausted search
     /// keeps its proof for the starts whose joins it closed. (A search backwards from
@@ -416,12 +417,21 @@ impl PointToPointPlanner for LatticePlanner {
         effort: u64,
     ) -> Result<Vec<Option<NoPathReason>>> {
         let mut proofs = vec![None; starts.len()];
-        for (k, start) in starts.iter().enumerate() {
-            let proof = self.prove(start, std::slice::from_ref(goal), effort.max(1));
-            if proof[0].is_none() {
-                break;
+        let pairs: Vec<(Pose2, Pose2)> = starts.iter().map(|start| (*start, *goal)).collect();
+        // As many side by side as there are threads: the answers are the sequence's
+        // (those after the first that proves nothing are dropped).
+        let batch = rayon::current_num_threads().max(1);
+        for (b, chunk) in pairs.chunks(batch).enumerate() {
+            for (k, proof) in self
+                .prove_each_unreachable(chunk, effort)?
+                .into_iter()
+                .enumerate()
+            {
+                if proof.is_none() {
+                    return Ok(proofs);
+                }
+                proofs[b * batch + k] = proof;
             }
-            proofs[k] = proof[0];
         }
         Ok(proofs)
     }
