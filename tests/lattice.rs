@@ -268,13 +268,14 @@ fn cost_bounds_stay_below_the_lattice_costs_and_see_the_walls() {
         ];
         let mut p = pipeline(&settings);
         let planner = p.planner.as_mut().unwrap();
-        for (start, _) in queries() {
-            let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
-            let bounds = planner
-                .cost_bounds(&start, &goals)
-                .unwrap()
-                .expect("the lattice bounds its costs");
-            let answers = planner.plan_many(&start, &goals).unwrap();
+        let starts: Vec<Pose2> = queries().iter().map(|q| q.0).collect();
+        let goals: Vec<Pose2> = queries().iter().map(|q| q.1).collect();
+        let rows = planner
+            .cost_bounds(&starts, &goals)
+            .unwrap()
+            .expect("the lattice bounds its costs");
+        for (start, bounds) in starts.iter().zip(rows) {
+            let answers = planner.plan_many(start, &goals).unwrap();
             for ((goal, bound), answer) in goals.iter().zip(bounds).zip(answers) {
                 let straight = start.xy_distance(goal);
                 assert!(

@@ -259,12 +259,13 @@ pub trait PointToPointPlanner: Send + Sync {
         self.plan_rows(rows)
     }
 
-    /// Lower bounds of the costs of the paths this planner finds from `start` to each
-    /// of `goals`, where it knows more than the objective's contract bound (the
-    /// lattice: around obstacles); `None` (the default) where it does not. A
-    /// sequencer's lazy cost matrix orders targets by them before planning the legs.
-    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
-        let _ = (start, goals);
+    /// Lower bounds of the costs of the paths this planner finds from each of `starts`
+    /// to each of `goals` (a row per start), where it knows more than the objective's
+    /// contract bound (the lattice: around obstacles); `None` (the default) where it
+    /// does not. A sequencer's lazy cost matrix orders targets by them before planning
+    /// the legs.
+    fn cost_bounds(&mut self, starts: &[Pose2], goals: &[Pose2]) -> Result<Option<Vec<Vec<f64>>>> {
+        let _ = (starts, goals);
         Ok(None)
     }
 

@@ -176,29 +176,20 @@ impl PathOracle {
     /// ([`PointToPointPlanner::cost_bounds`]), kept for [`lower_bound`](Self::lower_bound);
     /// for a symmetric oracle a pair's bound is the larger of its two ways'.
     pub fn tighten_bounds(&mut self, nodes: &[usize]) -> Result<()> {
-        let mut asked: HashMap<(usize, usize), f64> = HashMap::new();
-        for &i in nodes {
-            let goals: Vec<usize> = nodes
-                .iter()
-                .copied()
-                .filter(|&j| j != i && !self.bounds.contains_key(&(i, j)))
-                .collect();
-            if goals.is_empty() {
-                continue;
+        let poses: Vec<Pose2> = nodes.iter().map(|&i| self.poses[i]).collect();
+        let Some(rows) = self.planner.cost_bounds(&poses, &poses)? else {
+            return Ok(());
+        };
+        for (a, &i) in nodes.iter().enumerate() {
+            for (b, &j) in nodes.iter().enumerate() {
+                if i == j {
+                    continue;
+                }
+                let back = if self.symmetric { rows[b][a] } else { 0.0 };
+                let bound = rows[a][b].max(back);
+                let known = self.bounds.get(&(i, j)).copied().unwrap_or(0.0);
+                self.bounds.insert((i, j), bound.max(known));
             }
-            let poses: Vec<Pose2> = goals.iter().map(|&j| self.poses[j]).collect();
-            let Some(bounds) = self.planner.cost_bounds(&self.poses[i], &poses)? else {
-                return Ok(());
-            };
-            asked.extend(goals.into_iter().map(|j| (i, j)).zip(bounds));
-        }
-        for (&(i, j), &bound) in &asked {
-            let back = if self.symmetric {
-                asked.get(&(j, i)).copied().unwrap_or(0.0)
-            } else {
-                0.0
-            };
-            self.bounds.insert((i, j), bound.max(back));
         }
         Ok(())
     }

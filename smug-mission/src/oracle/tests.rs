@@ -261,13 +261,9 @@ impl PointToPointPlanner for Bounding {
         self.inner.plan(start, goal)
     }
 
-    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
-        Ok(Some(
-            goals
-                .iter()
-                .map(|g| start.xy_distance(g) + start.x)
-                .collect(),
-        ))
+    fn cost_bounds(&mut self, starts: &[Pose2], goals: &[Pose2]) -> Result<Option<Vec<Vec<f64>>>> {
+        let row = |s: &Pose2| goals.iter().map(|g| s.xy_distance(g) + s.x).collect();
+        Ok(Some(starts.iter().map(row).collect()))
     }
 
     fn stats(&self) -> PlannerStats {

@@ -12,52 +12,61 @@ use smug_core::Pose2;
 const SLACK: f64 = 0.99;
 
 impl Worker<'_> {
-    /// For each of `goals`, a lower bound of the cost of every path this planner finds
-    /// from `from` to it: the objective's contract bound, and the least, over the ways
-    /// a search leaves `from`, of what they cost at least. A search reaches a goal by a
-    /// direct shot (only within the shot radius), or joins a lattice point within the
-    /// shot radius (at `w_t` per metre of straight distance at least) and goes on from
-    /// there (at least the goal's obstacle-aware distance from that point).
-    /// The obstacle-aware part is shrunk by [`SLACK`]: a path's sampled states and its
-    /// shortcuts cost a little less than its lattice curves.
-    pub(super) fn cost_bounds(&mut self, from: &Pose2, goals: &[Pose2]) -> Vec<f64> {
-        let cheap: Vec<f64> = goals.iter().map(|g| self.cheap_bound(from, g)).collect();
+    /// For each of `starts`, a lower bound of the cost of every path this planner
+    /// finds from it to each of `goals` (a row per start): the objective's contract
+    /// bound, and the least, over the ways a search leaves the start, of what they
+    /// cost at least. A search reaches a goal by a direct shot (only within the shot
+    /// radius), or joins a lattice point within the shot radius (at `w_t` per metre of
+    /// straight distance at least) and goes on from there (at least the goal's
+    /// obstacle-aware distance from that point). That part is shrunk by [`SLACK`]: a
+    /// path's sampled states and its shortcuts cost a little less than its lattice
+    /// curves. Each goal's distances are computed once, a few goals at a time side by
+    /// side (however many are kept), so the bounds cost one field per goal.
+    pub(super) fn cost_bounds(&mut self, starts: &[Pose2], goals: &[Pose2]) -> Vec<Vec<f64>> {
+        let mut bounds: Vec<Vec<f64>> = starts
+            .iter()
+            .map(|s| goals.iter().map(|g| self.cheap_bound(s, g)).collect())
+            .collect();
         if !self.sh.params.obstacle_heuristic {
-            return cheap;
+            return bounds;
         }
-        self.keep_missing_heuristics(goals);
+        let joined: Vec<Vec<(usize, f64)>> = starts.iter().map(|s| self.joined(s)).collect();
+        let batch = 2 * rayon::current_num_threads().max(1);
+        for (c, chunk) in goals.chunks(batch).enumerate() {
+            self.keep_missing_heuristics(chunk);
+            for (k, goal) in chunk.iter().enumerate() {
+                let field = self.goal_heuristic(std::slice::from_ref(goal));
+                for (s, start) in starts.iter().enumerate() {
+                    let row = &mut bounds[s][c * batch + k];
+                    let direct = start.xy_distance(goal) <= self.sh.shot_radius;
+                    let mut least = if direct { *row } else { f64::INFINITY };
+                    for &(point, join) in &joined[s] {
+                        // f32 rounding: stay below the exact distance.
+                        let onward = f64::from(field[point]) * (1.0 - 1e-6);
+                        least = least.min(join + onward);
+                    }
+                    // No lattice path at all: the planner proves that when asked.
+                    if least.is_finite() {
+                        *row = row.max(SLACK * least);
+                    }
+                }
+            }
+        }
+        bounds
+    }
+
+    /// The lattice points a search from `start` can join (within the shot radius),
+    /// each with `w_t` times its straight distance from `start`.
+    fn joined(&self, start: &Pose2) -> Vec<(usize, f64)> {
         let (w_t, _) = self.sh.objective.bound_weights();
-        let (lattice, reach) = (&self.sh.lattice, self.sh.shot_radius);
-        let joined: Vec<(usize, f64)> = lattice
-            .points_near(from.x, from.y, reach)
+        let lattice = &self.sh.lattice;
+        lattice
+            .points_near(start.x, start.y, self.sh.shot_radius)
             .into_iter()
             .map(|(ix, iy)| {
                 let [x, y] = lattice.position(ix, iy);
                 let point = lattice.id(ix, iy, 0) as usize / lattice.headings;
-                (point, w_t * (x - from.x).hypot(y - from.y))
-            })
-            .collect();
-        goals
-            .iter()
-            .zip(cheap)
-            .map(|(goal, cheap)| {
-                let field = self.goal_heuristic(std::slice::from_ref(goal));
-                let mut least = if from.xy_distance(goal) <= reach {
-                    cheap
-                } else {
-                    f64::INFINITY
-                };
-                for &(point, join) in &joined {
-                    // f32 rounding: stay below the exact distance.
-                    let onward = f64::from(field[point]) * (1.0 - 1e-6);
-                    least = least.min(join + onward);
-                }
-                // No lattice path at all: the planner proves that when asked.
-                if least.is_finite() {
-                    (SLACK * least).max(cheap)
-                } else {
-                    cheap
-                }
+                (point, w_t * (x - start.x).hypot(y - start.y))
             })
             .collect()
     }

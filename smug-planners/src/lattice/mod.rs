@@ -295,9 +295,9 @@ impl PointToPointPlanner for LatticePlanner {
     }
 
     /// From the goals' obstacle-aware distances (module `bounds`).
-    fn cost_bounds(&mut self, start: &Pose2, goals: &[Pose2]) -> Result<Option<Vec<f64>>> {
+    fn cost_bounds(&mut self, starts: &[Pose2], goals: &[Pose2]) -> Result<Option<Vec<Vec<f64>>>> {
         let (bounds, counts) = Self::with_searcher(&self.shared, &self.searchers, |worker| {
-            worker.cost_bounds(start, goals)
+            worker.cost_bounds(starts, goals)
         });
         self.counts.add(&counts);
         Ok(Some(bounds))
