@@ -289,7 +289,10 @@ def test_no_solution_names_the_target_like_the_cli(tmp_path):
     occupancy[:, 95:105] = True
     with pytest.raises(smug.NoSolution) as info:
         smug.plan(LUNAR, world=flat_world(occupancy=occupancy))
-    assert str(info.value) == "no solution: no safe path reaches target(s) `far`"
+    first, *legs = str(info.value).splitlines()
+    assert first == "no solution: no safe path reaches target(s) `far`"
+    assert legs and legs[0].startswith("  `far`: the legs from the start to its PoIs: ")
+    assert "budget_spent" in legs[0]
 
 
 def test_input_error_for_a_start_in_collision():

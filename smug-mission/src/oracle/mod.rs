@@ -166,7 +166,9 @@ impl PathOracle {
         self.symmetric
     }
 
-    /// The objective's bound from `i` to `j`: a lower bound of any path's cost.
+    /// A lower bound of the cost of the planner's path from `i` to `j`: the objective's
+    /// (of any path), or the planner's own where [`tighten_bounds`](Self::tighten_bounds)
+    /// asked for it, whichever is larger.
     pub fn lower_bound(&self, i: usize, j: usize) -> f64 {
         let bound = self.objective.cost_bound(&self.poses[i], &self.poses[j]);
         self.bounds.get(&(i, j)).map_or(bound, |b| b.max(bound))
