@@ -2,7 +2,7 @@
 
 use super::*;
 use smug_core::objective::PathLength;
-use smug_core::stages::{ChangedDisc, MotionValidator, PlannerStats, Proof};
+use smug_core::stages::{ChangedDisc, MotionValidator, NoPathReason, PlannerStats, Proof};
 
 /// Connects everything with the straight line, except into pose index 2's position.
 struct StraightLine {

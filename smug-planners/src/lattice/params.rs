@@ -75,6 +75,17 @@ pub(super) fn default_resolution(radius: f64) -> f64 {
     ((radius / 6.0 * 64.0).floor() / 64.0).max(1.0 / 64.0)
 }
 
+/// An error naming `key` unless `value` is finite and at least `min`.
+fn finite_at_least(key: &str, value: f64, min: f64) -> Result<()> {
+    if value.is_finite() && value >= min {
+        return Ok(());
+    }
+    Err(invalid(
+        key,
+        format!("must be finite and ≥ {min}, got {value}"),
+    ))
+}
+
 /// Checks the parameters, naming the key at fault.
 pub(super) fn check_params(p: &LatticeParams) -> Result<()> {
     if p.headings < 16 || !p.headings.is_multiple_of(8) || p.headings > 1024 {
@@ -102,30 +113,14 @@ pub(super) fn check_params(p: &LatticeParams) -> Result<()> {
             ));
         }
     }
-    if !(p.reverse_penalty.is_finite() && p.reverse_penalty >= 1.0) {
-        return Err(invalid(
-            "planner.params.reverse_penalty",
-            format!("must be finite and ≥ 1, got {}", p.reverse_penalty),
-        ));
-    }
-    if !(p.gear_change_cost.is_finite() && p.gear_change_cost >= 0.0) {
-        return Err(invalid(
-            "planner.params.gear_change_cost",
-            format!("must be finite and ≥ 0, got {}", p.gear_change_cost),
-        ));
-    }
-    if !(p.heuristic_weight.is_finite() && p.heuristic_weight >= 1.0) {
-        return Err(invalid(
-            "planner.params.heuristic_weight",
-            format!("must be finite and ≥ 1, got {}", p.heuristic_weight),
-        ));
-    }
-    if !(p.order_heuristic_weight.is_finite() && p.order_heuristic_weight >= 1.0) {
-        return Err(invalid(
-            "planner.params.order_heuristic_weight",
-            format!("must be finite and ≥ 1, got {}", p.order_heuristic_weight),
-        ));
-    }
+    finite_at_least("planner.params.reverse_penalty", p.reverse_penalty, 1.0)?;
+    finite_at_least("planner.params.gear_change_cost", p.gear_change_cost, 0.0)?;
+    finite_at_least("planner.params.heuristic_weight", p.heuristic_weight, 1.0)?;
+    finite_at_least(
+        "planner.params.order_heuristic_weight",
+        p.order_heuristic_weight,
+        1.0,
+    )?;
     if p.time_limit.is_nan() || p.time_limit <= 0.0 {
         return Err(invalid(
             "planner.params.time_limit",
